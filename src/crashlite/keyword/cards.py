@@ -1,0 +1,182 @@
+"""Reading and writing single cards in Python (the complete, slower path).
+
+Formats: ``std`` (fixed columns as in the manual), ``long`` (every field 20
+characters: ``*KEYWORD LONG=Y`` or a keyword ending in ``+``), ``i10`` (8-wide
+fields become 10: ``I10=Y`` or ``%``), and free format (a line with commas).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+from .schema import FLOAT, INT, STR, Field
+
+STD, LONG, I10 = "std", "long", "i10"
+
+_FORTRAN_EXP = re.compile(r"^([+-]?(?:\d+\.?\d*|\.\d+))([+-]\d+)$")
+
+
+def width(f: Field, mode: str) -> int:
+    if mode == LONG:
+        return 20 if (f.kind != STR or f.width <= 20) else f.width
+    if mode == I10 and f.width == 8:
+        return 10
+    return f.width
+
+
+def split(line: str, fields: tuple[Field, ...], mode: str) -> list[str]:
+    """Raw text of each field of one card line."""
+    if "," in line:
+        toks = line.split(",")
+        toks += [""] * (len(fields) - len(toks))
+        return [t.strip() for t in toks[: len(fields)]]
+    out = []
+    pos = 0
+    for f in fields:
+        w = width(f, mode)
+        out.append(line[pos : pos + w])
+        pos += w
+    return out
+
+
+class FieldError(ValueError):
+    pass
+
+
+def to_number(text: str, kind: str):
+    """Convert a Fortran-style number; raise FieldError when it is not one."""
+    t = text.strip().replace("d", "e").replace("D", "E")
+    m = _FORTRAN_EXP.match(t)
+    if m:  # Fortran allows "1.5-3" for 1.5e-3
+        t = f"{m.group(1)}e{m.group(2)}"
+    if kind == INT:
+        try:
+            return int(t)
+        except ValueError:
+            pass
+        try:
+            v = float(t)
+        except ValueError:
+            raise FieldError(f"expected an integer, got {text.strip()!r}") from None
+        if not math.isfinite(v) or v != int(v):
+            raise FieldError(f"expected an integer, got {text.strip()!r}")
+        return int(v)
+    try:
+        v = float(t)
+    except ValueError:
+        raise FieldError(f"expected a real number, got {text.strip()!r}") from None
+    if not math.isfinite(v):
+        raise FieldError(f"expected a finite real number, got {text.strip()!r}")
+    return v
+
+
+def convert(text: str, f: Field, params: dict):
+    """Value of one field: blank gives the default, ``&name``/``-&name`` a
+    parameter (``params`` maps lower-case names to values)."""
+    t = text.strip()
+    if f.kind == STR:
+        if t.startswith("&") and t[1:].lower() in params:
+            return str(params[t[1:].lower()])
+        return t if t else f.default
+    if not t:
+        return f.default
+    neg = False
+    if t.startswith("-&"):
+        neg, t = True, t[1:]
+    if t.startswith("&"):
+        name = t[1:].strip().lower()
+        if name not in params:
+            raise FieldError(f"undefined parameter '&{t[1:].strip()}'")
+        v = params[name]
+        if isinstance(v, str):
+            raise FieldError(f"parameter '&{name}' is text ({v!r}), a number is needed")
+        if f.kind == INT:
+            if v != int(v):
+                raise FieldError(f"parameter '&{name}' = {v} is not an integer")
+            v = int(v)
+        else:
+            v = float(v)
+        return -v if neg else v
+    return to_number(t, f.kind)
+
+
+def format_float(v: float, w: int) -> str | None:
+    """Shortest text of ``v`` that reads back to the same double and fits
+    in ``w`` characters, or None."""
+    if v is None:
+        return ""
+    if not math.isfinite(v):
+        raise ValueError(f"cannot write non-finite value {v}")
+    s = repr(float(v))
+    if len(s) <= w:
+        return s
+    # compact forms that still round-trip: drop exponent zeros and '+', leading 0
+    if "e" in s:
+        m, e = s.split("e")
+        e = str(int(e))
+        s = f"{m}e{e}"
+        if m.endswith(".0"):
+            s = f"{m[:-2]}e{e}"
+    if s.startswith("0."):
+        s = s[1:]
+    elif s.startswith("-0."):
+        s = "-" + s[2:]
+    if len(s) <= w:
+        return s
+    # a fixed-point form can be shorter than repr's exponent form (1e-05 → .00001)
+    for p in range(1, 18):
+        t = f"{v:.{p}g}"
+        if float(t) == v:
+            t2 = t.replace("e-0", "e-").replace("e+0", "e").replace("e+", "e")
+            if len(t2) <= w:
+                return t2
+            break
+    return None
+
+
+def format_value(v, f: Field, w: int) -> str | None:
+    """Text of one field, right-justified in ``w`` (strings left), or None
+    if it does not fit without loss."""
+    if v is None:
+        return " " * w
+    if f.kind == STR:
+        s = str(v)
+        return s.ljust(w) if len(s) <= w else None
+    if f.kind == INT:
+        s = str(int(v))
+    else:
+        s = format_float(float(v), w)
+        if s is None:
+            return None
+    return s.rjust(w) if len(s) <= w else None
+
+
+def format_card(values: list, fields: tuple[Field, ...], mode: str) -> str | None:
+    """One fixed-format line, or None when a value does not fit ``mode``."""
+    parts = []
+    for v, f in zip(values, fields):
+        s = format_value(v, f, width(f, mode))
+        if s is None:
+            return None
+        parts.append(s)
+    return "".join(parts).rstrip()
+
+
+def format_free(values: list, fields: tuple[Field, ...]) -> str:
+    """One free-format line: always lossless (no widths)."""
+    out = []
+    for v, f in zip(values, fields):
+        if v is None:
+            out.append("")
+        elif f.kind == STR:
+            if "," in str(v):
+                raise ValueError(f"text {v!r} of field {f.name} holds a comma")
+            out.append(str(v))
+        elif f.kind == INT:
+            out.append(str(int(v)))
+        else:
+            out.append(repr(float(v)))
+    while out and out[-1] == "":
+        out.pop()
+    return ",".join(out) if len(out) > 1 else (out[0] + "," if out else ",")

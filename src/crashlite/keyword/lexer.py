@@ -1,0 +1,214 @@
+"""Splitting deck files into keyword blocks, following *INCLUDE files.
+
+A block is a keyword line plus its data lines (comments removed), with the
+file and line numbers kept for messages. Line bounds are found by a Numba
+kernel and kept as arrays so mesh blocks never become Python strings.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .cards import I10, LONG, STD
+from .errors import Collector
+from .fastparse import split_lines
+
+
+@dataclass
+class SourceFile:
+    path: Path
+    buf: np.ndarray  # (n_bytes,) uint8
+    starts: np.ndarray  # (n_lines,) int64 byte offset of each line
+    ends: np.ndarray  # (n_lines,) int64 end offset (without \r\n)
+
+    def text(self, i: int) -> str:
+        return self.buf[self.starts[i] : self.ends[i]].tobytes().decode("latin-1")
+
+
+@dataclass
+class IncludeContext:
+    """What an *INCLUDE_TRANSFORM applies to the blocks of its file."""
+
+    offsets: dict  # reference kind -> ID offset
+    tranid: int  # *DEFINE_TRANSFORMATION id (0: none)
+    file: str
+    line: int
+
+
+@dataclass
+class Block:
+    keyword: str  # upper case, no '*', no format suffix
+    line_text: str  # the keyword line as written
+    mode: str  # STD, LONG or I10
+    src: SourceFile
+    kw_index: int  # 0-based line index of the keyword line
+    data: np.ndarray  # (n,) int64 line indices of data lines (no comments)
+    scope: int  # parameter scope (index into Lexer.scopes)
+    contexts: tuple = ()  # IncludeContext chain, innermost last
+    position: int = 0  # running index over the whole deck
+
+    @property
+    def file(self) -> str:
+        return str(self.src.path)
+
+    @property
+    def line(self) -> int:
+        return int(self.kw_index) + 1
+
+    def line_no(self, j: int) -> int:
+        return int(self.data[j]) + 1
+
+    def text(self, j: int) -> str:
+        return self.src.text(int(self.data[j]))
+
+
+def read_source(path: Path) -> SourceFile:
+    raw = path.read_bytes()
+    buf = np.frombuffer(raw, dtype=np.uint8)
+    starts = np.empty(len(buf) + 1, dtype=np.int64)
+    ends = np.empty(len(buf) + 1, dtype=np.int64)
+    n = split_lines(buf, starts, ends)
+    return SourceFile(path, buf, starts[:n].copy(), ends[:n].copy())
+
+
+def keyword_mode(kw_line: str, default: str) -> tuple[str, str]:
+    """Keyword name and card format of a keyword line (suffix + - %)."""
+    word = kw_line.split()[0] if kw_line.split() else "*"
+    name = word[1:]
+    mode = default
+    if name.endswith("+"):
+        name, mode = name[:-1], LONG
+    elif name.endswith("-"):
+        name, mode = name[:-1], STD
+    elif name.endswith("%"):
+        name, mode = name[:-1], I10
+    return name.upper(), mode
+
+
+def blocks_of(src: SourceFile) -> list[tuple[int, np.ndarray]]:
+    """(keyword line index, data line indices) for each keyword in a file."""
+    n = len(src.starts)
+    if n == 0:
+        return []
+    nonempty = src.ends > src.starts
+    first = np.zeros(n, dtype=np.uint8)
+    first[nonempty] = src.buf[src.starts[nonempty]]
+    is_kw = first == ord("*")
+    is_comment = first == ord("$")
+    kws = np.flatnonzero(is_kw)
+    out = []
+    for k, kw in enumerate(kws):
+        stop = kws[k + 1] if k + 1 < len(kws) else n
+        idx = np.arange(kw + 1, stop, dtype=np.int64)
+        idx = idx[~is_comment[kw + 1 : stop]]
+        out.append((int(kw), idx))
+    return out
+
+
+@dataclass
+class Lexer:
+    """Walks a deck and its includes in input order."""
+
+    problems: Collector
+    blocks: list[Block] = field(default_factory=list)
+    scopes: list[int] = field(default_factory=list)  # parent scope of each scope (-1 root)
+    include_paths: list[Path] = field(default_factory=list)
+    files: list[Path] = field(default_factory=list)
+
+    def new_scope(self, parent: int) -> int:
+        self.scopes.append(parent)
+        return len(self.scopes) - 1
+
+    def resolve(self, name: str, here: Path, relative_to: list[Path]) -> Path | None:
+        p = Path(name.strip())
+        if p.is_absolute():
+            return p if p.is_file() else None
+        for base in [here.parent, *relative_to, Path.cwd()]:
+            cand = base / p
+            if cand.is_file():
+                return cand
+        return None
+
+    def walk(self, path: Path, parent_scope: int = -1, contexts: tuple = (),
+             stack: tuple = (), mode: str = STD) -> None:
+        path = Path(path)
+        if path.resolve() in stack:
+            self.problems.error(path, 0, "INCLUDE", None, "file includes itself (include loop)")
+            return
+        try:
+            src = read_source(path)
+        except OSError as e:
+            self.problems.error(path, 0, "", None, f"cannot read file: {e.strerror or e}")
+            return
+        self.files.append(path)
+        scope = self.new_scope(parent_scope)
+        stack = (*stack, path.resolve())
+        relative_paths: list[Path] = []
+        for kw_index, data in blocks_of(src):
+            line_text = src.text(kw_index)
+            name, kmode = keyword_mode(line_text, mode)
+            if name == "KEYWORD":
+                mode = _keyword_flags(line_text, mode)
+                continue
+            if name == "END":
+                break
+            blk = Block(name, line_text, kmode, src, kw_index, data, scope, contexts,
+                        len(self.blocks))
+            if name.startswith("INCLUDE"):
+                self._include(blk, relative_paths, scope, contexts, stack, mode)
+                continue
+            self.blocks.append(blk)
+
+    def _include(self, blk: Block, relative_paths, scope, contexts, stack, mode) -> None:
+        name = blk.keyword
+        lines = [blk.text(j) for j in range(len(blk.data))]
+        if name in ("INCLUDE_PATH", "INCLUDE_PATH_RELATIVE"):
+            base = blk.src.path.parent
+            for ln in lines:
+                if ln.strip():
+                    p = Path(ln.strip())
+                    if not p.is_absolute():
+                        p = base / p if name == "INCLUDE_PATH_RELATIVE" else (
+                            Path.cwd() / p if (Path.cwd() / p).is_dir() else base / p)
+                    (relative_paths if name == "INCLUDE_PATH_RELATIVE" else self.include_paths).append(p)
+            return
+        if name == "INCLUDE":
+            names = [(j, ln) for j, ln in enumerate(lines) if ln.strip()]
+            for j, fname in names:
+                self._walk_named(blk, j, fname, relative_paths, scope, contexts, stack, mode)
+            return
+        if name == "INCLUDE_TRANSFORM":
+            from .transform import include_context
+
+            ctx = include_context(blk, self.problems)
+            if ctx is None or not lines:
+                return
+            self._walk_named(blk, 0, lines[0], relative_paths, scope, (*contexts, ctx), stack, mode)
+            return
+        self.problems.error(blk.file, blk.line, name, None,
+                            "unsupported include keyword (use *INCLUDE, *INCLUDE_PATH, "
+                            "*INCLUDE_PATH_RELATIVE or *INCLUDE_TRANSFORM)")
+
+    def _walk_named(self, blk, j, fname, relative_paths, scope, contexts, stack, mode):
+        fname = fname.strip()
+        target = self.resolve(fname, blk.src.path, [*relative_paths, *self.include_paths])
+        if target is None:
+            self.problems.error(blk.file, blk.line_no(j), blk.keyword, "FILENAME",
+                                f"include file {fname!r} not found (looked in "
+                                f"{os.fspath(blk.src.path.parent)} and the include paths)")
+            return
+        self.walk(target, scope, contexts, stack, mode)
+
+
+def _keyword_flags(line: str, mode: str) -> str:
+    up = line.upper().replace(" =", "=").replace("= ", "=")
+    for tok in up.split()[1:]:
+        if tok.startswith("LONG="):
+            mode = LONG if tok[5:6] in ("Y", "S", "K") else STD
+        elif tok.startswith("I10="):
+            mode = I10 if tok[4:5] == "Y" else mode
+    return mode

@@ -1,0 +1,171 @@
+"""Turning keyword blocks into typed records by their schema."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import cards
+from .errors import Collector
+from .fastparse import BLANK, FALLBACK, parse_rows
+from .lexer import Block
+from .schema import FLOAT, INT, STR, Card, Layout, Record, Spec
+
+
+class _Lines:
+    """Cursor over a block's data lines."""
+
+    def __init__(self, blk: Block):
+        self.blk = blk
+        self.j = 0
+        self.n = len(blk.data)
+
+    def more(self) -> bool:
+        return self.j < self.n
+
+    def take(self) -> tuple[str, int]:
+        t = self.blk.text(self.j), self.blk.line_no(self.j)
+        self.j += 1
+        return t
+
+
+def parse_block(blk: Block, spec: Spec, options: frozenset, params: dict,
+                problems: Collector) -> list[Record]:
+    """All records of one block (keywords without rows may repeat their cards)."""
+    lay: Layout = spec.layout(options)
+    cur = _Lines(blk)
+    records = []
+    while True:
+        rec = _parse_head(blk, spec, options, lay, cur, params, problems)
+        if rec is None:
+            break
+        if lay.row:
+            rec.rows = _parse_rows(blk, lay, cur, params, problems)
+            records.append(rec)
+            break
+        records.append(rec)
+        # further instances under the same keyword, unless only blank lines remain
+        while cur.more() and not cur.blk.text(cur.j).strip():
+            cur.j += 1
+        if not cur.more():
+            break
+    return records
+
+
+def _parse_head(blk, spec, options, lay, cur, params, problems) -> Record | None:
+    rec = Record(spec.name, options, {}, None, None, (blk.file, blk.line))
+    if lay.title_card or ("TITLE" in options and spec.title_option):
+        if not cur.more():
+            problems.error(blk.file, blk.line, blk.keyword, "TITLE", "title card missing")
+            return None
+        rec.title = cur.take()[0].rstrip()
+    for c in lay.head:
+        if c.when is not None and not c.when(rec.values, options):
+            continue
+        if not cur.more():
+            if c.optional:
+                for f in c.fields:
+                    rec.values[f.name] = f.default
+                continue
+            problems.error(blk.file, blk.line, blk.keyword, c.fields[0].name,
+                           f"card with {', '.join(c.names)} missing: the keyword ended early")
+            return None
+        line, lineno = cur.take()
+        _read_card(line, lineno, c, blk, params, problems, rec.values)
+    return rec
+
+
+def _read_card(line, lineno, c: Card, blk, params, problems, out: dict) -> bool:
+    ok = True
+    raw = cards.split(line, c.fields, blk.mode)
+    for text, f in zip(raw, c.fields):
+        try:
+            out[f.name] = cards.convert(text, f, params)
+        except cards.FieldError as e:
+            problems.error(blk.file, lineno, blk.keyword, f.name.upper(), str(e))
+            out[f.name] = f.default
+            ok = False
+    return ok
+
+
+def _row_default(f):
+    if f.default is not None:
+        return f.default
+    return "" if f.kind == STR else 0
+
+
+def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
+    """Row fields as columns. Numeric rows go through the Numba kernel."""
+    idx = blk.data[cur.j :]
+    src = blk.src
+    starts, ends = src.starts[idx], src.ends[idx]
+    keep = ends > starts
+    if not keep.all():  # empty lines inside row data are skipped
+        idx, starts, ends = idx[keep], starts[keep], ends[keep]
+    nl = len(lay.row)
+    fields = lay.row_fields
+    numeric = all(f.kind != STR for f in fields)
+    n_lines = len(idx)
+    if n_lines % nl:
+        ln = int(idx[-1]) + 1 if n_lines else blk.line
+        problems.error(blk.file, ln, blk.keyword, None,
+                       f"each entry has {nl} cards but {n_lines} data lines were found")
+        n_lines -= n_lines % nl
+        idx, starts, ends = idx[:n_lines], starts[:n_lines], ends[:n_lines]
+    nrow = n_lines // nl
+    ints = [k for k, f in enumerate(fields) if f.kind == INT]
+    flts = [k for k, f in enumerate(fields) if f.kind == FLOAT]
+    out_i = np.zeros((nrow, len(ints)), dtype=np.int64)
+    out_f = np.zeros((nrow, len(flts)), dtype=np.float64)
+    status = np.full(nrow, FALLBACK, dtype=np.int8)
+    if numeric and nrow:
+        card_of, index_in, col, width = [], [], [], []
+        for ci, c in enumerate(lay.row):
+            pos = 0
+            for fi, f in enumerate(c.fields):
+                w = cards.width(f, blk.mode)
+                card_of.append(ci), index_in.append(fi), col.append(pos), width.append(w)
+                pos += w
+        slot = np.array([ints.index(k) if k in ints else flts.index(k) for k in range(len(fields))])
+        parse_rows(src.buf, starts, ends, nl, np.array(card_of, np.int64),
+                   np.array(index_in, np.int64), np.array(col, np.int64),
+                   np.array(width, np.int64),
+                   np.array([f.kind == INT for f in fields]), slot.astype(np.int64),
+                   np.array([int(_row_default(f)) if f.kind == INT else 0 for f in fields], np.int64),
+                   np.array([float(_row_default(f)) if f.kind == FLOAT else 0.0 for f in fields]),
+                   out_i, out_f, status)
+    slow = np.flatnonzero(status == FALLBACK)
+    strs = {k: np.empty(nrow, dtype=object) for k, f in enumerate(fields) if f.kind == STR}
+    for r in slow:
+        vals: dict = {}
+        texts = [src.text(int(idx[r * nl + ci])) for ci in range(nl)]
+        if not any(t.strip() for t in texts):
+            status[r] = BLANK
+            continue
+        for ci, c in enumerate(lay.row):
+            li = int(idx[r * nl + ci])
+            if texts[ci].strip():
+                _read_card(texts[ci], li + 1, c, blk, params, problems, vals)
+        for k, f in enumerate(fields):
+            v = vals.get(f.name)
+            if v is None:
+                v = _row_default(f)
+            if f.kind == INT:
+                out_i[r, ints.index(k)] = v
+            elif f.kind == FLOAT:
+                out_f[r, flts.index(k)] = v
+            else:
+                strs[k][r] = v
+    keep = status != BLANK
+    if not keep.all():
+        out_i, out_f = out_i[keep], out_f[keep]
+        strs = {k: v[keep] for k, v in strs.items()}
+    rows = {}
+    for k, f in enumerate(fields):
+        if f.kind == INT:
+            rows[f.name] = out_i[:, ints.index(k)]
+        elif f.kind == FLOAT:
+            rows[f.name] = out_f[:, flts.index(k)]
+        else:
+            rows[f.name] = strs[k]
+    cur.j = cur.n
+    return rows

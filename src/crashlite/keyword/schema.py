@@ -1,0 +1,235 @@
+"""Keyword schemas: the card layout of every keyword crashlite types.
+
+One schema serves both reading and writing, so what the writer emits is by
+construction what the reader expects. A schema is data: cards of fields with
+a name, a kind (int, float, string), a width in characters, a default and,
+for ID fields, the kind of entity referenced (used for *INCLUDE_TRANSFORM
+offsets and for dangling-reference checks).
+
+Cards are declared with a compact text form, one token per field::
+
+    "eid:i8@elem pid:i8@part n1:i8@node ... "   # name:KIND[WIDTH][=DEFAULT][@REF]
+
+KIND is ``i`` (integer), ``f`` (real) or ``s`` (text); WIDTH defaults to 10.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Iterable
+
+INT, FLOAT, STR = "i", "f", "s"
+
+# Entity kinds an ID field can reference. Offsets of *INCLUDE_TRANSFORM are
+# applied per kind (IDNOFF, IDEOFF, IDPOFF, IDMOFF, IDSOFF, IDFOFF, IDDOFF).
+REF_KINDS = (
+    "node", "elem", "part", "sec", "mat", "eos", "hg", "curve", "vector",
+    "coord", "set_node", "set_part", "set_shell", "set_solid", "set_beam",
+    "set_discrete", "set_segment", "set_any", "rigidwall", "contact", "sect",
+)
+
+
+@dataclass(frozen=True)
+class Field:
+    name: str
+    kind: str  # INT, FLOAT or STR
+    width: int = 10
+    default: int | float | str | None = None
+    ref: str | None = None
+
+
+@dataclass(frozen=True)
+class Card:
+    """One line of input.
+
+    ``when(values, options)`` decides whether the card is present at all
+    (e.g. the angle cards of a composite shell section); ``optional`` cards
+    may simply be missing at the end of a keyword.
+    """
+
+    fields: tuple[Field, ...]
+    optional: bool = False
+    when: Callable[[dict, frozenset], bool] | None = None
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        return tuple(f.name for f in self.fields)
+
+
+@dataclass(frozen=True)
+class Layout:
+    """The cards of one keyword instance, given its options.
+
+    ``head`` cards occur once, in order. ``row`` cards form a group repeated
+    until the next keyword (nodes, elements, curve points, set members).
+    """
+
+    head: tuple[Card, ...] = ()
+    row: tuple[Card, ...] = ()
+    title_card: bool = False  # a free 80-character title line before the head
+
+    @property
+    def row_fields(self) -> tuple[Field, ...]:
+        return tuple(f for c in self.row for f in c.fields)
+
+
+@dataclass(frozen=True)
+class Spec:
+    """A keyword family: canonical name, aliases, options it understands and
+    a function from the options present to the layout."""
+
+    name: str
+    layout: Callable[[frozenset], Layout]
+    aliases: tuple[str, ...] = ()
+    options: tuple[str, ...] = ()
+    group: str = "keywords"  # where the model keeps it (see model.Model)
+    id_field: str | None = None  # field that identifies an instance
+    bulk: bool = False  # rows are mesh data taken by the fast parser
+    title_option: bool = True  # "_TITLE" adds a title card
+    doc: str = ""
+
+
+_REGISTRY: dict[str, Spec] = {}
+
+
+def parse_fields(text: str) -> tuple[Field, ...]:
+    """Fields from the compact text form (see module docstring)."""
+    out = []
+    for tok in text.split():
+        ref = None
+        if "@" in tok:
+            tok, ref = tok.split("@")
+            if ref not in REF_KINDS:
+                raise ValueError(f"unknown reference kind {ref!r}")
+        default: int | float | str | None = None
+        if "=" in tok:
+            tok, dtext = tok.split("=", 1)
+        else:
+            dtext = None
+        name, kw = tok.split(":")
+        kind = kw[0]
+        width = int(kw[1:]) if len(kw) > 1 else 10
+        if dtext is not None:
+            default = int(dtext) if kind == INT else float(dtext) if kind == FLOAT else dtext
+        out.append(Field(name, kind, width, default, ref))
+    if sum(f.width for f in out) > 80:
+        raise ValueError(f"card wider than 80 columns: {text}")
+    return tuple(out)
+
+
+def card(text: str, optional: bool = False, when=None) -> Card:
+    return Card(parse_fields(text), optional, when)
+
+
+def fixed(*cards: Card, row: Iterable[Card] = (), title_card: bool = False):
+    """A layout function that ignores options."""
+    lay = Layout(tuple(cards), tuple(row), title_card)
+    return lambda options: lay
+
+
+def register(spec: Spec) -> Spec:
+    for name in (spec.name, *spec.aliases):
+        if name in _REGISTRY:
+            raise ValueError(f"keyword {name} registered twice")
+        _REGISTRY[name] = spec
+    return spec
+
+
+def lookup(keyword: str) -> tuple[Spec | None, frozenset]:
+    """Spec and options for a keyword name such as ``SECTION_SHELL_TITLE``.
+
+    The longest registered name that is a ``_``-prefix of the keyword wins;
+    the remaining ``_``-separated words are its options. Options the spec does
+    not know make the keyword unknown (kept verbatim) rather than misread.
+    """
+    _ensure_loaded()
+    kw = keyword.upper()
+    parts = kw.split("_")
+    for n in range(len(parts), 0, -1):
+        base = "_".join(parts[:n])
+        spec = _REGISTRY.get(base)
+        if spec is None:
+            continue
+        opts = parts[n:]
+        known = set(spec.options) | ({"TITLE"} if spec.title_option else set())
+        if all(o in known for o in opts):
+            return spec, frozenset(opts)
+        return None, frozenset()
+    return None, frozenset()
+
+
+def registered() -> dict[str, Spec]:
+    _ensure_loaded()
+    return dict(_REGISTRY)
+
+
+_loaded = False
+
+
+def _ensure_loaded() -> None:
+    global _loaded
+    if not _loaded:
+        _loaded = True
+        from . import specs  # noqa: F401  (registers the catalogue)
+
+
+@dataclass
+class Record:
+    """One typed keyword instance.
+
+    ``values`` holds the head-card fields by name (None where the deck left a
+    field blank and the schema gives no default); ``rows`` holds repeated
+    row fields as columns (NumPy arrays, one entry per row).
+    """
+
+    keyword: str
+    options: frozenset = frozenset()
+    values: dict = field(default_factory=dict)
+    rows: dict | None = None
+    title: str | None = None
+    source: tuple[str, int] | None = field(default=None, compare=False)
+
+    @property
+    def spec(self) -> Spec:
+        return _REGISTRY[self.keyword]
+
+    @property
+    def id(self):
+        f = self.spec.id_field
+        return self.values.get(f) if f else None
+
+    @property
+    def name(self) -> str:
+        """Full keyword name with options, as written in a deck."""
+        opts = sorted(self.options, key=lambda o: (o == "TITLE", o))
+        return "_".join([self.keyword, *opts])
+
+    def __getitem__(self, key):
+        return self.values[key]
+
+    def __setitem__(self, key, value):
+        self.values[key] = value
+
+    def get(self, key, default=None):
+        v = self.values.get(key)
+        return default if v is None else v
+
+    def __eq__(self, other):
+        if not isinstance(other, Record):
+            return NotImplemented
+        from .equality import records_equal
+
+        return records_equal(self, other)
+
+
+@dataclass
+class RawKeyword:
+    """A keyword crashlite does not type: kept verbatim, written back unchanged."""
+
+    keyword_line: str
+    lines: list[str]
+    source: tuple[str, int] | None = field(default=None, compare=False)
+
+    @property
+    def keyword(self) -> str:
+        return self.keyword_line.split()[0].lstrip("*").upper() if self.keyword_line.split() else ""

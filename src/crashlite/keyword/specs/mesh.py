@@ -1,0 +1,93 @@
+"""Nodes and elements: bulk rows read by the fast parser."""
+
+from ..schema import Card, Layout, Spec, card, fixed, register
+
+_NODES8 = " ".join(f"n{i}:i8=0@node" for i in range(1, 9))
+
+register(Spec(
+    "NODE", fixed(row=[card("nid:i8@node x:f16=0 y:f16=0 z:f16=0 tc:i8=0 rc:i8=0")]),
+    group="nodes", bulk=True, title_option=False,
+    doc="Node coordinates with translational/rotational constraint codes."))
+
+_SHELL = card(f"eid:i8@elem pid:i8@part {_NODES8}")
+_SHELL_THICK = card("thic1:f16=0 thic2:f16=0 thic3:f16=0 thic4:f16=0 beta:f16=0")
+_SHELL_OFFSET = card("offset:f16=0")
+
+
+def _shell_layout(options: frozenset) -> Layout:
+    row = [_SHELL]
+    if options & {"THICKNESS", "BETA", "MCID"}:
+        row.append(_SHELL_THICK)
+    if "OFFSET" in options:
+        row.append(_SHELL_OFFSET)
+    return Layout(row=tuple(row))
+
+
+register(Spec("ELEMENT_SHELL", _shell_layout, options=("THICKNESS", "BETA", "MCID", "OFFSET"),
+              group="shells", bulk=True, title_option=False,
+              doc="Shells; _THICKNESS/_BETA/_MCID give nodal thicknesses and the "
+                  "material angle (BETA) or coordinate system (MCID)."))
+
+register(Spec("ELEMENT_SOLID", fixed(row=[card(f"eid:i8@elem pid:i8@part {_NODES8}")]),
+              group="solids", bulk=True, title_option=False))
+
+_BEAM = card("eid:i8@elem pid:i8@part n1:i8@node n2:i8@node n3:i8=0@node "
+             "rt1:i8=0 rr1:i8=0 rt2:i8=0 rr2:i8=0 local:i8=2")
+_BEAM_THICK = card("parm1:f16=0 parm2:f16=0 parm3:f16=0 parm4:f16=0 parm5:f16=0")
+_BEAM_PID = card("pid1:i8=0@part pid2:i8=0@part")
+_BEAM_OFFSET = card("wx1:f16=0 wy1:f16=0 wz1:f16=0 wx2:f16=0 wy2:f16=0")
+_BEAM_OFFSET2 = card("wz2:f16=0")
+_BEAM_ORIENT = card("vx:f16=0 vy:f16=0 vz:f16=0")
+
+
+def _beam_layout(options: frozenset) -> Layout:
+    row = [_BEAM]
+    if options & {"THICKNESS", "SECTION"}:
+        row.append(_BEAM_THICK)
+    if "PID" in options:
+        row.append(_BEAM_PID)
+    if "OFFSET" in options:
+        row += [_BEAM_OFFSET, _BEAM_OFFSET2]
+    if "ORIENTATION" in options:
+        row.append(_BEAM_ORIENT)
+    return Layout(row=tuple(row))
+
+
+register(Spec("ELEMENT_BEAM", _beam_layout,
+              options=("THICKNESS", "SECTION", "PID", "OFFSET", "ORIENTATION"),
+              group="beams", bulk=True, title_option=False,
+              doc="Beams; n3 is the orientation node (0: none)."))
+
+register(Spec("ELEMENT_DISCRETE",
+              fixed(row=[card("eid:i8@elem pid:i8@part n1:i8@node n2:i8=0@node vid:i8=0@vector "
+                              "s:f16=1 pf:i8=0 offset:f16=0")]),
+              group="discretes", bulk=True, title_option=False,
+              doc="Springs/dampers between two nodes (n2=0: grounded); VID orientation, "
+                  "S scale factor, PF print flag, OFFSET initial offset."))
+
+
+def _mass_layout(options: frozenset) -> Layout:
+    ref = "set_node" if "NODE_SET" in options or "SET" in options else "node"
+    return Layout(row=(card(f"eid:i8@elem id:i8@{ref} mass:f16=0 pid:i8=0@part"),))
+
+
+register(Spec("ELEMENT_MASS", _mass_layout, options=("NODE", "SET"),
+              group="masses", bulk=True, title_option=False,
+              doc="Lumped masses on a node (or node set with _NODE_SET)."))
+
+register(Spec("ELEMENT_MASS_PART", fixed(row=[card("pid:i8@part addmass:f16=0 finmass:f16=0")]),
+              options=("SET",), group="keywords", title_option=False,
+              doc="Mass added to (or final mass of) a part or part set."))
+
+
+def _inertia_layout(options: frozenset) -> Layout:
+    row = [card("eid:i8@elem nid:i8@node csid:i8=0@coord"),
+           card("ixx:f=0 ixy:f=0 ixz:f=0 iyy:f=0 iyz:f=0 izz:f=0 mass:f=0")]
+    if "OFFSET" in options:
+        row.append(card("x:f=0 y:f=0 z:f=0"))
+    return Layout(row=tuple(row))
+
+
+register(Spec("ELEMENT_INERTIA", _inertia_layout, options=("OFFSET",),
+              group="inertias", bulk=True, title_option=False,
+              doc="Lumped mass and inertia tensor on a node (CSID: local system)."))
