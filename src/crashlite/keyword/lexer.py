@@ -47,6 +47,7 @@ class Block:
     src: SourceFile
     kw_index: int  # 0-based line index of the keyword line
     data: np.ndarray  # (n,) int64 line indices of data lines (no comments)
+    stop: int  # line index of the next keyword (end of this block)
     scope: int  # parameter scope (index into Lexer.scopes)
     contexts: tuple = ()  # IncludeContext chain, innermost last
     position: int = 0  # running index over the whole deck
@@ -64,6 +65,10 @@ class Block:
 
     def text(self, j: int) -> str:
         return self.src.text(int(self.data[j]))
+
+    def raw_lines(self) -> list[str]:
+        """Every line after the keyword line, comments included."""
+        return [self.src.text(i) for i in range(self.kw_index + 1, self.stop)]
 
 
 def read_source(path: Path) -> SourceFile:
@@ -90,7 +95,7 @@ def keyword_mode(kw_line: str, default: str) -> tuple[str, str]:
 
 
 def blocks_of(src: SourceFile) -> list[tuple[int, np.ndarray]]:
-    """(keyword line index, data line indices) for each keyword in a file."""
+    """(keyword line, data line indices, end line) for each keyword in a file."""
     n = len(src.starts)
     if n == 0:
         return []
@@ -105,7 +110,7 @@ def blocks_of(src: SourceFile) -> list[tuple[int, np.ndarray]]:
         stop = kws[k + 1] if k + 1 < len(kws) else n
         idx = np.arange(kw + 1, stop, dtype=np.int64)
         idx = idx[~is_comment[kw + 1 : stop]]
-        out.append((int(kw), idx))
+        out.append((int(kw), idx, int(stop)))
     return out
 
 
@@ -148,7 +153,7 @@ class Lexer:
         scope = self.new_scope(parent_scope)
         stack = (*stack, path.resolve())
         relative_paths: list[Path] = []
-        for kw_index, data in blocks_of(src):
+        for kw_index, data, stop in blocks_of(src):
             line_text = src.text(kw_index)
             name, kmode = keyword_mode(line_text, mode)
             if name == "KEYWORD":
@@ -156,7 +161,7 @@ class Lexer:
                 continue
             if name == "END":
                 break
-            blk = Block(name, line_text, kmode, src, kw_index, data, scope, contexts,
+            blk = Block(name, line_text, kmode, src, kw_index, data, stop, scope, contexts,
                         len(self.blocks))
             if name.startswith("INCLUDE"):
                 self._include(blk, relative_paths, scope, contexts, stack, mode)

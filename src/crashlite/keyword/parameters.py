@@ -11,7 +11,6 @@ from dataclasses import dataclass
 
 from .cards import LONG
 from .errors import Collector
-from .expression import ExpressionError, evaluate
 from .lexer import Block
 
 
@@ -99,6 +98,8 @@ class ParameterTable:
         if not text:
             problems.error(file, lineno, kw, "VAL", "parameter has no value")
             return None
+        from .expression import ExpressionError, evaluate
+
         try:
             if expr or text.lstrip("-").startswith("&"):
                 v = evaluate(text, self.visible(scope))

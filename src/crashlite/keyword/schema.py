@@ -229,7 +229,10 @@ class RawKeyword:
     keyword_line: str
     lines: list[str]
     source: tuple[str, int] | None = field(default=None, compare=False)
+    mode: str = "std"  # card format it was written in (cards.STD, LONG, I10)
 
     @property
     def keyword(self) -> str:
-        return self.keyword_line.split()[0].lstrip("*").upper() if self.keyword_line.split() else ""
+        """Upper-case name without '*' and without a format suffix."""
+        words = self.keyword_line.split()
+        return words[0].lstrip("*").rstrip("+-%").upper() if words else ""

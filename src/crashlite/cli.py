@@ -1,0 +1,65 @@
+"""Command line: a thin layer over the public API."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from .keyword.errors import DeckError
+
+
+def _info(args) -> int:
+    from . import read_deck
+    from .model.summary import format_summary, summary
+
+    model = read_deck(args.deck, strict=args.strict)
+    s = summary(model)
+    print(json.dumps(s, indent=2) if args.json else format_summary(s))
+    return 0
+
+
+def _convert(args) -> int:
+    from . import read_deck, write_deck
+
+    model = read_deck(args.deck, strict=args.strict)
+    written = write_deck(model, args.output, fmt=args.format, split=args.split)
+    for w in model.warnings:
+        print(f"warning: {w}", file=sys.stderr)
+    print("wrote " + ", ".join(str(p) for p in written))
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="crashlite", description=__doc__.split("\n")[0])
+    sub = p.add_subparsers(dest="command", required=True)
+    info = sub.add_parser("info", help="summarise a keyword deck: counts, parts, mass, CoG")
+    info.add_argument("deck", type=Path)
+    info.add_argument("--json", action="store_true", help="print JSON instead of text")
+    info.add_argument("--strict", action="store_true", help="keywords crashlite does not type are errors")
+    info.set_defaults(func=_info)
+    conv = sub.add_parser("convert", help="read a deck and write it again (format, includes resolved)")
+    conv.add_argument("deck", type=Path)
+    conv.add_argument("-o", "--output", type=Path, required=True)
+    conv.add_argument("--format", choices=("fixed", "long", "i10", "free"), default="fixed")
+    conv.add_argument("--split", action="store_true", help="nodes and elements in an include file")
+    conv.add_argument("--strict", action="store_true")
+    conv.set_defaults(func=_convert)
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except DeckError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    except (FileExistsError, FileNotFoundError, ValueError, KeyError) as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

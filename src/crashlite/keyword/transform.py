@@ -1,0 +1,121 @@
+"""*INCLUDE_TRANSFORM: ID offsets and the coordinate transformation of an
+included file (*DEFINE_TRANSFORMATION: TRANSL, SCALE, ROTATE)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .cards import FieldError, to_number
+from .errors import Collector
+from .lexer import Block, IncludeContext
+from .schema import INT, Record
+
+# Card 2 of *INCLUDE_TRANSFORM, and which reference kinds each offset moves.
+_OFFSET_FIELDS = ("IDNOFF", "IDEOFF", "IDPOFF", "IDMOFF", "IDSOFF", "IDFOFF", "IDDOFF")
+_KINDS = {
+    "IDNOFF": ("node",),
+    "IDEOFF": ("elem",),
+    "IDPOFF": ("part", "sec"),
+    "IDMOFF": ("mat", "eos", "hg"),
+    "IDSOFF": ("set_node", "set_part", "set_shell", "set_solid", "set_beam", "set_discrete",
+               "set_segment", "set_any"),
+    "IDFOFF": ("curve",),
+    "IDDOFF": ("vector", "coord"),
+    "IDROFF": ("rigidwall", "contact", "sect"),
+}
+
+
+def include_context(blk: Block, problems: Collector) -> IncludeContext | None:
+    """Offsets and TRANID of an *INCLUDE_TRANSFORM block (cards 2-5)."""
+    lines = [(blk.text(j), blk.line_no(j)) for j in range(len(blk.data))]
+    if not lines:
+        problems.error(blk.file, blk.line, blk.keyword, "FILENAME", "file name card missing")
+        return None
+
+    def fields(k, names):
+        if k >= len(lines):
+            return {n: 0.0 for n in names}
+        text, ln = lines[k]
+        toks = text.split(",") if "," in text else [text[i:i + 10] for i in range(0, 10 * len(names), 10)]
+        out = {}
+        for n, t in zip(names, toks + [""] * len(names)):
+            t = t.strip()
+            try:
+                out[n] = to_number(t, "f") if t else 0.0
+            except FieldError as e:
+                problems.error(blk.file, ln, blk.keyword, n, str(e))
+                out[n] = 0.0
+        return out
+
+    c2 = fields(1, _OFFSET_FIELDS)
+    c3 = fields(2, ("IDROFF",))
+    c4 = fields(3, ("FCTMAS", "FCTTIM", "FCTLEN"))
+    c5 = fields(4, ("TRANID",))
+    for name in ("FCTMAS", "FCTTIM", "FCTLEN"):
+        if c4[name] not in (0.0, 1.0):
+            problems.error(blk.file, lines[3][1], blk.keyword, name,
+                           "unit conversion factors of *INCLUDE_TRANSFORM are not supported; "
+                           "convert the included file's units first")
+    offsets = {}
+    for key, val in {**c2, **c3}.items():
+        for kind in _KINDS[key]:
+            offsets[kind] = int(val)
+    return IncludeContext(offsets, int(c5["TRANID"]), blk.file, blk.line)
+
+
+def apply_offsets(rec: Record, ctx: IncludeContext) -> None:
+    """Add the include's ID offsets to every ID field of a record."""
+    lay = rec.spec.layout(rec.options)
+    for c in lay.head:
+        for f in c.fields:
+            off = ctx.offsets.get(f.ref, 0) if f.ref else 0
+            v = rec.values.get(f.name)
+            if off and f.kind == INT and isinstance(v, int) and v > 0:
+                rec.values[f.name] = v + off
+    if rec.rows:
+        for f in lay.row_fields:
+            off = ctx.offsets.get(f.ref, 0) if f.ref else 0
+            if off and f.kind == INT and f.name in rec.rows:
+                col = rec.rows[f.name]
+                rec.rows[f.name] = np.where(col > 0, col + off, col)
+
+
+def matrix(tr: Record, problems: Collector) -> np.ndarray:
+    """4x4 homogeneous matrix of a *DEFINE_TRANSFORMATION (steps applied in order)."""
+    m = np.eye(4)
+    rows = tr.rows or {}
+    n = len(rows.get("option", []))
+    for i in range(n):
+        opt = str(rows["option"][i]).strip().upper()
+        a = [float(rows[f"a{k}"][i]) for k in range(1, 8)]
+        step = np.eye(4)
+        if opt == "TRANSL":
+            step[:3, 3] = a[:3]
+        elif opt == "SCALE":
+            step[:3, :3] = np.diag([s if s != 0 else 1.0 for s in a[:3]])
+        elif opt == "ROTATE":
+            axis = np.array(a[:3])
+            if np.linalg.norm(axis) == 0:
+                problems.error(tr.source[0], tr.source[1], tr.name, "A1", "ROTATE needs a direction A1-A3")
+                continue
+            k = axis / np.linalg.norm(axis)
+            th = math.radians(a[6])
+            kx = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+            r = np.eye(3) + math.sin(th) * kx + (1 - math.cos(th)) * kx @ kx
+            p = np.array(a[3:6])
+            step[:3, :3] = r
+            step[:3, 3] = p - r @ p
+        else:
+            problems.error(tr.source[0], tr.source[1], tr.name, "OPTION",
+                           f"transformation {opt!r} not supported (TRANSL, SCALE, ROTATE are)")
+            continue
+        m = step @ m
+    return m
+
+
+def transform_nodes(rec: Record, m: np.ndarray) -> None:
+    xyz = np.stack([rec.rows["x"], rec.rows["y"], rec.rows["z"]], axis=1)
+    xyz = xyz @ m[:3, :3].T + m[:3, 3]
+    rec.rows["x"], rec.rows["y"], rec.rows["z"] = xyz[:, 0].copy(), xyz[:, 1].copy(), xyz[:, 2].copy()

@@ -1,0 +1,152 @@
+"""Mass properties of a Model and a guess of its unit system."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import mass as mk
+
+
+def _density(model, pids: np.ndarray) -> np.ndarray:
+    """Density of each element's part material (0 where unknown)."""
+    out = np.zeros(len(pids))
+    for pid in np.unique(pids):
+        part = model.parts.get(int(pid))
+        mat = model.materials.get(part.get("mid")) if part is not None else None
+        out[pids == pid] = float(mat.get("ro", 0.0)) if mat is not None else 0.0
+    return out
+
+
+def _section_thickness(model, pids: np.ndarray) -> np.ndarray:
+    """(n, 4) section thicknesses T1..T4 of each shell's part (T2-T4 default to T1)."""
+    out = np.zeros((len(pids), 4))
+    for pid in np.unique(pids):
+        part = model.parts.get(int(pid))
+        sec = model.sections.get(part.get("secid")) if part is not None else None
+        if sec is None:
+            continue
+        t1 = float(sec.get("t1", 0.0))
+        t = [t1] + [float(sec.get(f"t{i}", 0.0)) or t1 for i in (2, 3, 4)]
+        out[pids == pid] = t
+    return out
+
+
+def _beam_area(model, pids: np.ndarray) -> np.ndarray:
+    """Cross-section area of each beam from its *SECTION_BEAM."""
+    out = np.zeros(len(pids))
+    for pid in np.unique(pids):
+        part = model.parts.get(int(pid))
+        sec = model.sections.get(part.get("secid")) if part is not None else None
+        if sec is None:
+            continue
+        a = float(sec.get("a", 0.0))
+        if a == 0.0 and sec.get("ts1") is not None:
+            ts, tt = float(sec.get("ts1", 0.0)), float(sec.get("tt1", 0.0))
+            cst = int(sec.get("cst", 0))
+            if cst == 0:  # rectangle
+                a = ts * tt
+            elif cst == 1:  # tube: outer and inner diameter
+                a = math.pi / 4 * (ts**2 - tt**2)
+            elif cst == 2:  # solid circle
+                a = math.pi / 4 * ts**2
+        out[pids == pid] = a
+    return out
+
+
+def _part_moments(model, pid_sel):
+    """Raw moments of the elements of the selected parts."""
+    xyz = model.nodes.xyz
+    moments = []
+    s = model.shells
+    m = np.isin(s.pid, pid_sel)
+    if m.any():
+        t = s.thickness[m]
+        t = np.where(np.isnan(t), _section_thickness(model, s.pid[m]), t)
+        moments.append(mk.shell_moments(xyz, s.nodes[m], t, _density(model, s.pid[m])))
+    so = model.solids
+    m = np.isin(so.pid, pid_sel)
+    if m.any():
+        moments.append(mk.solid_moments(xyz, so.nodes[m], _density(model, so.pid[m])))
+    b = model.beams
+    m = np.isin(b.pid, pid_sel)
+    if m.any():
+        moments.append(mk.beam_moments(xyz, b.nodes[m][:, :2], _beam_area(model, b.pid[m]),
+                                       _density(model, b.pid[m])))
+    return moments
+
+
+def _scaled(mo, f: float):
+    return mk.Moments(mo.mass * f, mo.first * f, mo.second * f)
+
+
+def mass_properties(model, parts=None) -> mk.MassProperties:
+    """Mass, CoG and inertia about the CoG of the whole model or of parts.
+
+    Shells integrate ρ·t over the mid-surface (nodal thickness or section
+    T1..T4), solids ρ over the volume, beams ρ·A along the axis; *ELEMENT_MASS
+    and *ELEMENT_INERTIA add point masses; a part with *PART_INERTIA (TM > 0)
+    counts with its given mass, CoG and tensor; *ELEMENT_MASS_PART adds mass
+    to a part in proportion to its element mass (CoG unchanged).
+    """
+    pids = model.part_ids_of(parts)
+    whole = parts is None
+    add = {}
+    for rec in model.find("ELEMENT_MASS_PART"):
+        if "SET" in rec.options:
+            targets = [int(p) for pset in rec.rows["pid"] for p in model.set_members("PART", int(pset))]
+        else:
+            targets = [int(p) for p in rec.rows["pid"]]
+        for p, am, fm in zip(targets, rec.rows["addmass"], rec.rows["finmass"]):
+            add[p] = (am, fm)
+    moments = []
+    for pid in pids:
+        part = model.parts[int(pid)]
+        if "INERTIA" in part.options and float(part.get("tm", 0.0)) > 0:
+            c = np.array([part.get("xc", 0.0), part.get("yc", 0.0), part.get("zc", 0.0)], float)
+            tensor = np.array([[part.get("ixx", 0.0), part.get("ixy", 0.0), part.get("ixz", 0.0)],
+                               [part.get("ixy", 0.0), part.get("iyy", 0.0), part.get("iyz", 0.0)],
+                               [part.get("ixz", 0.0), part.get("iyz", 0.0), part.get("izz", 0.0)]], float)
+            moments.append(mk.point_moments(c[None], np.array([part.get("tm")], float), tensor[None]))
+            continue
+        pm = _part_moments(model, np.array([pid]))
+        if int(pid) in add and pm:
+            total = sum(float(x.mass.sum()) for x in pm)
+            am, fm = add[int(pid)]
+            f = (fm / total) if fm > 0 else (total + am) / total if total > 0 else 1.0
+            pm = [_scaled(x, f) for x in pm]
+        moments += pm
+    ms = model.masses
+    sel = np.ones(len(ms), bool) if whole else np.isin(ms.pid, pids)
+    if sel.any():
+        moments.append(mk.point_moments(model.nodes.xyz[ms.node[sel]], ms.mass[sel]))
+    it = model.inertias
+    if whole and len(it):
+        pos = model.nodes.xyz[it.node] + np.nan_to_num(it.offset)
+        t = it.tensor
+        tensor = np.stack([np.stack([t[:, 0], t[:, 1], t[:, 2]], 1),
+                           np.stack([t[:, 1], t[:, 3], t[:, 4]], 1),
+                           np.stack([t[:, 2], t[:, 4], t[:, 5]], 1)], 1)
+        moments.append(mk.point_moments(pos, it.mass, tensor))
+    return mk.combine(*moments)
+
+
+_UNITS = [  # steel density in each system
+    (7.85e-9, "mm-t-s (N, MPa)"),
+    (7.85e-6, "mm-kg-ms (kN, GPa)"),
+    (7.85e-3, "mm-g-ms (N, MPa)"),
+    (7.85e3, "m-kg-s (N, Pa)"),
+    (7.85, "cm-g-s / mm-mg-... (density ~ g/cm³)"),
+]
+
+
+def guess_units(model) -> str:
+    """Unit system whose steel density is closest (in log scale) to the
+    model's median density; metals and foams both sit within ~2 decades."""
+    ro = [float(m.get("ro", 0.0)) for m in model.materials.values() if float(m.get("ro", 0.0) or 0) > 0]
+    if not ro:
+        return "unknown (no densities)"
+    med = float(np.median(ro))
+    best = min(_UNITS, key=lambda u: abs(math.log10(med) - math.log10(u[0])))
+    return best[1]
