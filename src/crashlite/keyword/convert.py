@@ -7,11 +7,20 @@ import numpy as np
 from ..model.mesh import Beams, Discretes, Inertias, Masses, Nodes, Shells, Solids, index_map
 from ..model.model import Model
 from .errors import Collector
+from .fastparse import first_duplicate
 from .schema import Record, RawKeyword, lookup
 
 
 def _rows(rec: Record, *names) -> list[np.ndarray]:
     return [rec.rows[n] for n in names]
+
+
+def _block(rec: Record, *names) -> np.ndarray:
+    """Columns side by side; a view of the parsed matrix where possible."""
+    rows = rec.rows
+    if hasattr(rows, "block"):
+        return rows.block(*names)
+    return np.stack([rows[n] for n in names], axis=1)
 
 
 def _nan0(a: np.ndarray) -> np.ndarray:
@@ -23,15 +32,15 @@ def _nan0(a: np.ndarray) -> np.ndarray:
 
 def _mesh_tables(recs: dict[str, list[Record]]):
     nodes = Nodes.concat([
-        Nodes(r.rows["nid"], np.stack(_rows(r, "x", "y", "z"), axis=1),
+        Nodes(r.rows["nid"], np.ascontiguousarray(_block(r, "x", "y", "z")),
               r.rows["tc"].astype(np.int8), r.rows["rc"].astype(np.int8))
         for r in recs.get("NODE", [])])
     shell_parts = []
     for r in recs.get("ELEMENT_SHELL", []):
         n = len(r.rows["eid"])
-        t = Shells.zeros(n)
-        t.ids, t.pid = r.rows["eid"], r.rows["pid"]
-        t.nodes = np.stack(_rows(r, "n1", "n2", "n3", "n4"), axis=1)  # IDs for now
+        t = Shells(r.rows["eid"], r.rows["pid"], _block(r, "n1", "n2", "n3", "n4"),  # IDs for now
+                   np.full((n, 4), np.nan), np.full(n, np.nan), np.zeros(n, np.int64),
+                   np.full(n, np.nan))
         if "thic1" in r.rows:
             t.thickness = _nan0(np.stack(_rows(r, "thic1", "thic2", "thic3", "thic4"), axis=1))
             if "MCID" in r.options:
@@ -43,8 +52,7 @@ def _mesh_tables(recs: dict[str, list[Record]]):
         shell_parts.append((r, t))
     solid_parts = []
     for r in recs.get("ELEMENT_SOLID", []):
-        t = Solids(r.rows["eid"], r.rows["pid"],
-                   np.stack(_rows(r, *[f"n{i}" for i in range(1, 9)]), axis=1))
+        t = Solids(r.rows["eid"], r.rows["pid"], _block(r, *[f"n{i}" for i in range(1, 9)]))
         solid_parts.append((r, t))
     beam_parts = []
     for r in recs.get("ELEMENT_BEAM", []):
@@ -84,6 +92,9 @@ def _mesh_tables(recs: dict[str, list[Record]]):
 def _check_unique(ids: np.ndarray, what: str, parts, problems: Collector) -> None:
     if len(ids) < 2:
         return
+    lo, hi = int(ids.min()), int(ids.max())
+    if hi - lo < 8 * len(ids) + 1_000_000 and first_duplicate(ids, lo, hi) < 0:
+        return  # the common case, decided in one linear pass
     s = np.sort(ids)
     dup = np.unique(s[1:][s[1:] == s[:-1]])
     if len(dup) == 0:
@@ -101,10 +112,11 @@ def _check_unique(ids: np.ndarray, what: str, parts, problems: Collector) -> Non
 def _map_nodes(parts, cols, node_of, problems: Collector, what: str, allow_zero=True):
     """Replace node IDs by indices in-place; report dangling ones."""
     for r, t in parts:
-        arr = getattr(t, cols)
-        ids = np.asarray(arr, dtype=np.int64)
+        ids = getattr(t, cols)
         idx = node_of(ids)
-        bad = (idx < 0) & (ids != 0 if allow_zero else True)
+        bad = idx < 0
+        if allow_zero:
+            bad &= ids != 0
         if bad.any():
             rows, cols_ = np.nonzero(bad.reshape(len(ids), -1))
             for i in range(min(len(rows), 20)):
@@ -116,7 +128,7 @@ def _map_nodes(parts, cols, node_of, problems: Collector, what: str, allow_zero=
             if len(rows) > 20:
                 problems.error(r.source[0], r.source[1], r.name, None,
                                f"... {len(rows) - 20} more undefined node references")
-        setattr(t, cols, np.where(bad, -1, idx).astype(np.int32))
+        setattr(t, cols, idx.astype(np.int32))
 
 
 def build_model(records: list[Record | RawKeyword], problems: Collector) -> tuple[Model, list[Record]]:

@@ -177,42 +177,81 @@ def parse_rows(buf, starts, ends, lines_per_row, card_of, index_in_card, col, wi
     pow10 = _POW10
     free = np.zeros(lines_per_row, dtype=np.bool_)
     for r in range(nrow):
-        st = OK
         blank_row = True
         for c in range(lines_per_row):
             li = r * lines_per_row + c
             free[c] = False
             for i in range(starts[li], ends[li]):
                 ch = buf[i]
-                if ch == 44:
-                    free[c] = True
-                    blank_row = False
-                    break
                 if ch != 32 and ch != 9:
                     blank_row = False
+                    break
         if blank_row:
             status[r] = BLANK
             continue
-        for k in range(nf):
-            li = r * lines_per_row + card_of[k]
-            s = starts[li]
-            e = ends[li]
-            if free[card_of[k]]:
-                a, b = _free_token(buf, s, e, index_in_card[k])
-            else:
-                a = s + col[k]
-                b = a + width[k]
-                if a > e:
-                    a = e
-                if b > e:
-                    b = e
-            code, blank, iv, fv = _parse_number(buf, a, b, is_int[k], pow10)
-            if code != OK:
-                st = FALLBACK
+        # fixed columns first; a field that fails on a line holding a comma
+        # switches that line to free format and the row is read again
+        st = OK
+        for attempt in range(2):
+            st = OK
+            for k in range(nf):
+                c = card_of[k]
+                li = r * lines_per_row + c
+                s = starts[li]
+                e = ends[li]
+                if free[c]:
+                    a, b = _free_token(buf, s, e, index_in_card[k])
+                else:
+                    a = s + col[k]
+                    b = a + width[k]
+                    if a > e:
+                        a = e
+                    if b > e:
+                        b = e
+                code, blank, iv, fv = _parse_number(buf, a, b, is_int[k], pow10)
+                if code != OK:
+                    st = FALLBACK
+                    if attempt == 0 and not free[c]:
+                        for i in range(s, e):
+                            if buf[i] == 44:
+                                free[c] = True
+                                break
+                    break
+                if is_int[k]:
+                    out_i[r, slot[k]] = def_i[k] if blank else iv
+                else:
+                    out_f[r, slot[k]] = def_f[k] if blank else fv
+            if st == OK:
                 break
-            if is_int[k]:
-                out_i[r, slot[k]] = def_i[k] if blank else iv
-            else:
-                out_f[r, slot[k]] = def_f[k] if blank else fv
+            any_free = False
+            for c in range(lines_per_row):
+                any_free = any_free or free[c]
+            if not any_free:
+                break
         status[r] = st
     return nrow
+
+
+@njit(cache=True)
+def gather_index(table, ids, out):
+    """out[i, j] = table[ids[i, j]], -1 outside the table (dense ID lookup).
+
+    ``ids`` may be a strided view (a column block of the parsed matrix).
+    """
+    n = table.shape[0]
+    for i in range(ids.shape[0]):
+        for j in range(ids.shape[1]):
+            v = ids[i, j]
+            out[i, j] = table[v] if 0 <= v < n else -1
+
+
+@njit(cache=True)
+def first_duplicate(ids, lo, hi):
+    """Index of the first repeated ID in ``ids`` (all within [lo, hi]), or -1."""
+    seen = np.zeros(hi - lo + 1, dtype=np.bool_)
+    for i in range(ids.shape[0]):
+        k = ids[i] - lo
+        if seen[k]:
+            return i
+        seen[k] = True
+    return -1

@@ -71,6 +71,8 @@ def _parse_head(blk, spec, options, lay, cur, params, problems) -> Record | None
             return None
         line, lineno = cur.take()
         _read_card(line, lineno, c, blk, params, problems, rec.values)
+        for f in c.fields:
+            rec.card_lines[f.name] = lineno
     return rec
 
 
@@ -114,8 +116,9 @@ def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
     nrow = n_lines // nl
     ints = [k for k, f in enumerate(fields) if f.kind == INT]
     flts = [k for k, f in enumerate(fields) if f.kind == FLOAT]
-    out_i = np.zeros((nrow, len(ints)), dtype=np.int64)
-    out_f = np.zeros((nrow, len(flts)), dtype=np.float64)
+    # column-major: each field's column is contiguous for the model tables
+    out_i = np.zeros((nrow, len(ints)), dtype=np.int64, order="F")
+    out_f = np.zeros((nrow, len(flts)), dtype=np.float64, order="F")
     status = np.full(nrow, FALLBACK, dtype=np.int8)
     if numeric and nrow:
         card_of, index_in, col, width = [], [], [], []
@@ -159,13 +162,34 @@ def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
     if not keep.all():
         out_i, out_f = out_i[keep], out_f[keep]
         strs = {k: v[keep] for k, v in strs.items()}
-    rows = {}
+    rows = RowColumns()
     for k, f in enumerate(fields):
         if f.kind == INT:
-            rows[f.name] = out_i[:, ints.index(k)]
+            rows.add(f.name, out_i, ints.index(k))
         elif f.kind == FLOAT:
-            rows[f.name] = out_f[:, flts.index(k)]
+            rows.add(f.name, out_f, flts.index(k))
         else:
             rows[f.name] = strs[k]
     cur.j = cur.n
     return rows
+
+
+class RowColumns(dict):
+    """Row fields by name (column views); remembers the column-major matrix
+    each came from so that adjacent fields are taken without a copy."""
+
+    def __init__(self, *a, **kw):
+        super().__init__(*a, **kw)
+        self._where: dict = {}
+
+    def add(self, name, matrix, j) -> None:
+        self[name] = matrix[:, j]
+        self._where[name] = (matrix, j)
+
+    def block(self, *names) -> np.ndarray:
+        """(n, len(names)) array of the named columns (a view when adjacent)."""
+        w = [self._where.get(n) for n in names]
+        if all(x is not None for x in w) and all(x[0] is w[0][0] for x in w) and \
+                [x[1] for x in w] == list(range(w[0][1], w[0][1] + len(w))):
+            return w[0][0][:, w[0][1] : w[0][1] + len(w)]
+        return np.stack([self[n] for n in names], axis=1)

@@ -83,9 +83,11 @@ def check_references(model: Model, problems: Collector, bulk=()) -> None:
                     continue
                 if f.ref == "node":
                     if not np.isin(v, node_ids):
-                        problems.error(*rec.source, rec.name, f.name.upper(), f"node {v} is not defined")
+                        problems.error(*rec.where(f.name), rec.name, f.name.upper(),
+                                       f"node {v} is not defined")
                 elif f.ref in _WHAT and v not in ids.get(f.ref, set()):
-                    problems.error(*rec.source, rec.name, f.name.upper(), f"{_WHAT[f.ref]} {v} is not defined")
+                    problems.error(*rec.where(f.name), rec.name, f.name.upper(),
+                                   f"{_WHAT[f.ref]} {v} is not defined")
         if rec.rows:
             for f in lay.row_fields:
                 if f.ref is None or f.kind != INT or f.name not in rec.rows:

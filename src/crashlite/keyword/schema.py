@@ -188,6 +188,12 @@ class Record:
     rows: dict | None = None
     title: str | None = None
     source: tuple[str, int] | None = field(default=None, compare=False)
+    card_lines: dict = field(default_factory=dict, compare=False, repr=False)  # field -> line
+
+    def where(self, field_name: str | None = None) -> tuple[str, int]:
+        """(file, line) of a field's card, or of the keyword."""
+        src = self.source or ("", 0)
+        return src[0], self.card_lines.get(field_name, src[1])
 
     @property
     def spec(self) -> Spec:

@@ -30,6 +30,8 @@ class Table:
     def concat(cls, tables: list["Table"]) -> "Table":
         if not tables:
             return cls.empty()
+        if len(tables) == 1:
+            return tables[0]
         return cls(**{f.name: np.concatenate([getattr(t, f.name) for t in tables])
                       for f in fields(cls)})
 
@@ -171,13 +173,17 @@ def index_map(ids: np.ndarray):
         return lambda q: np.full(np.shape(q), -1, dtype=np.int64)
     lo, hi = int(ids.min()), int(ids.max())
     if lo >= 0 and hi < 4 * len(ids) + 1_000_000:
-        table = np.full(hi + 2, -1, dtype=np.int64)
+        from ..keyword.fastparse import gather_index
+
+        table = np.full(hi + 1, -1, dtype=np.int64)
         table[ids] = np.arange(len(ids))
 
         def lookup(q):
             q = np.asarray(q, dtype=np.int64)
-            ok = (q >= 0) & (q <= hi)
-            return np.where(ok, table[np.where(ok, q, hi + 1)], -1)
+            out = np.empty(q.shape, dtype=np.int64)
+            gather_index(table, q.reshape(len(q), -1) if q.ndim else q.reshape(1, 1),
+                         out.reshape(len(q), -1) if q.ndim else out.reshape(1, 1))
+            return out
 
         return lookup
     order = np.argsort(ids, kind="stable")
