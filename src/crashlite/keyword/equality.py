@@ -44,6 +44,12 @@ def records_equal(a, b) -> bool:
     return True
 
 
+def _raw_key(raw):
+    """A verbatim keyword's content, independent of how its format was marked."""
+    rest = raw.keyword_line.split(None, 1)[1:] or [""]
+    return raw.keyword, rest[0].rstrip(), raw.mode, [ln.rstrip() for ln in raw.lines]
+
+
 def model_differences(a, b) -> list[str]:
     """What differs between two models (empty: equal)."""
     from ..model.model import ENTITY_GROUPS, MESH_TABLES
@@ -67,8 +73,7 @@ def model_differences(a, b) -> list[str]:
     else:
         for x, y in zip(ka, kb):
             if isinstance(x, RawKeyword) and isinstance(y, RawKeyword):
-                if (x.keyword_line.rstrip(), [ln.rstrip() for ln in x.lines]) != \
-                        (y.keyword_line.rstrip(), [ln.rstrip() for ln in y.lines]):
+                if _raw_key(x) != _raw_key(y):
                     out.append(f"verbatim *{x.keyword} differs")
             elif type(x) is not type(y) or not records_equal(x, y):
                 out.append(f"*{getattr(x, 'name', x.keyword)} differs from *{getattr(y, 'name', y.keyword)}")

@@ -176,6 +176,9 @@ def parse_rows(buf, starts, ends, lines_per_row, card_of, index_in_card, col, wi
     nf = card_of.shape[0]
     pow10 = _POW10
     free = np.zeros(lines_per_row, dtype=np.bool_)
+    card_end = np.zeros(lines_per_row, dtype=np.int64)
+    for k in range(nf):
+        card_end[card_of[k]] = max(card_end[card_of[k]], col[k] + width[k])
     for r in range(nrow):
         blank_row = True
         for c in range(lines_per_row):
@@ -185,6 +188,12 @@ def parse_rows(buf, starts, ends, lines_per_row, card_of, index_in_card, col, wi
                 ch = buf[i]
                 if ch != 32 and ch != 9:
                     blank_row = False
+                    break
+            # a comma past the card's columns (a comma inside them makes the
+            # fixed-column parse fail, which is caught below)
+            for i in range(starts[li] + card_end[c], ends[li]):
+                if buf[i] == 44:
+                    free[c] = True
                     break
         if blank_row:
             status[r] = BLANK

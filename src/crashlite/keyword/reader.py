@@ -26,6 +26,25 @@ def read_deck(path, strict: bool = False) -> Model:
     """
     path = Path(path)
     problems = Collector()
+    records, lexer, params = read_records(path, problems, strict)
+    model, bulk = build_model(records, problems)
+    check_references(model, problems, bulk)
+    problems.raise_if_any()
+    model.parameters = params.defined
+    model.source = str(path)
+    model.files = [str(p) for p in lexer.files]
+    model.warnings = problems.warnings
+    return model
+
+
+def read_records(path, problems: Collector | None = None, strict: bool = False):
+    """The typed records and verbatim keywords of a deck in input order,
+    before they become a Model (no reference checks). Returns (records,
+    lexer, parameter table); raises DeckError when ``problems`` is None and
+    the deck has any."""
+    own = problems is None
+    problems = Collector() if own else problems
+    path = Path(path)
     if not path.is_file():
         raise DeckError([_problem(path, "deck file not found")])
     lexer = Lexer(problems)
@@ -64,14 +83,9 @@ def read_deck(path, strict: bool = False) -> Model:
     for kw, (f, ln, n) in sorted(unknown.items()):
         msg = f"keyword not typed by crashlite ({n}x); kept verbatim and written back unchanged"
         (problems.error if strict else problems.warn)(f, ln, kw, None, msg)
-    model, bulk = build_model(records, problems)
-    check_references(model, problems, bulk)
-    problems.raise_if_any()
-    model.parameters = params.defined
-    model.source = str(path)
-    model.files = [str(p) for p in lexer.files]
-    model.warnings = problems.warnings
-    return model
+    if own:
+        problems.raise_if_any()
+    return records, lexer, params
 
 
 def _apply_coordinate_transforms(records, transformed, problems) -> None:

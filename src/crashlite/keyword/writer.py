@@ -74,12 +74,17 @@ def _texts(values, f: Field, w: int | None):
 def _card_lines(columns: list, fields: tuple[Field, ...], mode: str):
     """Lines of one card for n rows, and which rows fit the columns."""
     n = len(columns[0]) if columns else 0
+    if n == 0:
+        return np.array([], dtype=object), np.ones(0, bool)
     if mode == "free":
         parts = [_texts(c, f, None)[0] for c, f in zip(columns, fields)]
         line = parts[0]
         for p in parts[1:]:
             line = np.char.add(np.char.add(line, ","), p)
-        return np.char.rstrip(np.char.rstrip(line, ","), " ") if n else line, np.ones(n, bool)
+        line = np.char.rstrip(line, ",")
+        # a line without a comma would be read by columns: keep one
+        line = np.where(np.char.find(line, ",") < 0, np.char.add(line, ","), line)
+        return line, np.ones(n, bool)
     fits = np.ones(n, dtype=bool)
     line = np.full(n, "", dtype="<U1")
     for c, f in zip(columns, fields):

@@ -1,0 +1,17 @@
+import textwrap
+from pathlib import Path
+
+import pytest
+
+
+@pytest.fixture
+def deck(tmp_path):
+    """Write deck text (dedented) to files: deck("main.k", text) -> Path."""
+
+    def write(name: str, text: str) -> Path:
+        p = tmp_path / name
+        p.parent.mkdir(parents=True, exist_ok=True)
+        p.write_text(textwrap.dedent(text).lstrip("\n"))
+        return p
+
+    return write
