@@ -98,7 +98,7 @@ class ParameterTable:
         if not text:
             problems.error(file, lineno, kw, "VAL", "parameter has no value")
             return None
-        from .expression import ExpressionError, evaluate
+        from .expr import ExpressionError, evaluate
 
         try:
             if expr or text.lstrip("-").startswith("&"):
