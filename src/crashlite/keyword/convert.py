@@ -30,7 +30,7 @@ def _nan0(a: np.ndarray) -> np.ndarray:
     return a
 
 
-def _mesh_tables(recs: dict[str, list[Record]]):
+def _mesh_tables(recs: dict[str, list[Record]], problems: Collector):
     nodes = Nodes.concat([
         Nodes(r.rows["nid"], np.ascontiguousarray(_block(r, "x", "y", "z")),
               r.rows["tc"].astype(np.int8), r.rows["rc"].astype(np.int8))
@@ -38,6 +38,10 @@ def _mesh_tables(recs: dict[str, list[Record]]):
     shell_parts = []
     for r in recs.get("ELEMENT_SHELL", []):
         n = len(r.rows["eid"])
+        higher = np.flatnonzero(np.any(_block(r, "n5", "n6", "n7", "n8") != 0, axis=1))
+        if len(higher):
+            problems.error(*r.source, r.name, "N5",
+                           f"element {int(r.rows['eid'][higher[0]])}: 8-node shells are not supported")
         t = Shells(r.rows["eid"], r.rows["pid"], _block(r, "n1", "n2", "n3", "n4"),  # IDs for now
                    np.full((n, 4), np.nan), np.full(n, np.nan), np.zeros(n, np.int64),
                    np.full(n, np.nan))
@@ -52,6 +56,8 @@ def _mesh_tables(recs: dict[str, list[Record]]):
         shell_parts.append((r, t))
     solid_parts = []
     for r in recs.get("ELEMENT_SOLID", []):
+        if "TWO_CARD" in r.options and (np.any(r.rows["n9"] != 0) or np.any(r.rows["n10"] != 0)):
+            problems.warn(*r.source, r.name, "N9", "10-node tetrahedra: only the corner nodes are used")
         t = Solids(r.rows["eid"], r.rows["pid"], _block(r, *[f"n{i}" for i in range(1, 9)]))
         solid_parts.append((r, t))
     beam_parts = []
@@ -151,7 +157,7 @@ def build_model(records: list[Record | RawKeyword], problems: Collector) -> tupl
             model.keywords.append(rec)
         else:
             _add_entity(getattr(model, g), rec.id, rec, problems, g[:-1])
-    nodes, shells, solids, beams, discs, masses, inertias = _mesh_tables(bulk)
+    nodes, shells, solids, beams, discs, masses, inertias = _mesh_tables(bulk, problems)
     _check_unique(nodes.ids, "node", [(r, t) for r in bulk.get("NODE", [])
                                        for t in [Nodes(r.rows["nid"], None, None, None)]], problems)
     node_of = index_map(nodes.ids)

@@ -182,7 +182,7 @@ class Lexer:
                     (relative_paths if name == "INCLUDE_PATH_RELATIVE" else self.include_paths).append(p)
             return
         if name == "INCLUDE":
-            names = [(j, ln) for j, ln in enumerate(lines) if ln.strip()]
+            names = _file_names(lines)
             for j, fname in names:
                 self._walk_named(blk, j, fname, relative_paths, scope, contexts, stack, mode)
             return
@@ -207,6 +207,24 @@ class Lexer:
                                 f"{os.fspath(blk.src.path.parent)} and the include paths)")
             return
         self.walk(target, scope, contexts, stack, mode)
+
+
+def _file_names(lines: list[str]) -> list[tuple[int, str]]:
+    """File names of an *INCLUDE card list; a line ending in ' +' continues
+    on the next (names longer than one card)."""
+    out, buf, start = [], "", None
+    for j, ln in enumerate(lines):
+        if not ln.strip():
+            continue
+        start = j if start is None else start
+        if ln.rstrip().endswith(" +"):
+            buf += ln.rstrip()[:-2].strip()
+            continue
+        out.append((start, buf + ln.strip()))
+        buf, start = "", None
+    if buf:
+        out.append((start, buf))
+    return out
 
 
 def _keyword_flags(line: str, mode: str) -> str:

@@ -31,6 +31,8 @@ class _Lines:
 def parse_block(blk: Block, spec: Spec, options: frozenset, params: dict,
                 problems: Collector) -> list[Record]:
     """All records of one block (keywords without rows may repeat their cards)."""
+    if spec.sniff is not None and len(blk.data):
+        options = spec.sniff(blk.text(0), options)
     lay: Layout = spec.layout(options)
     cur = _Lines(blk)
     records = []

@@ -87,6 +87,9 @@ class Spec:
     bulk: bool = False  # rows are mesh data taken by the fast parser
     title_option: bool = True  # "_TITLE" adds a title card
     doc: str = ""
+    # options implied by the first data line (a card format the keyword
+    # name does not show, e.g. the two-card *ELEMENT_SOLID)
+    sniff: Callable[[str, frozenset], frozenset] | None = None
 
 
 _REGISTRY: dict[str, Spec] = {}

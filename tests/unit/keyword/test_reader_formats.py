@@ -149,3 +149,16 @@ def test_split_writes_mesh_include(deck, tmp_path):
     assert [f.name for f in files] == ["main.k", "main_mesh.k"]
     assert "*NODE" not in files[0].read_text() and "*NODE" in files[1].read_text()
     assert model_differences(m, read_deck(files[0])) == []
+
+
+def test_two_card_solids_and_eight_node_shells(deck):
+    text = "\n".join([
+        "*KEYWORD", "*NODE", *[f"{i:8d}{float(i):16}{0.0:16}{0.0:16}" for i in range(1, 9)],
+        "*ELEMENT_SOLID", f"{1:8d}{1:8d}", "".join(f"{i:8d}" for i in range(1, 9)),
+        "*PART", "b", "1,1,1", "*SECTION_SOLID", "1,1", "*MAT_ELASTIC", "1,1e-9,1.,0.3", "*END"])
+    m = read_deck(deck("two.k", text))
+    assert m.solids.nodes.tolist() == [list(range(8))]
+    bad = text.replace("*ELEMENT_SOLID", "*ELEMENT_SHELL\n" + "".join(f"{i:8d}" for i in (5, 1, 1, 2, 3, 4, 5, 6, 7, 8))
+                       + "\n*ELEMENT_SOLID")
+    with pytest.raises(DeckError, match="8-node shells are not supported"):
+        read_deck(deck("bad.k", bad))

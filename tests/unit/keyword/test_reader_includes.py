@@ -140,3 +140,28 @@ def test_include_transform_offsets_and_translation(deck):
     assert m.parts[101]["secid"] == 101 and m.parts[101]["mid"] == 101
     assert m.shells.pid.tolist() == [1, 101]
     assert m.shells.nodes[1].tolist() == [3, 4, 5, 5]
+
+
+def test_long_include_name_continued_and_include_path(deck):
+    deck("a/very_long_directory_name_for_the_include_test/nodes_of_the_model.k",
+         "*KEYWORD\n*NODE\n       1             1.0             2.0             3.0\n*END\n")
+    deck("lib/other.k", "*KEYWORD\n*NODE\n       2             1.0             2.0             3.0\n*END\n")
+    main = deck("main.k", """
+        *KEYWORD
+        *INCLUDE_PATH
+        lib
+        *INCLUDE
+        a/very_long_directory_name_for_the_include_test/ +
+        nodes_of_the_model.k
+        other.k
+        *END
+        """)
+    m = read_deck(main)
+    assert m.nodes.ids.tolist() == [1, 2]
+
+
+def test_include_loop_is_reported(deck):
+    deck("a.k", "*KEYWORD\n*INCLUDE\nb.k\n*END\n")
+    deck("b.k", "*KEYWORD\n*INCLUDE\na.k\n*END\n")
+    with pytest.raises(DeckError, match="include loop"):
+        read_deck(deck("main.k", "*KEYWORD\n*INCLUDE\na.k\n*END\n"))

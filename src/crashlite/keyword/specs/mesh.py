@@ -28,8 +28,28 @@ register(Spec("ELEMENT_SHELL", _shell_layout, options=("THICKNESS", "BETA", "MCI
               doc="Shells; _THICKNESS/_BETA/_MCID give nodal thicknesses and the "
                   "material angle (BETA) or coordinate system (MCID)."))
 
-register(Spec("ELEMENT_SOLID", fixed(row=[card(f"eid:i8@elem pid:i8@part {_NODES8}")]),
-              group="solids", bulk=True, title_option=False))
+_SOLID_1 = card(f"eid:i8@elem pid:i8@part {_NODES8}")
+_SOLID_2 = (card("eid:i8@elem pid:i8@part"),
+            card(f"{_NODES8} n9:i8=0@node n10:i8=0@node"))
+
+
+def _solid_layout(options: frozenset) -> Layout:
+    return Layout(row=_SOLID_2 if "TWO_CARD" in options else (_SOLID_1,))
+
+
+def _solid_sniff(first_line: str, options: frozenset) -> frozenset:
+    """Since R10 LS-DYNA also reads EID PID on one card and N1-N10 on the
+    next; a first card with nothing past column 16 is that format."""
+    body = first_line.split(",")[2:] if "," in first_line else [first_line[16:]]
+    if not "".join(body).strip():
+        return options | {"TWO_CARD"}
+    return options
+
+
+register(Spec("ELEMENT_SOLID", _solid_layout, group="solids", bulk=True, title_option=False,
+              sniff=_solid_sniff,
+              doc="Solids: 8 nodes on one card, or EID PID then N1-N10 (10-node "
+                  "tetrahedra keep their corner nodes; crashlite uses 8)."))
 
 _BEAM = card("eid:i8@elem pid:i8@part n1:i8@node n2:i8@node n3:i8=0@node "
              "rt1:i8=0 rr1:i8=0 rt2:i8=0 rr2:i8=0 local:i8=2")
