@@ -1,0 +1,54 @@
+"""The bundled example deck: read, summarised, written and re-read."""
+
+import json
+
+import numpy as np
+import pytest
+
+from crashlite import read_deck, write_deck
+from crashlite.cli import main
+from crashlite.demo import example_deck
+from crashlite.keyword.equality import model_differences
+
+
+@pytest.fixture(scope="module")
+def tube():
+    return read_deck(example_deck("tube"))
+
+
+def test_example_contents(tube):
+    assert len(tube.nodes) == 1969 and len(tube.shells) == 1920 and len(tube.masses) == 1
+    assert tube.sections[1]["t1"] == 1.5
+    assert tube.materials[1]["sigy"] == pytest.approx(235.0 * 1.05, rel=1e-15)
+    assert tube.masses.mass[0] == 0.05
+    assert tube.set_members("NODE", 1).size == 49  # impact ring + mass node
+    # 60 x 60 x 200 tube of 1.5 mm steel plus the 50 kg mass
+    m = tube.mass_properties()
+    shell_mass = 7.85e-9 * 4 * 60 * 200 * 1.5
+    assert m.mass == pytest.approx(shell_mass + 0.05, rel=1e-12)
+    assert m.cog[2] == pytest.approx((shell_mass * 100 + 0.05 * 200) / (shell_mass + 0.05), rel=1e-12)
+    assert not tube.warnings
+
+
+@pytest.mark.parametrize("fmt", ["fixed", "long", "i10", "free"])
+def test_example_roundtrip(tube, tmp_path, fmt):
+    out = tmp_path / f"tube_{fmt}.k"
+    write_deck(tube, out, fmt=fmt)
+    assert model_differences(tube, read_deck(out)) == []
+
+
+def test_info_json(capsys):
+    assert main(["info", str(example_deck("tube")), "--json"]) == 0
+    s = json.loads(capsys.readouterr().out)
+    assert s["counts"]["shells"] == 1920
+    assert s["units"].startswith("mm-t-s")
+    assert s["keywords"]["ELEMENT_SHELL"] == 1920
+    assert [p["title"] for p in s["parts"]] == ["tube"]
+    np.testing.assert_allclose(s["total"]["cog"][:2], [0.0, 0.0], atol=1e-9)
+    assert s["parameters"]["thick"] == 1.5
+
+
+def test_info_text(capsys):
+    assert main(["info", str(example_deck("tube"))]) == 0
+    out = capsys.readouterr().out
+    assert "mm-t-s" in out and "ELEMENT_SHELL" in out and "tube" in out
