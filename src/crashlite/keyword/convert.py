@@ -23,6 +23,15 @@ def _block(rec: Record, *names) -> np.ndarray:
     return np.stack([rows[n] for n in names], axis=1)
 
 
+def _i64(a: np.ndarray) -> np.ndarray:
+    return a.astype(np.int64, copy=False)
+
+
+def _absent(shape, value, dtype=np.float64) -> np.ndarray:
+    """A read-only array standing for 'not given' (assign a new array to set)."""
+    return np.broadcast_to(np.asarray(value, dtype=dtype), shape)
+
+
 def _nan0(a: np.ndarray) -> np.ndarray:
     """0 means 'not given' for optional element data: store NaN."""
     a = np.asarray(a, dtype=np.float64).copy()
@@ -32,7 +41,7 @@ def _nan0(a: np.ndarray) -> np.ndarray:
 
 def _mesh_tables(recs: dict[str, list[Record]], problems: Collector):
     nodes = Nodes.concat([
-        Nodes(r.rows["nid"], np.ascontiguousarray(_block(r, "x", "y", "z")),
+        Nodes(_i64(r.rows["nid"]), np.ascontiguousarray(_block(r, "x", "y", "z")),
               r.rows["tc"].astype(np.int8), r.rows["rc"].astype(np.int8))
         for r in recs.get("NODE", [])])
     shell_parts = []
@@ -42,9 +51,10 @@ def _mesh_tables(recs: dict[str, list[Record]], problems: Collector):
         if len(higher):
             problems.error(*r.source, r.name, "N5",
                            f"element {int(r.rows['eid'][higher[0]])}: 8-node shells are not supported")
-        t = Shells(r.rows["eid"], r.rows["pid"], _block(r, "n1", "n2", "n3", "n4"),  # IDs for now
-                   np.full((n, 4), np.nan), np.full(n, np.nan), np.zeros(n, np.int64),
-                   np.full(n, np.nan))
+        # optional per-element data absent: read-only broadcast views cost no memory
+        t = Shells(_i64(r.rows["eid"]), _i64(r.rows["pid"]), _block(r, "n1", "n2", "n3", "n4"),
+                   _absent((n, 4), np.nan), _absent(n, np.nan), _absent(n, 0, np.int64),
+                   _absent(n, np.nan))
         if "thic1" in r.rows:
             t.thickness = _nan0(np.stack(_rows(r, "thic1", "thic2", "thic3", "thic4"), axis=1))
             if "MCID" in r.options:
@@ -58,19 +68,19 @@ def _mesh_tables(recs: dict[str, list[Record]], problems: Collector):
     for r in recs.get("ELEMENT_SOLID", []):
         if "TWO_CARD" in r.options and (np.any(r.rows["n9"] != 0) or np.any(r.rows["n10"] != 0)):
             problems.warn(*r.source, r.name, "N9", "10-node tetrahedra: only the corner nodes are used")
-        t = Solids(r.rows["eid"], r.rows["pid"], _block(r, *[f"n{i}" for i in range(1, 9)]))
+        t = Solids(_i64(r.rows["eid"]), _i64(r.rows["pid"]), _block(r, *[f"n{i}" for i in range(1, 9)]))
         solid_parts.append((r, t))
     beam_parts = []
     for r in recs.get("ELEMENT_BEAM", []):
         n = len(r.rows["eid"])
         t = Beams.zeros(n)
-        t.ids, t.pid = r.rows["eid"], r.rows["pid"]
-        t.nodes = np.stack(_rows(r, "n1", "n2", "n3"), axis=1)
-        t.releases = np.stack(_rows(r, "rt1", "rr1", "rt2", "rr2", "local"), axis=1)
+        t.ids, t.pid = _i64(r.rows["eid"]), _i64(r.rows["pid"])
+        t.nodes = _block(r, "n1", "n2", "n3")
+        t.releases = _i64(_block(r, "rt1", "rr1", "rt2", "rr2", "local"))
         if "parm1" in r.rows:
             t.params = np.stack(_rows(r, *[f"parm{i}" for i in range(1, 6)]), axis=1).astype(float)
         if "pid1" in r.rows:
-            t.pid2 = np.stack(_rows(r, "pid1", "pid2"), axis=1)
+            t.pid2 = _i64(_block(r, "pid1", "pid2"))
         if "wx1" in r.rows:
             t.offsets = np.stack(_rows(r, "wx1", "wy1", "wz1", "wx2", "wy2", "wz2"), axis=1).astype(float)
         if "vx" in r.rows:
@@ -78,18 +88,18 @@ def _mesh_tables(recs: dict[str, list[Record]], problems: Collector):
         beam_parts.append((r, t))
     disc_parts = []
     for r in recs.get("ELEMENT_DISCRETE", []):
-        t = Discretes(r.rows["eid"], r.rows["pid"], np.stack(_rows(r, "n1", "n2"), axis=1),
-                      r.rows["vid"], r.rows["s"], r.rows["pf"], r.rows["offset"])
+        t = Discretes(_i64(r.rows["eid"]), _i64(r.rows["pid"]), _block(r, "n1", "n2"),
+                      _i64(r.rows["vid"]), r.rows["s"], _i64(r.rows["pf"]), r.rows["offset"])
         disc_parts.append((r, t))
     mass_parts = []
     for r in recs.get("ELEMENT_MASS", []):
-        mass_parts.append((r, Masses(r.rows["eid"], r.rows["id"], r.rows["mass"], r.rows["pid"])))
+        mass_parts.append((r, Masses(_i64(r.rows["eid"]), r.rows["id"], r.rows["mass"], _i64(r.rows["pid"]))))
     inertia_parts = []
     for r in recs.get("ELEMENT_INERTIA", []):
         off = (np.stack(_rows(r, "x", "y", "z"), axis=1) if "x" in r.rows
                else np.full((len(r.rows["eid"]), 3), np.nan))
         inertia_parts.append((r, Inertias(
-            r.rows["eid"], r.rows["nid"], r.rows["csid"],
+            _i64(r.rows["eid"]), r.rows["nid"], _i64(r.rows["csid"]),
             np.stack(_rows(r, "ixx", "ixy", "ixz", "iyy", "iyz", "izz"), axis=1),
             r.rows["mass"], off)))
     return nodes, shell_parts, solid_parts, beam_parts, disc_parts, mass_parts, inertia_parts
@@ -134,7 +144,7 @@ def _map_nodes(parts, cols, node_of, problems: Collector, what: str, allow_zero=
             if len(rows) > 20:
                 problems.error(r.source[0], r.source[1], r.name, None,
                                f"... {len(rows) - 20} more undefined node references")
-        setattr(t, cols, idx.astype(np.int32))
+        setattr(t, cols, idx.astype(np.int32, copy=False))
 
 
 def build_model(records: list[Record | RawKeyword], problems: Collector) -> tuple[Model, list[Record]]:

@@ -12,46 +12,72 @@ parser, which is slower but complete and gives the error message.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
-OK, FALLBACK, BLANK = 0, 1, 2
+OK, FALLBACK, BLANK, OVERFLOW = 0, 1, 2, 3
 
 _POW10 = np.array([10.0**i for i in range(23)], dtype=np.float64)
 
 
-@njit(cache=True)
+@njit(cache=True, parallel=True)
 def split_lines(buf, starts, ends):
     """Line bounds of ``buf`` (uint8). ``ends`` excludes ``\\r\\n``.
 
     Returns the number of lines; ``starts``/``ends`` must hold len(buf)+1.
+    Two parallel passes over chunks: count newlines, then fill.
     """
-    n = 0
-    s = 0
     nb = buf.shape[0]
-    for i in range(nb):
-        if buf[i] == 10:
-            e = i
-            if e > s and buf[e - 1] == 13:
-                e -= 1
-            starts[n] = s
-            ends[n] = e
-            n += 1
-            s = i + 1
-    if s < nb:
-        e = nb
-        if e > s and buf[e - 1] == 13:
-            e -= 1
-        starts[n] = s
+    nchunk = max(1, min(64, nb // (1 << 20)))
+    size = (nb + nchunk - 1) // nchunk
+    counts = np.zeros(nchunk + 1, dtype=np.int64)
+    for c in prange(nchunk):
+        k = 0
+        for i in range(c * size, min(nb, (c + 1) * size)):
+            if buf[i] == 10:
+                k += 1
+        counts[c + 1] = k
+    for c in range(nchunk):
+        counts[c + 1] += counts[c]
+    for c in prange(nchunk):
+        n = counts[c]
+        for i in range(c * size, min(nb, (c + 1) * size)):
+            if buf[i] == 10:
+                ends[n] = i - 1 if i > 0 and buf[i - 1] == 13 else i
+                n += 1
+    n = counts[nchunk]
+    if nb > 0 and buf[nb - 1] != 10:  # last line without a newline
+        e = nb - 1 if buf[nb - 1] == 13 else nb
         ends[n] = e
         n += 1
+    starts[0] = 0
+    for k in prange(1, n):
+        # the line after a newline starts just past it
+        e = ends[k - 1]
+        starts[k] = e + 2 if e < nb and buf[e] == 13 else e + 1
     return n
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _parse_number(buf, a, b, is_int, pow10):
     """Parse buf[a:b]. Returns (status, blank, int_value, float_value)."""
     while a < b and (buf[a] == 32 or buf[a] == 9):
         a += 1
+    if is_int and a < b:  # fast path: plain digits then blanks
+        i = a
+        neg = buf[i] == 45
+        if neg or buf[i] == 43:
+            i += 1
+        v = 0
+        nd = 0
+        while i < b and 48 <= buf[i] <= 57 and nd < 18:
+            v = v * 10 + (buf[i] - 48)
+            nd += 1
+            i += 1
+        j = i
+        while j < b and buf[j] == 32:
+            j += 1
+        if j == b and nd > 0:
+            return OK, False, -v if neg else v, 0.0
     while b > a and (buf[b - 1] == 32 or buf[b - 1] == 9):
         b -= 1
     if a == b:
@@ -159,96 +185,106 @@ def _free_token(buf, s, e, j):
     return e, e
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
+def _parse_row(buf, starts, ends, r, lines_per_row, card_of, index_in_card, col, width,
+               is_int, slot, def_i, def_f, out_i, out_f, free, card_end, pow10):
+    blank_row = True
+    for c in range(lines_per_row):
+        li = r * lines_per_row + c
+        free[c] = False
+        for i in range(starts[li], ends[li]):
+            ch = buf[i]
+            if ch != 32 and ch != 9:
+                blank_row = False
+                break
+        # a comma past the card's columns (a comma inside them makes the
+        # fixed-column parse fail, which is caught below)
+        for i in range(starts[li] + card_end[c], ends[li]):
+            if buf[i] == 44:
+                free[c] = True
+                break
+    if blank_row:
+        return BLANK
+    nf = card_of.shape[0]
+    imax = np.iinfo(out_i.dtype).max
+    # fixed columns first; a field that fails on a line holding a comma
+    # switches that line to free format and the row is read again
+    st = OK
+    for attempt in range(2):
+        st = OK
+        for k in range(nf):
+            c = card_of[k]
+            li = r * lines_per_row + c
+            s = starts[li]
+            e = ends[li]
+            if free[c]:
+                a, b = _free_token(buf, s, e, index_in_card[k])
+            else:
+                a = min(s + col[k], e)
+                b = min(a + width[k], e)
+            code, blank, iv, fv = _parse_number(buf, a, b, is_int[k], pow10)
+            if code == OK and is_int[k] and (iv > imax or iv < -imax):
+                code = OVERFLOW
+            if code != OK:
+                st = code
+                if attempt == 0 and not free[c] and code == FALLBACK:
+                    for i in range(s, e):
+                        if buf[i] == 44:
+                            free[c] = True
+                            break
+                break
+            if is_int[k]:
+                out_i[r, slot[k]] = def_i[k] if blank else iv
+            else:
+                out_f[r, slot[k]] = def_f[k] if blank else fv
+        if st == OK:
+            break
+        any_free = False
+        for c in range(lines_per_row):
+            any_free = any_free or free[c]
+        if not any_free or st == OVERFLOW:
+            break
+    return st
+
+
+@njit(cache=True, parallel=True)
 def parse_rows(buf, starts, ends, lines_per_row, card_of, index_in_card, col, width,
                is_int, slot, def_i, def_f, out_i, out_f, status):
-    """Parse rows of numeric fields.
+    """Parse rows of numeric fields, in parallel chunks of rows.
 
-    ``starts``/``ends``: bounds of the data lines of the block (comments and
-    blank lines already removed), ``lines_per_row`` consecutive lines per row.
-    Per field k: card_of[k] (line within the row), index_in_card[k] (for
-    free format), col/width (fixed format columns), is_int, slot (column in
-    out_i or out_f), def_i/def_f (value for a blank field).
-    A line holding a comma is read as free format. Rows that need the Python
-    parser get status FALLBACK; rows of blank lines get BLANK.
+    ``starts``/``ends``: bounds of the data lines of the block (comments
+    removed), ``lines_per_row`` consecutive lines per row. Per field k:
+    card_of[k] (line within the row), index_in_card[k] (for free format),
+    col/width (fixed columns), is_int, slot (column in out_i or out_f),
+    def_i/def_f (value for a blank field). A line holding a comma is read as
+    free format. Each row writes only its own outputs, so the result does not
+    depend on the thread count. Status per row: OK, FALLBACK (Python parser
+    needed), BLANK (only blank lines), OVERFLOW (integer too large for out_i).
     """
     nrow = starts.shape[0] // lines_per_row
     nf = card_of.shape[0]
-    pow10 = _POW10
-    free = np.zeros(lines_per_row, dtype=np.bool_)
     card_end = np.zeros(lines_per_row, dtype=np.int64)
     for k in range(nf):
         card_end[card_of[k]] = max(card_end[card_of[k]], col[k] + width[k])
-    for r in range(nrow):
-        blank_row = True
-        for c in range(lines_per_row):
-            li = r * lines_per_row + c
-            free[c] = False
-            for i in range(starts[li], ends[li]):
-                ch = buf[i]
-                if ch != 32 and ch != 9:
-                    blank_row = False
-                    break
-            # a comma past the card's columns (a comma inside them makes the
-            # fixed-column parse fail, which is caught below)
-            for i in range(starts[li] + card_end[c], ends[li]):
-                if buf[i] == 44:
-                    free[c] = True
-                    break
-        if blank_row:
-            status[r] = BLANK
-            continue
-        # fixed columns first; a field that fails on a line holding a comma
-        # switches that line to free format and the row is read again
-        st = OK
-        for attempt in range(2):
-            st = OK
-            for k in range(nf):
-                c = card_of[k]
-                li = r * lines_per_row + c
-                s = starts[li]
-                e = ends[li]
-                if free[c]:
-                    a, b = _free_token(buf, s, e, index_in_card[k])
-                else:
-                    a = s + col[k]
-                    b = a + width[k]
-                    if a > e:
-                        a = e
-                    if b > e:
-                        b = e
-                code, blank, iv, fv = _parse_number(buf, a, b, is_int[k], pow10)
-                if code != OK:
-                    st = FALLBACK
-                    if attempt == 0 and not free[c]:
-                        for i in range(s, e):
-                            if buf[i] == 44:
-                                free[c] = True
-                                break
-                    break
-                if is_int[k]:
-                    out_i[r, slot[k]] = def_i[k] if blank else iv
-                else:
-                    out_f[r, slot[k]] = def_f[k] if blank else fv
-            if st == OK:
-                break
-            any_free = False
-            for c in range(lines_per_row):
-                any_free = any_free or free[c]
-            if not any_free:
-                break
-        status[r] = st
+    chunk = 65536
+    nchunk = (nrow + chunk - 1) // chunk
+    for ch in prange(nchunk):
+        free = np.zeros(lines_per_row, dtype=np.bool_)
+        pow10 = _POW10
+        for r in range(ch * chunk, min(nrow, (ch + 1) * chunk)):
+            status[r] = _parse_row(buf, starts, ends, r, lines_per_row, card_of, index_in_card, col,
+                                   width, is_int, slot, def_i, def_f, out_i, out_f, free, card_end, pow10)
     return nrow
 
 
-@njit(cache=True)
+@njit(cache=True, parallel=True)
 def gather_index(table, ids, out):
     """out[i, j] = table[ids[i, j]], -1 outside the table (dense ID lookup).
 
     ``ids`` may be a strided view (a column block of the parsed matrix).
     """
     n = table.shape[0]
-    for i in range(ids.shape[0]):
+    for i in prange(ids.shape[0]):
         for j in range(ids.shape[1]):
             v = ids[i, j]
             out[i, j] = table[v] if 0 <= v < n else -1

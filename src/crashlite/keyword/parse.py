@@ -6,7 +6,7 @@ import numpy as np
 
 from . import cards
 from .errors import Collector
-from .fastparse import BLANK, FALLBACK, parse_rows
+from .fastparse import BLANK, FALLBACK, OVERFLOW, parse_rows
 from .lexer import Block
 from .schema import FLOAT, INT, STR, Card, Layout, Record, Spec
 
@@ -118,9 +118,12 @@ def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
     nrow = n_lines // nl
     ints = [k for k, f in enumerate(fields) if f.kind == INT]
     flts = [k for k, f in enumerate(fields) if f.kind == FLOAT]
-    # column-major: each field's column is contiguous for the model tables
-    out_i = np.zeros((nrow, len(ints)), dtype=np.int64, order="F")
-    out_f = np.zeros((nrow, len(flts)), dtype=np.float64, order="F")
+    # Integers column-major (each field's column contiguous, element node
+    # blocks taken as views), int32 while the columns cannot hold more than
+    # 9 digits; floats row-major (node coordinates are then one (n, 3) block).
+    narrow = all(cards.width(f, blk.mode) <= 9 for f in fields if f.kind == INT)
+    out_i = np.zeros((nrow, len(ints)), dtype=np.int32 if narrow else np.int64, order="F")
+    out_f = np.zeros((nrow, len(flts)), dtype=np.float64)
     status = np.full(nrow, FALLBACK, dtype=np.int8)
     if numeric and nrow:
         card_of, index_in, col, width = [], [], [], []
@@ -130,14 +133,16 @@ def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
                 w = cards.width(f, blk.mode)
                 card_of.append(ci), index_in.append(fi), col.append(pos), width.append(w)
                 pos += w
-        slot = np.array([ints.index(k) if k in ints else flts.index(k) for k in range(len(fields))])
-        parse_rows(src.buf, starts, ends, nl, np.array(card_of, np.int64),
-                   np.array(index_in, np.int64), np.array(col, np.int64),
-                   np.array(width, np.int64),
-                   np.array([f.kind == INT for f in fields]), slot.astype(np.int64),
-                   np.array([int(_row_default(f)) if f.kind == INT else 0 for f in fields], np.int64),
-                   np.array([float(_row_default(f)) if f.kind == FLOAT else 0.0 for f in fields]),
-                   out_i, out_f, status)
+        args = (np.array(card_of, np.int64), np.array(index_in, np.int64), np.array(col, np.int64),
+                np.array(width, np.int64), np.array([f.kind == INT for f in fields]),
+                np.array([ints.index(k) if k in ints else flts.index(k) for k in range(len(fields))],
+                         np.int64),
+                np.array([int(_row_default(f)) if f.kind == INT else 0 for f in fields], np.int64),
+                np.array([float(_row_default(f)) if f.kind == FLOAT else 0.0 for f in fields]))
+        parse_rows(src.buf, starts, ends, nl, *args, out_i, out_f, status)
+        if (status == OVERFLOW).any():  # free-format IDs beyond int32: parse again wide
+            out_i = np.zeros((nrow, len(ints)), dtype=np.int64, order="F")
+            parse_rows(src.buf, starts, ends, nl, *args, out_i, out_f, status)
     slow = np.flatnonzero(status == FALLBACK)
     strs = {k: np.empty(nrow, dtype=object) for k, f in enumerate(fields) if f.kind == STR}
     for r in slow:
@@ -155,6 +160,8 @@ def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
             if v is None:
                 v = _row_default(f)
             if f.kind == INT:
+                if out_i.dtype == np.int32 and not -(2**31) < v < 2**31:
+                    out_i = out_i.astype(np.int64, order="F")
                 out_i[r, ints.index(k)] = v
             elif f.kind == FLOAT:
                 out_f[r, flts.index(k)] = v

@@ -168,24 +168,27 @@ def index_map(ids: np.ndarray):
 
     Dense IDs use a lookup array (one gather); sparse ones a sorted search.
     """
-    ids = np.asarray(ids, dtype=np.int64)
+    ids = np.asarray(ids)
     if len(ids) == 0:
         return lambda q: np.full(np.shape(q), -1, dtype=np.int64)
     lo, hi = int(ids.min()), int(ids.max())
     if lo >= 0 and hi < 4 * len(ids) + 1_000_000:
         from ..keyword.fastparse import gather_index
 
-        table = np.full(hi + 1, -1, dtype=np.int64)
+        table = np.full(hi + 1, -1, dtype=np.int32 if len(ids) < 2**31 else np.int64)
         table[ids] = np.arange(len(ids))
 
         def lookup(q):
-            q = np.asarray(q, dtype=np.int64)
-            out = np.empty(q.shape, dtype=np.int64)
-            gather_index(table, q.reshape(len(q), -1) if q.ndim else q.reshape(1, 1),
-                         out.reshape(len(q), -1) if q.ndim else out.reshape(1, 1))
+            q = np.asarray(q)
+            if q.dtype.kind != "i":
+                q = q.astype(np.int64)
+            out = np.empty(q.shape, dtype=np.int64 if len(ids) >= 2**31 else np.int32)
+            q2 = q.reshape(1, 1) if q.ndim == 0 else q if q.ndim == 2 else q.reshape(len(q), -1)
+            gather_index(table, q2, out.reshape(q2.shape))
             return out
 
         return lookup
+    ids = ids.astype(np.int64)
     order = np.argsort(ids, kind="stable")
     sorted_ids = ids[order]
 
