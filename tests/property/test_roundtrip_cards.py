@@ -58,9 +58,11 @@ def records(draw, spec, options):
             values[f.name] = _value(f, draw)
     # conditional cards: keep values only for cards the layout will use, so
     # that what is written is exactly what is compared
-    for c in lay.head:
-        if not (c.when is None or c.when(values, options)):
-            for f in c.fields:
+    used = [c.when is None or c.when(values, options) for c in lay.head]
+    kept = {f.name for c, u in zip(lay.head, used) if u for f in c.fields}
+    for c, u in zip(lay.head, used):
+        for f in c.fields:
+            if not u and f.name not in kept:
                 values[f.name] = f.default
     rows = None
     if lay.row:

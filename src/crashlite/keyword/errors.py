@@ -24,7 +24,7 @@ class DeckError(Exception):
     """A deck could not be read (or written); ``problems`` lists every cause."""
 
     def __init__(self, problems: list[Problem]):
-        self.problems = list(problems)
+        self.problems = sorted(problems, key=lambda p: (p.file, p.line))
         n = len(self.problems)
         head = f"{n} problem{'s' if n != 1 else ''} in deck"
         shown = "\n".join(f"  {p}" for p in self.problems[:50])

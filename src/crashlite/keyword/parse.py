@@ -62,6 +62,8 @@ def _parse_head(blk, spec, options, lay, cur, params, problems) -> Record | None
         rec.title = cur.take()[0].rstrip()
     for c in lay.head:
         if c.when is not None and not c.when(rec.values, options):
+            for f in c.fields:  # every field of the layout has a value
+                rec.values.setdefault(f.name, f.default)
             continue
         if not cur.more():
             if c.optional:
@@ -192,8 +194,12 @@ class RowColumns(dict):
         self._where: dict = {}
 
     def add(self, name, matrix, j) -> None:
-        self[name] = matrix[:, j]
+        super().__setitem__(name, matrix[:, j])
         self._where[name] = (matrix, j)
+
+    def __setitem__(self, name, value) -> None:
+        super().__setitem__(name, value)
+        self._where.pop(name, None)  # replaced: no longer a view of the matrix
 
     def block(self, *names) -> np.ndarray:
         """(n, len(names)) array of the named columns (a view when adjacent)."""

@@ -20,7 +20,7 @@ def test_all_problems_reported_together(deck):
                  7         3         4
         *SECTION_SHELL
                  3         2
-              &nope
+             &nope
         *INCLUDE
         missing.k
         *END

@@ -11,6 +11,8 @@ MAT_SEC = """
       &thk
 *MAT_PIECEWISE_LINEAR_PLASTICITY
          17.85000E-9  210000.0       0.3     &sigy
+$ cards 2-4 blank: defaults
+
 """
 
 
@@ -27,17 +29,12 @@ def test_acceptance_relative_include_params_expression_thickness_touching(deck):
                      1.1             1.2             1.3             1.4            30.0
         *END
         """)
-    deck("model/props.k", """
-        *KEYWORD
-        *PART
-        plate
-                 1         1         1
-        """ + MAT_SEC + "*END\n")
+    deck("model/props.k", "*KEYWORD\n*PART\nplate\n         1         1         1" + MAT_SEC + "*END\n")
     main = deck("model/main.k", """
         *KEYWORD
         *PARAMETER
-        r thk          2.0i n         3
-        R base   200.0
+        r thk            2.0i n                3
+        R base         200.0
         *PARAMETER_EXPRESSION
         R sigy    base*1.5 + 10*sin(0)
         i twice   n*2

@@ -5,12 +5,4 @@ lower case (``secid``, ``ro``, ``sigy``), so users find them where the
 manual puts them.
 """
 
-from . import mesh  # noqa: F401
-import importlib as _importlib
-
-for _mod in ("parts", "materials", "define", "sets", "loads", "contact", "constrained", "control"):
-    try:
-        _importlib.import_module(f"{__name__}.{_mod}")
-    except ModuleNotFoundError as _e:  # catalogue modules land one by one
-        if _e.name != f"{__name__}.{_mod}":
-            raise
+from . import bc, constraints, contacts, controls, defines, mat, mesh, parts, setdefs  # noqa: F401
