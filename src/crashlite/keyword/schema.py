@@ -200,6 +200,7 @@ class Record:
 
     @property
     def spec(self) -> Spec:
+        _ensure_loaded()
         return _REGISTRY[self.keyword]
 
     @property
