@@ -19,42 +19,56 @@ OK, FALLBACK, BLANK, OVERFLOW = 0, 1, 2, 3
 _POW10 = np.array([10.0**i for i in range(23)], dtype=np.float64)
 
 
-@njit(cache=True, parallel=True)
-def split_lines(buf, starts, ends):
-    """Line bounds of ``buf`` (uint8). ``ends`` excludes ``\\r\\n``.
-
-    Returns the number of lines; ``starts``/``ends`` must hold len(buf)+1.
-    Two parallel passes over chunks: count newlines, then fill.
-    """
-    nb = buf.shape[0]
+def _chunks(nb: int) -> tuple[int, int]:
     nchunk = max(1, min(64, nb // (1 << 20)))
-    size = (nb + nchunk - 1) // nchunk
-    counts = np.zeros(nchunk + 1, dtype=np.int64)
+    return nchunk, (nb + nchunk - 1) // nchunk
+
+
+@njit(cache=True, parallel=True)
+def _count_newlines(buf, nchunk, size, counts):
+    nb = buf.shape[0]
     for c in prange(nchunk):
         k = 0
         for i in range(c * size, min(nb, (c + 1) * size)):
             if buf[i] == 10:
                 k += 1
         counts[c + 1] = k
-    for c in range(nchunk):
-        counts[c + 1] += counts[c]
+
+
+@njit(cache=True, parallel=True)
+def _fill_lines(buf, nchunk, size, counts, starts, ends):
+    nb = buf.shape[0]
     for c in prange(nchunk):
         n = counts[c]
         for i in range(c * size, min(nb, (c + 1) * size)):
             if buf[i] == 10:
                 ends[n] = i - 1 if i > 0 and buf[i - 1] == 13 else i
                 n += 1
-    n = counts[nchunk]
+    n = ends.shape[0]
     if nb > 0 and buf[nb - 1] != 10:  # last line without a newline
-        e = nb - 1 if buf[nb - 1] == 13 else nb
-        ends[n] = e
-        n += 1
-    starts[0] = 0
+        ends[n - 1] = nb - 1 if buf[nb - 1] == 13 else nb
+    if n > 0:
+        starts[0] = 0
     for k in prange(1, n):
-        # the line after a newline starts just past it
-        e = ends[k - 1]
+        e = ends[k - 1]  # the next line starts past this line's \n (or \r\n)
         starts[k] = e + 2 if e < nb and buf[e] == 13 else e + 1
-    return n
+
+
+def split_lines(buf: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Start and end byte offsets of every line of ``buf`` (uint8); ends
+    exclude ``\\r\\n``. Two parallel passes over chunks: count, then fill."""
+    nb = buf.shape[0]
+    nchunk, size = _chunks(nb)
+    counts = np.zeros(nchunk + 1, dtype=np.int64)
+    if nb:
+        _count_newlines(buf, nchunk, size, counts)
+    np.cumsum(counts, out=counts)
+    n = int(counts[-1]) + (1 if nb and buf[nb - 1] != 10 else 0)
+    starts = np.empty(n, dtype=np.int64)
+    ends = np.empty(n, dtype=np.int64)
+    if n:
+        _fill_lines(buf, nchunk, size, counts, starts, ends)
+    return starts, ends
 
 
 @njit(cache=True, inline="always")
@@ -188,23 +202,15 @@ def _free_token(buf, s, e, j):
 @njit(cache=True, inline="always")
 def _parse_row(buf, starts, ends, r, lines_per_row, card_of, index_in_card, col, width,
                is_int, slot, def_i, def_f, out_i, out_f, free, card_end, pow10):
-    blank_row = True
     for c in range(lines_per_row):
         li = r * lines_per_row + c
         free[c] = False
-        for i in range(starts[li], ends[li]):
-            ch = buf[i]
-            if ch != 32 and ch != 9:
-                blank_row = False
-                break
         # a comma past the card's columns (a comma inside them makes the
         # fixed-column parse fail, which is caught below)
         for i in range(starts[li] + card_end[c], ends[li]):
             if buf[i] == 44:
                 free[c] = True
                 break
-    if blank_row:
-        return BLANK
     nf = card_of.shape[0]
     imax = np.iinfo(out_i.dtype).max
     # fixed columns first; a field that fails on a line holding a comma
@@ -212,6 +218,7 @@ def _parse_row(buf, starts, ends, r, lines_per_row, card_of, index_in_card, col,
     st = OK
     for attempt in range(2):
         st = OK
+        all_blank = True
         for k in range(nf):
             c = card_of[k]
             li = r * lines_per_row + c
@@ -223,6 +230,7 @@ def _parse_row(buf, starts, ends, r, lines_per_row, card_of, index_in_card, col,
                 a = min(s + col[k], e)
                 b = min(a + width[k], e)
             code, blank, iv, fv = _parse_number(buf, a, b, is_int[k], pow10)
+            all_blank = all_blank and blank
             if code == OK and is_int[k] and (iv > imax or iv < -imax):
                 code = OVERFLOW
             if code != OK:
@@ -238,6 +246,12 @@ def _parse_row(buf, starts, ends, r, lines_per_row, card_of, index_in_card, col,
             else:
                 out_f[r, slot[k]] = def_f[k] if blank else fv
         if st == OK:
+            if all_blank:  # every line of the row is blank (or holds only spaces)
+                any_free = False
+                for c in range(lines_per_row):
+                    any_free = any_free or free[c]
+                if not any_free:
+                    return BLANK
             break
         any_free = False
         for c in range(lines_per_row):
