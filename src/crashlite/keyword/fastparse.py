@@ -314,3 +314,63 @@ def first_duplicate(ids, lo, hi):
             return i
         seen[k] = True
     return -1
+
+
+@njit(cache=True, parallel=True)
+def parse_int_rows(buf, starts, ends, width, def_i, out_i, status):
+    """Fast path for element cards: one line per row, integer fields of equal
+    ``width``. Anything but blanks, a sign and digits in a field (a comma, a
+    decimal point, a parameter) leaves status FALLBACK for the general kernel.
+    """
+    nrow = starts.shape[0]
+    nf = def_i.shape[0]
+    imax = np.iinfo(out_i.dtype).max
+    chunk = 65536
+    nchunk = (nrow + chunk - 1) // chunk
+    for ch in prange(nchunk):
+        for r in range(ch * chunk, min(nrow, (ch + 1) * chunk)):
+            s = starts[r]
+            e = ends[r]
+            st = OK
+            blank_row = True
+            for k in range(nf):
+                a = s + k * width
+                b = min(a + width, e)
+                v = 0
+                neg = False
+                seen = False
+                ended = False
+                i = a
+                while i < b:
+                    c = buf[i]
+                    if c == 32:
+                        if seen:
+                            ended = True
+                    elif 48 <= c <= 57 and not ended:
+                        v = v * 10 + (c - 48)
+                        seen = True
+                    elif (c == 45 or c == 43) and not seen and not ended and not neg:
+                        neg = c == 45
+                    else:
+                        st = FALLBACK
+                        break
+                    i += 1
+                if st != OK:
+                    break
+                if seen:
+                    blank_row = False
+                    out_i[r, k] = -v if neg else v
+                    if v > imax:
+                        st = OVERFLOW
+                        break
+                else:
+                    out_i[r, k] = def_i[k]
+            if st == OK and e > s + nf * width:  # text past the last field
+                for i in range(s + nf * width, e):
+                    if buf[i] != 32:
+                        st = FALLBACK
+                        break
+            if st == OK and blank_row:
+                st = BLANK
+            status[r] = st
+    return nrow

@@ -6,7 +6,7 @@ import numpy as np
 
 from . import cards
 from .errors import Collector
-from .fastparse import BLANK, FALLBACK, OVERFLOW, parse_rows
+from .fastparse import BLANK, FALLBACK, OVERFLOW, parse_int_rows, parse_rows
 from .lexer import Block
 from .schema import FLOAT, INT, STR, Card, Layout, Record, Spec
 
@@ -141,7 +141,18 @@ def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
                          np.int64),
                 np.array([int(_row_default(f)) if f.kind == INT else 0 for f in fields], np.int64),
                 np.array([float(_row_default(f)) if f.kind == FLOAT else 0.0 for f in fields]))
-        parse_rows(src.buf, starts, ends, nl, *args, out_i, out_f, status)
+        widths = {w for w in width}
+        if nl == 1 and not flts and len(widths) == 1:  # element cards: all-integer fast path
+            parse_int_rows(src.buf, starts, ends, width[0], args[6], out_i, status)
+            redo = np.flatnonzero(status == FALLBACK)
+            if len(redo):  # free format, parameters, ...: the general kernel
+                sub = np.full(len(redo), FALLBACK, dtype=np.int8)
+                tmp_i = np.zeros((len(redo), len(ints)), dtype=out_i.dtype, order="F")
+                parse_rows(src.buf, starts[redo], ends[redo], nl, *args, tmp_i, out_f[redo], sub)
+                out_i[redo] = tmp_i
+                status[redo] = sub
+        else:
+            parse_rows(src.buf, starts, ends, nl, *args, out_i, out_f, status)
         if (status == OVERFLOW).any():  # free-format IDs beyond int32: parse again wide
             out_i = np.zeros((nrow, len(ints)), dtype=np.int64, order="F")
             parse_rows(src.buf, starts, ends, nl, *args, out_i, out_f, status)
