@@ -26,6 +26,8 @@ def main(argv: list[str] | None = None) -> int:
     out = Path(argv[0]) if argv else Path("out/demo")
     deck = example_deck()
     print(f"== 1. Read an LS-DYNA keyword deck: {deck.name}\n")
+    print("(the very first run compiles crashlite's Numba kernels: about a minute; "
+          "they are cached for every later run)\n", flush=True)
     t0 = time.perf_counter()
     model = read_deck(deck)
     t_read = time.perf_counter() - t0

@@ -9,50 +9,52 @@ import numpy as np
 from . import mass as mk
 
 
-def _density(model, pids: np.ndarray) -> np.ndarray:
-    """Density of each element's part material (0 where unknown)."""
-    out = np.zeros(len(pids))
+def _per_part(model, pids: np.ndarray, group: str, key: str, value, width: int = 0) -> np.ndarray:
+    """``value(record)`` of each element's part section or material (0 where
+    the part or the record is unknown), spread to the elements."""
+    out = np.zeros((len(pids), width) if width else len(pids))
     for pid in np.unique(pids):
         part = model.parts.get(int(pid))
-        mat = model.materials.get(part.get("mid")) if part is not None else None
-        out[pids == pid] = float(mat.get("ro", 0.0)) if mat is not None else 0.0
+        rec = getattr(model, group).get(part.get(key)) if part is not None else None
+        if rec is not None:
+            out[pids == pid] = value(rec)
     return out
+
+
+def _density(model, pids: np.ndarray) -> np.ndarray:
+    """Density of each element's part material."""
+    return _per_part(model, pids, "materials", "mid", lambda m: float(m.get("ro", 0.0)))
+
+
+def _shell_t(sec) -> list[float]:
+    t1 = float(sec.get("t1", 0.0))
+    return [t1] + [float(sec.get(f"t{i}", 0.0)) or t1 for i in (2, 3, 4)]
 
 
 def _section_thickness(model, pids: np.ndarray) -> np.ndarray:
     """(n, 4) section thicknesses T1..T4 of each shell's part (T2-T4 default to T1)."""
-    out = np.zeros((len(pids), 4))
-    for pid in np.unique(pids):
-        part = model.parts.get(int(pid))
-        sec = model.sections.get(part.get("secid")) if part is not None else None
-        if sec is None:
-            continue
-        t1 = float(sec.get("t1", 0.0))
-        t = [t1] + [float(sec.get(f"t{i}", 0.0)) or t1 for i in (2, 3, 4)]
-        out[pids == pid] = t
-    return out
+    return _per_part(model, pids, "sections", "secid", _shell_t, width=4)
 
 
 def _beam_area(model, pids: np.ndarray) -> np.ndarray:
     """Cross-section area of each beam from its *SECTION_BEAM."""
-    out = np.zeros(len(pids))
-    for pid in np.unique(pids):
-        part = model.parts.get(int(pid))
-        sec = model.sections.get(part.get("secid")) if part is not None else None
-        if sec is None:
-            continue
-        a = float(sec.get("a", 0.0))
-        if a == 0.0 and sec.get("ts1") is not None:
-            ts, tt = float(sec.get("ts1", 0.0)), float(sec.get("tt1", 0.0))
-            cst = int(sec.get("cst", 0))
-            if cst == 0:  # rectangle
-                a = ts * tt
-            elif cst == 1:  # tube: outer and inner diameter
-                a = math.pi / 4 * (ts**2 - tt**2)
-            elif cst == 2:  # solid circle
-                a = math.pi / 4 * ts**2
-        out[pids == pid] = a
-    return out
+    return _per_part(model, pids, "sections", "secid", _section_area)
+
+
+def _section_area(sec) -> float:
+    """A for resultant beams and trusses; from TS1/TT1 and the shape CST for
+    integrated beams (0 rectangle, 1 tube by diameters, 2 solid circle)."""
+    a = float(sec.get("a", 0.0))
+    if a == 0.0 and sec.get("ts1") is not None:
+        ts, tt = float(sec.get("ts1", 0.0)), float(sec.get("tt1", 0.0))
+        cst = int(sec.get("cst", 0))
+        if cst == 0:
+            a = ts * tt
+        elif cst == 1:
+            a = math.pi / 4 * (ts**2 - tt**2)
+        elif cst == 2:
+            a = math.pi / 4 * ts**2
+    return a
 
 
 def _part_moments(model, pid_sel):

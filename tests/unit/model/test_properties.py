@@ -104,3 +104,29 @@ def test_whole_model_is_sum_of_parts(model):
 def test_unknown_part_is_an_error(model):
     with pytest.raises(KeyError, match="no part titled"):
         model.mass_properties(["no such part"])
+
+
+def test_beams_and_part_inertia(tmp_path):
+    """A tube beam (CST=1) as a line mass; a part with *PART_INERTIA counts
+    with its given mass, CoG and tensor instead of its elements."""
+    import math
+
+    text = "\n".join([
+        "*KEYWORD", "*NODE", "1,0,0,0", "2,1000,0,0", "3,0,0,0", "4,10,0,0", "5,10,10,0",
+        "*ELEMENT_BEAM", "1,1,1,2", "*ELEMENT_SHELL", "2,2,3,4,5",
+        "*PART", "tube beam", "1,1,1", "*SECTION_BEAM", "1,1,,,1", "40.0,40.0,36.0,36.0",
+        "*PART_INERTIA", "rigid", "2,2,2",
+        "5.0,6.0,7.0,0.25", "1.0,0.0,0.0,2.0,0.0,3.0", "0,0,0,0,0,0",
+        "*SECTION_SHELL", "2,2", "1.0", "*MAT_ELASTIC", "1,7.85e-9,210000.0,0.3", "*MAT_RIGID", "2,7.85e-9,210000.0,0.3",
+        "*END"])
+    p = tmp_path / "b.k"
+    p.write_text(text)
+    model = read_deck(p)
+    beam = model.mass_properties([1])
+    m = 7.85e-9 * math.pi / 4 * (40.0**2 - 36.0**2) * 1000.0
+    assert beam.mass == pytest.approx(m, rel=1e-12)
+    np.testing.assert_allclose(beam.inertia, np.diag([0.0, m * 1000.0**2 / 12, m * 1000.0**2 / 12]),
+                               atol=1e-9 * m * 1000.0**2)
+    rigid = model.mass_properties(["rigid"])
+    assert rigid.mass == 0.25 and rigid.cog.tolist() == [5.0, 6.0, 7.0]
+    np.testing.assert_allclose(rigid.inertia, np.diag([1.0, 2.0, 3.0]), atol=1e-12)
