@@ -25,75 +25,49 @@ FORMATS = {"fixed": STD, "std": STD, "long": LONG, "i10": I10, "free": "free"}
 _SUFFIX = {STD: "-", LONG: "+", I10: "%"}
 
 
-def _as_array(values, f: Field) -> np.ndarray:
-    if isinstance(values, np.ndarray) and values.dtype != object:
-        return values
-    return np.array(values, dtype=object)
-
-
-def _texts(values, f: Field, w: int | None):
-    """Text of each value (vectorised) and whether it fits in ``w``."""
-    a = _as_array(values, f)
-    n = len(a)
-    if a.dtype == object:
-        txt = np.empty(n, dtype=object)
-        for i, v in enumerate(a):
-            if v is None:
-                txt[i] = ""
-            elif f.kind == STR:
-                txt[i] = str(v)
-            elif f.kind == INT:
-                txt[i] = str(int(v))
-            else:
-                txt[i] = cards.format_float(float(v), 10**6) if w is None else (
-                    cards.format_float(float(v), w) or repr(float(v)))
-        txt = txt.astype(str) if n else np.array([], dtype="<U1")
-    elif f.kind == INT:
-        txt = a.astype(np.int64).astype(str)
-    elif f.kind == FLOAT:
-        x = a.astype(np.float64)
-        if not np.all(np.isfinite(x)):
-            raise ValueError(f"field {f.name}: cannot write non-finite values")
-        txt = x.astype(str)
-        txt = np.char.replace(np.char.replace(np.char.replace(txt, "e+", "e"), "e-0", "e-"), "e0", "e")
-        if w is not None:
-            long_ = np.char.str_len(txt) > w
-            if long_.any():  # try the slower compact forms for those only
-                txt = txt.astype(object)
-                for i in np.flatnonzero(long_):
-                    s = cards.format_float(float(x[i]), w)
-                    if s is not None:
-                        txt[i] = s
-                txt = txt.astype(str)
-    else:
-        txt = a.astype(str)
-    fits = np.ones(n, dtype=bool) if w is None else np.char.str_len(txt) <= w
-    return txt, fits
+def _texts(values, f: Field, w: int | None) -> list[str]:
+    """Text of each value: Python's shortest round-trip repr for reals (a
+    compact form only where that is too wide for ``w``)."""
+    if isinstance(values, np.ndarray) and values.dtype.kind == "f" and not np.isfinite(values).all():
+        raise ValueError(f"field {f.name}: cannot write non-finite values")
+    vals = values.tolist() if isinstance(values, np.ndarray) else list(values)
+    if isinstance(values, np.ndarray) and values.dtype.kind in "iuf":  # no blanks: map in C
+        txt = list(map(str, vals)) if f.kind == INT else list(map(repr, map(float, vals)))
+        if f.kind == INT and values.dtype.kind == "f":
+            txt = [str(int(v)) for v in vals]
+        if f.kind == FLOAT and w is not None:
+            for i, t in enumerate(txt):
+                if len(t) > w:
+                    txt[i] = cards.format_float(float(vals[i]), w) or t
+        return txt
+    if f.kind == STR:
+        return ["" if v is None else str(v) for v in vals]
+    if f.kind == INT:
+        return ["" if v is None else str(int(v)) for v in vals]
+    txt = ["" if v is None else repr(float(v)) for v in vals]
+    if w is not None:
+        for i, t in enumerate(txt):
+            if len(t) > w:
+                txt[i] = cards.format_float(float(vals[i]), w) or t
+    return txt
 
 
 def _card_lines(columns: list, fields: tuple[Field, ...], mode: str):
     """Lines of one card for n rows, and which rows fit the columns."""
     n = len(columns[0]) if columns else 0
-    if n == 0:
-        return np.array([], dtype=object), np.ones(0, bool)
     if mode == "free":
-        parts = [_texts(c, f, None)[0] for c, f in zip(columns, fields)]
-        line = parts[0]
-        for p in parts[1:]:
-            line = np.char.add(np.char.add(line, ","), p)
-        line = np.char.rstrip(line, ",")
+        cols = [_texts(c, f, None) for c, f in zip(columns, fields)]
+        lines = [",".join(row).rstrip(",") for row in zip(*cols)]
         # a line without a comma would be read by columns: keep one
-        line = np.where(np.char.find(line, ",") < 0, np.char.add(line, ","), line)
-        return line, np.ones(n, bool)
+        return [ln if "," in ln else ln + "," for ln in lines], np.ones(n, bool)
+    widths = [cards.width(f, mode) for f in fields]
+    cols = [_texts(c, f, w) for c, f, w in zip(columns, fields, widths)]
     fits = np.ones(n, dtype=bool)
-    line = np.full(n, "", dtype="<U1")
-    for c, f in zip(columns, fields):
-        w = cards.width(f, mode)
-        txt, ok = _texts(c, f, w)
-        fits &= ok
-        txt = np.char.ljust(txt, w) if f.kind == STR else np.char.rjust(txt, w)
-        line = np.char.add(line, txt)
-    return np.char.rstrip(line), fits
+    for col, w in zip(cols, widths):
+        if max(map(len, col), default=0) > w:
+            fits &= np.fromiter((len(t) <= w for t in col), bool, n)
+    fmt = "".join(f"%-{w}s" if f.kind == STR else f"%{w}s" for f, w in zip(fields, widths))
+    return [(fmt % row).rstrip() for row in zip(*cols)], fits
 
 
 def _free_line(values: list, fields) -> str:
@@ -139,7 +113,6 @@ def format_record(rec: Record, deck_mode: str) -> list[str]:
                     if mode != attempts[-1]:
                         all_fit = False
                         break
-                    lines = lines.astype(object)
                     for i in np.flatnonzero(~fits):  # last resort: free format
                         lines[i] = _free_line([c[i] for c in cols], fields)
                 out.append(lines)
@@ -153,16 +126,12 @@ def format_record(rec: Record, deck_mode: str) -> list[str]:
     if rec.title is not None and "TITLE" in rec.options:
         text.append(rec.title)
     head_lines, row_lines = blocks
-    text.extend(str(x[0]) for x in head_lines)
-    if row_lines:
-        n = len(row_lines[0])
-        if len(row_lines) == 1:
-            text.extend(row_lines[0].tolist())
-        else:  # interleave the cards of each row
-            inter = np.empty(n * len(row_lines), dtype=object)
-            for k, col in enumerate(row_lines):
-                inter[k :: len(row_lines)] = col
-            text.extend(inter.tolist())
+    text.extend(x[0] for x in head_lines)
+    if len(row_lines) == 1:
+        text.extend(row_lines[0])
+    elif row_lines:  # interleave the cards of each row
+        for row in zip(*row_lines):
+            text.extend(row)
     return text
 
 
