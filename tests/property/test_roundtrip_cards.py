@@ -1,7 +1,6 @@
 """Every registered keyword, with every option, round-trips through the
 writer and the reader in fixed, long, I10 and free format, value by value."""
 
-import itertools
 import string
 
 import numpy as np
@@ -11,7 +10,7 @@ from hypothesis import strategies as st
 
 from crashlite.keyword.equality import records_equal
 from crashlite.keyword.reader import read_records
-from crashlite.keyword.schema import FLOAT, INT, STR, Record, registered
+from crashlite.keyword.schema import INT, STR, Record, registered
 from crashlite.keyword.writer import format_record
 
 MODES = {"fixed": "std", "long": "long", "i10": "i10", "free": "free"}

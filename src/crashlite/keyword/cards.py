@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import re
 
-from .schema import FLOAT, INT, STR, Field
+from .schema import INT, STR, Field
 
 STD, LONG, I10 = "std", "long", "i10"
 
