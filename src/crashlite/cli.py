@@ -31,6 +31,17 @@ def _convert(args) -> int:
     return 0
 
 
+def _run(args) -> int:
+    from .solver import run
+
+    res = run(args.deck, out=args.output, quiet=args.quiet)
+    ratio = res.energy_ratio
+    print(f"{res.cycles} cycles, dt {res.dt:.4g}, end time {res.time[-1]:.6g}, "
+          f"energy ratio {ratio.min():.4f}..{ratio.max():.4f}, {res.wall_time:.2f} s wall; "
+          f"results in {args.output}/results.npz")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="crashlite", description=__doc__.split("\n")[0])
     sub = p.add_subparsers(dest="command", required=True)
@@ -46,6 +57,12 @@ def build_parser() -> argparse.ArgumentParser:
     conv.add_argument("--split", action="store_true", help="nodes and elements in an include file")
     conv.add_argument("--strict", action="store_true")
     conv.set_defaults(func=_convert)
+    run = sub.add_parser("run", help="run a deck with the explicit solver (masses, springs, "
+                                     "dampers, rigid walls at this stage)")
+    run.add_argument("deck", type=Path)
+    run.add_argument("-o", "--output", type=Path, required=True, help="results folder")
+    run.add_argument("--quiet", action="store_true", help="no progress bar")
+    run.set_defaults(func=_run)
     return p
 
 
@@ -56,7 +73,7 @@ def main(argv: list[str] | None = None) -> int:
     except DeckError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
-    except (FileExistsError, FileNotFoundError, ValueError, KeyError) as e:
+    except (FileExistsError, FileNotFoundError, ValueError, KeyError, FloatingPointError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
 

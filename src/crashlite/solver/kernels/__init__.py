@@ -1,0 +1,1 @@
+"""Numba kernels of the explicit solver: arrays in, preallocated arrays out."""

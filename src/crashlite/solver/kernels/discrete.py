@@ -1,0 +1,94 @@
+"""Discrete springs and dampers (*ELEMENT_DISCRETE with *MAT_S01/S02/S04).
+
+Forces are computed per element into ``fe`` (n_elem, 3) in parallel, then
+summed into the nodes in element order by ``scatter``: the result does not
+depend on the number of threads (the order of floating-point sums is fixed).
+"""
+
+import numpy as np
+from numba import njit, prange
+
+LINEAR, DAMPER, CURVE = 0, 1, 2
+
+
+@njit(cache=True, inline="always")
+def curve_value(xs, ys, start, stop, x):
+    """Piecewise-linear curve points [start, stop), extrapolated linearly."""
+    n = stop - start
+    if n == 1:
+        return ys[start]
+    if x <= xs[start]:
+        i = start
+    elif x >= xs[stop - 1]:
+        i = stop - 2
+    else:
+        lo, hi = start, stop - 1
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            if xs[mid] <= x:
+                lo = mid
+            else:
+                hi = mid
+        i = lo
+    dx = xs[i + 1] - xs[i]
+    t = (x - xs[i]) / dx if dx != 0.0 else 0.0
+    return ys[i] + t * (ys[i + 1] - ys[i])
+
+
+@njit(cache=True, parallel=True)
+def discrete_forces(x, v, n1, n2, kind, k, scale, offset, length0, direction, curve_start, curve_stop,
+                    curve_x, curve_y, ground, fe, force, elong):
+    """Axial force of each element (tension positive) and its force vector on n1.
+
+    x, v (n_nodes, 3); n1, n2 (n,) node indices (n2 = -1: tied to ground at
+    ``ground``); kind LINEAR (force = k·δ), DAMPER (force = k·δ̇) or CURVE
+    (force = curve(δ)); scale S; offset; length0 initial length; direction
+    (n, 3): unit vector, or zeros to follow the element axis. Outputs: fe
+    (n, 3) force on n1 (n2 gets -fe), force (n,), elong (n,) δ.
+    """
+    for e in prange(n1.shape[0]):
+        a = n1[e]
+        b = n2[e]
+        d0 = (ground[e, 0] - x[a, 0]) if b < 0 else (x[b, 0] - x[a, 0])
+        d1 = (ground[e, 1] - x[a, 1]) if b < 0 else (x[b, 1] - x[a, 1])
+        d2 = (ground[e, 2] - x[a, 2]) if b < 0 else (x[b, 2] - x[a, 2])
+        r0 = -v[a, 0] if b < 0 else v[b, 0] - v[a, 0]
+        r1 = -v[a, 1] if b < 0 else v[b, 1] - v[a, 1]
+        r2 = -v[a, 2] if b < 0 else v[b, 2] - v[a, 2]
+        fixed_dir = direction[e, 0] != 0.0 or direction[e, 1] != 0.0 or direction[e, 2] != 0.0
+        if fixed_dir:
+            u0, u1, u2 = direction[e, 0], direction[e, 1], direction[e, 2]
+            delta = d0 * u0 + d1 * u1 + d2 * u2 - length0[e]
+        else:
+            length = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
+            if length > 0.0:
+                u0, u1, u2 = d0 / length, d1 / length, d2 / length
+            else:
+                u0, u1, u2 = 0.0, 0.0, 0.0
+            delta = length - length0[e]
+        delta += offset[e]
+        rate = r0 * u0 + r1 * u1 + r2 * u2
+        if kind[e] == LINEAR:
+            f = k[e] * delta
+        elif kind[e] == DAMPER:
+            f = k[e] * rate
+        else:
+            f = curve_value(curve_x, curve_y, curve_start[e], curve_stop[e], delta)
+        f *= scale[e]
+        force[e] = f
+        elong[e] = delta
+        fe[e, 0] = f * u0
+        fe[e, 1] = f * u1
+        fe[e, 2] = f * u2
+
+
+@njit(cache=True)
+def scatter(n1, n2, fe, out):
+    """Add element forces to the nodal force array in element order."""
+    for e in range(n1.shape[0]):
+        a = n1[e]
+        b = n2[e]
+        for j in range(3):
+            out[a, j] += fe[e, j]
+            if b >= 0:
+                out[b, j] -= fe[e, j]

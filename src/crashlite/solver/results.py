@@ -1,0 +1,56 @@
+"""Time histories of a run (glstat, deforc, rwforc, nodout) and the final state."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+
+@dataclass
+class Results:
+    time: np.ndarray  # (n_states,) [time]
+    kinetic: np.ndarray  # (n_states,) kinetic energy [energy]
+    internal: np.ndarray  # (n_states,) internal energy of elements (dampers: dissipated) [energy]
+    wall: np.ndarray  # (n_states,) energy taken by rigid walls [energy]
+    discrete_force: np.ndarray  # (n_states, n_discrete) axial force, tension positive [force]
+    discrete_elong: np.ndarray  # (n_states, n_discrete) elongation δ [length]
+    wall_force: np.ndarray  # (n_states, n_walls, 3) force of the nodes on each wall [force]
+    node_displacement: np.ndarray  # (n_states, n_hist, 3) of the history nodes [length]
+    node_velocity: np.ndarray  # (n_states, n_hist, 3) [length/time]
+    history_nodes: np.ndarray  # (n_hist,) deck node IDs
+    discrete_ids: np.ndarray  # (n_discrete,) deck element IDs
+    wall_ids: np.ndarray  # (n_walls,)
+    final_x: np.ndarray  # (n_nodes, 3)
+    final_v: np.ndarray  # (n_nodes, 3)
+    cycles: int = 0
+    dt: float = 0.0
+    wall_time: float = 0.0
+    info: dict = field(default_factory=dict)
+
+    @property
+    def total(self) -> np.ndarray:
+        return self.kinetic + self.internal
+
+    @property
+    def energy_ratio(self) -> np.ndarray:
+        """(kinetic + internal + wall) / initial total: 1 when energy is conserved."""
+        e0 = self.total[0] if self.total[0] != 0 else 1.0
+        return (self.kinetic + self.internal + self.wall) / e0
+
+    def save(self, directory) -> Path:
+        directory = Path(directory)
+        directory.mkdir(parents=True, exist_ok=True)
+        path = directory / "results.npz"
+        arrays = {k: v for k, v in self.__dict__.items() if isinstance(v, np.ndarray)}
+        np.savez_compressed(path, cycles=self.cycles, dt=self.dt, wall_time=self.wall_time, **arrays)
+        return path
+
+    @classmethod
+    def load(cls, path) -> "Results":
+        with np.load(Path(path) / "results.npz" if Path(path).is_dir() else path) as z:
+            data = {k: z[k] for k in z.files}
+        scalars = {"cycles": int(data.pop("cycles")), "dt": float(data.pop("dt")),
+                   "wall_time": float(data.pop("wall_time"))}
+        return cls(**data, **scalars)

@@ -1,0 +1,270 @@
+"""From a Model to the arrays the time loop works on.
+
+This first solver stage runs models made of lumped masses and discrete
+springs and dampers, with nodal constraints, initial velocities and
+stationary planar rigid walls. Anything else in a deck that would change the
+motion is refused with a message naming the keyword, so a run never silently
+leaves part of the model out.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..keyword.errors import DeckError, Problem
+from ..model.model import Model
+from .kernels.discrete import CURVE, DAMPER, LINEAR
+
+# translational constraint code of *NODE TC -> fixed (x, y, z)
+_TC = {0: (0, 0, 0), 1: (1, 0, 0), 2: (0, 1, 0), 3: (0, 0, 1), 4: (1, 1, 0), 5: (0, 1, 1),
+       6: (1, 0, 1), 7: (1, 1, 1)}
+
+
+@dataclass
+class Discrete:
+    """Struct-of-arrays of discrete elements (see kernels.discrete)."""
+
+    ids: np.ndarray  # (n,) int64 element IDs
+    n1: np.ndarray  # (n,) int64 node index
+    n2: np.ndarray  # (n,) int64 node index (-1: grounded)
+    kind: np.ndarray  # (n,) int64 LINEAR, DAMPER or CURVE
+    k: np.ndarray  # (n,) float64 stiffness [force/length] or damping [force·time/length]
+    scale: np.ndarray  # (n,) float64
+    offset: np.ndarray  # (n,) float64 [length]
+    length0: np.ndarray  # (n,) float64 initial length (or projection) [length]
+    direction: np.ndarray  # (n, 3) float64 fixed unit direction, zeros: along the axis
+    ground: np.ndarray  # (n, 3) float64 ground point of grounded elements
+    curve_start: np.ndarray  # (n,) int64
+    curve_stop: np.ndarray  # (n,) int64
+    curve_x: np.ndarray  # (m,) float64 deflection [length]
+    curve_y: np.ndarray  # (m,) float64 force [force]
+
+
+@dataclass
+class Wall:
+    wall_id: int
+    nodes: np.ndarray  # (k,) int64 slave node indices
+    point: np.ndarray  # (3,) a point of the plane
+    normal: np.ndarray  # (3,) unit normal towards the allowed side
+    birth: float
+    death: float
+
+
+@dataclass
+class Setup:
+    x0: np.ndarray  # (n, 3) float64 initial coordinates
+    v0: np.ndarray  # (n, 3) float64 initial velocities
+    mass: np.ndarray  # (n,) float64 lumped nodal mass
+    fixed: np.ndarray  # (n, 3) bool constrained DOFs
+    discrete: Discrete
+    walls: list[Wall] = field(default_factory=list)
+    end_time: float = 0.0
+    end_cycle: int = 0
+    tssfac: float = 0.9
+    history_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
+
+
+class SetupError(DeckError):
+    """The model uses something this solver stage cannot run."""
+
+
+def _problem(rec, field_, msg) -> Problem:
+    src = rec.where(field_) if rec is not None and hasattr(rec, "where") else ("", 0)
+    return Problem(src[0], src[1], getattr(rec, "name", ""), field_.upper() if field_ else None, msg)
+
+
+def _curve(model: Model, lcid: int):
+    c = model.curves[lcid]
+    a = np.asarray(c.rows["a1"], float) * float(c.get("sfa", 1.0) or 1.0) + float(c.get("offa", 0.0))
+    o = np.asarray(c.rows["o1"], float) * float(c.get("sfo", 1.0) or 1.0) + float(c.get("offo", 0.0))
+    return a, o
+
+
+def _node_set(model: Model, sid: int) -> np.ndarray:
+    return model.node_index(model.set_members("NODE", sid))
+
+
+def _discrete(model: Model, problems: list) -> Discrete:
+    d = model.discretes
+    n = len(d)
+    kind = np.zeros(n, np.int64)
+    k = np.zeros(n)
+    starts, stops = np.zeros(n, np.int64), np.zeros(n, np.int64)
+    cx, cy = [np.zeros(0)], [np.zeros(0)]
+    used = 0
+    for pid in np.unique(d.pid):
+        sel = d.pid == pid
+        part = model.parts.get(int(pid))
+        mat = model.materials.get(part.get("mid")) if part is not None else None
+        sec = model.sections.get(part.get("secid")) if part is not None else None
+        if sec is not None and int(sec.get("dro", 0)) != 0:
+            problems.append(_problem(sec, "dro", "rotational discrete elements are not supported yet"))
+        if mat is None:
+            problems.append(_problem(part, "mid", "discrete elements need a *MAT_SPRING/_DAMPER material"))
+            continue
+        if mat.keyword == "MAT_SPRING_ELASTIC":
+            kind[sel], k[sel] = LINEAR, float(mat["k"])
+        elif mat.keyword == "MAT_DAMPER_VISCOUS":
+            kind[sel], k[sel] = DAMPER, float(mat["dc"])
+        elif mat.keyword == "MAT_SPRING_NONLINEAR_ELASTIC":
+            if int(mat.get("lcd", 0)) not in model.curves:
+                problems.append(_problem(mat, "lcd", f"curve {mat.get('lcd')} is not defined"))
+                continue
+            a, o = _curve(model, int(mat["lcd"]))
+            kind[sel] = CURVE
+            starts[sel], stops[sel] = used, used + len(a)
+            cx.append(a)
+            cy.append(o)
+            used += len(a)
+        else:
+            problems.append(_problem(mat, None, f"*{mat.keyword} is not supported by the solver yet "
+                                                "(supported: MAT_S01, MAT_S02, MAT_S04)"))
+    x = model.nodes.xyz
+    n1 = d.nodes[:, 0].astype(np.int64)
+    n2 = d.nodes[:, 1].astype(np.int64)
+    direction = np.zeros((n, 3))
+    for i, vid in enumerate(d.vid):
+        if vid:
+            vec = model.vectors.get(int(vid))
+            if vec is None:
+                problems.append(Problem(model.source or "", 0, "ELEMENT_DISCRETE", "VID",
+                                        f"element {int(d.ids[i])}: vector {int(vid)} is not defined"))
+                continue
+            u = np.array([vec["xh"] - vec["xt"], vec["yh"] - vec["yt"], vec["zh"] - vec["zt"]], float)
+            direction[i] = u / np.linalg.norm(u)
+    ground = x[n1].copy()
+    other = np.where(n2[:, None] >= 0, x[np.maximum(n2, 0)], ground)
+    rel = other - x[n1]
+    fixed_dir = np.any(direction != 0, axis=1)
+    length0 = np.where(fixed_dir, np.einsum("ij,ij->i", rel, direction), np.linalg.norm(rel, axis=1))
+    return Discrete(d.ids, n1, n2, kind, k, d.scale.astype(float), d.offset.astype(float), length0,
+                    direction, ground, starts, stops, np.concatenate(cx), np.concatenate(cy))
+
+
+def _initial_velocity(model: Model, v: np.ndarray, problems: list) -> None:
+    n = len(v)
+    for rec in model.keywords:
+        name = getattr(rec, "keyword", "")
+        if name == "INITIAL_VELOCITY":
+            nodes = np.arange(n) if not rec.get("nsid") else _node_set(model, rec["nsid"])
+            v[nodes] = [rec.get("vx", 0.0), rec.get("vy", 0.0), rec.get("vz", 0.0)]
+            if rec.get("nsidex"):
+                ex = _node_set(model, rec["nsidex"])
+                v[ex] = [rec.get("vxe", 0.0), rec.get("vye", 0.0), rec.get("vze", 0.0)]
+        elif name == "INITIAL_VELOCITY_NODE":
+            idx = model.node_index(rec.rows["nid"])
+            v[idx] = np.stack([rec.rows["vx"], rec.rows["vy"], rec.rows["vz"]], axis=1)
+        elif name == "INITIAL_VELOCITY_GENERATION":
+            styp = int(rec.get("styp", 2))
+            if styp == 3:
+                nodes = _node_set(model, rec["id"])
+            else:
+                pids = [rec["id"]] if styp == 2 else model.set_members("PART", rec["id"])
+                nodes = _part_nodes(model, pids)
+            axis = np.array([rec.get("nx", 0.0), rec.get("ny", 0.0), rec.get("nz", 0.0)], float)
+            omega = float(rec.get("omega", 0.0))
+            vt = np.array([rec.get("vx", 0.0), rec.get("vy", 0.0), rec.get("vz", 0.0)], float)
+            v[nodes] = vt
+            if omega and np.linalg.norm(axis) > 0:
+                w = omega * axis / np.linalg.norm(axis)
+                c = np.array([rec.get("xc", 0.0), rec.get("yc", 0.0), rec.get("zc", 0.0)], float)
+                v[nodes] += np.cross(w, model.nodes.xyz[nodes] - c)
+
+
+def _part_nodes(model: Model, pids) -> np.ndarray:
+    out = []
+    for t in (model.shells, model.solids, model.beams, model.discretes):
+        sel = np.isin(t.pid, pids)
+        out.append(t.nodes[sel].ravel())
+    nodes = np.unique(np.concatenate(out)) if out else np.zeros(0, np.int64)
+    return nodes[nodes >= 0]
+
+
+def _constraints(model: Model, problems: list) -> np.ndarray:
+    fixed = np.array([_TC.get(int(t), (0, 0, 0)) for t in model.nodes.tc], dtype=bool).reshape(-1, 3)
+    for rec in model.keywords:
+        name = getattr(rec, "keyword", "")
+        if name not in ("BOUNDARY_SPC_NODE", "BOUNDARY_SPC_SET"):
+            continue
+        rows = rec.rows
+        for i in range(len(rows["cid"])):
+            if rows["cid"][i]:
+                problems.append(_problem(rec, "cid", "constraints in a local system are not supported yet"))
+                continue
+            nodes = (model.node_index([rows["nid"][i]]) if name.endswith("NODE")
+                     else _node_set(model, int(rows["nsid"][i])))
+            dofs = [rows["dofx"][i], rows["dofy"][i], rows["dofz"][i]]
+            fixed[nodes] |= np.array(dofs, bool)
+    return fixed
+
+
+def _walls(model: Model, problems: list) -> list[Wall]:
+    walls = []
+    n = len(model.nodes)
+    for rec in model.keywords:
+        if getattr(rec, "keyword", "") != "RIGIDWALL_PLANAR":
+            continue
+        if rec.options & {"MOVING", "FINITE"} or rec.get("fric", 0.0) or rec.get("wvel", 0.0):
+            problems.append(_problem(rec, None, "moving, finite and frictional rigid walls are not "
+                                                "supported yet (stationary planar walls are)"))
+            continue
+        nodes = np.arange(n) if not rec.get("nsid") else _node_set(model, rec["nsid"])
+        if rec.get("nsidex"):
+            nodes = np.setdiff1d(nodes, _node_set(model, rec["nsidex"]))
+        tail = np.array([rec.get("xt", 0.0), rec.get("yt", 0.0), rec.get("zt", 0.0)], float)
+        head = np.array([rec.get("xh", 0.0), rec.get("yh", 0.0), rec.get("zh", 0.0)], float)
+        normal = head - tail
+        if not np.linalg.norm(normal):
+            problems.append(_problem(rec, "xh", "wall normal (head - tail) has zero length"))
+            continue
+        normal /= np.linalg.norm(normal)
+        point = tail + float(rec.get("offset", 0.0)) * normal
+        walls.append(Wall(int(rec.get("rwid") or len(walls) + 1), nodes.astype(np.int64), point, normal,
+                          float(rec.get("birth", 0.0)), float(rec.get("death", 1e20))))
+    return walls
+
+
+_UNSUPPORTED_TABLES = ("shells", "solids", "beams")
+
+
+def build(model: Model) -> Setup:
+    """Arrays for the time loop; raises SetupError listing everything the
+    solver cannot run yet."""
+    problems: list[Problem] = []
+    for t in _UNSUPPORTED_TABLES:
+        if len(getattr(model, t)):
+            problems.append(Problem(model.source or "", 0, f"ELEMENT_{t[:-1].upper()}", None,
+                                    f"{len(getattr(model, t))} {t}: this solver stage runs masses, "
+                                    "springs and dampers only"))
+    n = len(model.nodes)
+    mass = np.zeros(n)
+    np.add.at(mass, model.masses.node, model.masses.mass)
+    np.add.at(mass, model.inertias.node, model.inertias.mass)
+    disc = _discrete(model, problems)
+    v0 = np.zeros((n, 3))
+    _initial_velocity(model, v0, problems)
+    fixed = _constraints(model, problems)
+    walls = _walls(model, problems)
+    used = np.zeros(n, bool)
+    used[disc.n1] = True
+    used[disc.n2[disc.n2 >= 0]] = True
+    massless = np.flatnonzero(used & (mass <= 0) & ~fixed.all(axis=1))
+    for i in massless[:10]:
+        problems.append(Problem(model.source or "", 0, "ELEMENT_MASS", None,
+                                f"node {int(model.nodes.ids[i])} carries elements but has no mass"))
+    term = model.find("CONTROL_TERMINATION")
+    ts = model.find("CONTROL_TIMESTEP")
+    end_time = float(term[0].get("endtim", 0.0)) if term else 0.0
+    if end_time <= 0:
+        problems.append(Problem(model.source or "", 0, "CONTROL_TERMINATION", "ENDTIM",
+                                "an end time > 0 is needed"))
+    hist = [model.node_index(r.rows[f"id{i}"]) for r in model.find("DATABASE_HISTORY_NODE")
+            if "SET" not in r.options and "ID" not in r.options for i in range(1, 9)]
+    hist_idx = np.unique(np.concatenate(hist)) if hist else np.zeros(0, np.int64)
+    if problems:
+        raise SetupError(problems)
+    return Setup(model.nodes.xyz.copy(), v0, mass, fixed, disc, walls, end_time,
+                 int(term[0].get("endcyc", 0)) if term else 0,
+                 float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9, hist_idx[hist_idx >= 0])

@@ -1,0 +1,134 @@
+"""Spring-mass systems against closed-form answers, with energy balance."""
+
+import math
+
+import numpy as np
+import pytest
+
+from crashlite import read_deck
+from crashlite.solver import SetupError, run
+
+M, K = 0.1, 50.0  # t, N/mm -> ω = sqrt(K/M) = 22.36 rad/s (period 0.281 s)
+
+
+def _deck(tmp_path, springs, extra="", v0=1000.0, end=0.6, mass=M):
+    text = "\n".join([
+        "*KEYWORD", "*NODE", "1,0,0,0,7,7", "2,100,0,0", "3,200,0,0",
+        "*ELEMENT_MASS", f"10,2,{mass}",
+        "*ELEMENT_DISCRETE", *springs,
+        "*INITIAL_VELOCITY_NODE", f"2,{v0},0,0",
+        "*CONTROL_TERMINATION", f"{end}",
+        "*CONTROL_TIMESTEP", ",0.02",  # small steps: the tests check accuracy, not stability
+        "*DATABASE_HISTORY_NODE", "2",
+        extra, "*END"])
+    p = tmp_path / "sm.k"
+    p.write_text(text)
+    return read_deck(p)
+
+
+def _parts(mat_lines):
+    return ["*PART", "spring", "1,1,1", "*SECTION_DISCRETE", "1,0", *mat_lines]
+
+
+def test_linear_spring_mass_oscillates_at_analytic_frequency(tmp_path):
+    m = _deck(tmp_path, ["1,1,1,2"], "\n".join(_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"])))
+    r = run(m, output_dt=1e-4)
+    w = math.sqrt(K / M)
+    ux = r.node_displacement[:, 0, 0]
+    exact = 1000.0 / w * np.sin(w * r.time)
+    # central difference: phase error O((ω dt)²); dt is 0.9 of critical here
+    assert np.max(np.abs(ux - exact)) < 0.01 * np.max(np.abs(exact))
+    # energy: kinetic + spring energy constant
+    e0 = 0.5 * M * 1000.0**2
+    assert np.max(np.abs(r.kinetic + r.internal - e0)) < 2e-3 * e0
+    # spring force = -K x at every state (tension positive, node 2 moves away)
+    np.testing.assert_allclose(r.discrete_force[:, 0], K * ux, rtol=1e-12, atol=1e-9)
+
+
+def test_viscous_damper_decays_exponentially(tmp_path):
+    c = 0.5  # N s/mm: v = v0 exp(-c t / m)
+    m = _deck(tmp_path, ["1,1,1,2"], "\n".join(_parts(["*MAT_DAMPER_VISCOUS", f"1,{c}"])), end=0.4)
+    r = run(m, output_dt=1e-3)
+    vx = r.node_velocity[:, 0, 0]
+    exact = 1000.0 * np.exp(-c * r.time / M)
+    # the damper force uses the half-step velocity (as in LS-DYNA): first order in c·dt/m
+    assert np.max(np.abs(vx - exact)) < 1e-2 * 1000.0
+    # dissipated energy = lost kinetic energy
+    e0 = 0.5 * M * 1000.0**2
+    assert abs(r.kinetic[-1] + r.internal[-1] - e0) < 2e-3 * e0
+
+
+def test_nonlinear_curve_spring_stops_mass_at_energy_balance(tmp_path):
+    """Force = 2000 N after 1 mm (then flat): the mass stops after
+    x = E0 / F (energy absorbed by a constant force)."""
+    curve = ["*DEFINE_CURVE", "5", "-1000.0,-2000.0", "-1.0,-2000.0", "0.0,0.0", "1.0,2000.0",
+             "1000.0,2000.0"]
+    parts = _parts(["*MAT_SPRING_NONLINEAR_ELASTIC", "1,5"]) + curve
+    # compressive: node 2 is moved towards node 1 (velocity -1000)
+    m = _deck(tmp_path, ["1,1,1,2"], "\n".join(parts), v0=-1000.0, end=0.08)
+    r = run(m, output_dt=1e-4)
+    e0 = 0.5 * M * 1000.0**2  # 50 000 N mm
+    stop = np.argmin(r.node_displacement[:, 0, 0])
+    x_max = -r.node_displacement[stop, 0, 0]
+    # F(x) = 2000 x for x < 1 then 2000: E0 = 1000 + 2000 (x - 1)
+    assert x_max == pytest.approx(1 + (e0 - 1000.0) / 2000.0, rel=5e-3)
+    assert np.max(np.abs(r.kinetic + r.internal - e0)) < 5e-3 * e0
+
+
+def test_mass_stops_on_rigid_wall_and_wall_takes_its_energy(tmp_path):
+    wall = "\n".join(["*RIGIDWALL_PLANAR", "0", "150,0,0,149,0,0",
+                      *_parts(["*MAT_SPRING_ELASTIC", "1,1e-6"])])
+    m = _deck(tmp_path, ["1,1,1,2"], wall, end=0.1)
+    r = run(m, output_dt=1e-3)
+    x = r.node_displacement[:, 0, 0]
+    assert x.max() == pytest.approx(50.0, abs=1e-9)  # stopped at the wall at x = 150
+    assert r.final_v[1, 0] == pytest.approx(0.0, abs=1e-3)
+    e0 = 0.5 * M * 1000.0**2
+    assert r.wall[-1] == pytest.approx(e0, rel=1e-6)
+    assert r.wall_force[:, 0, 0].max() > 0  # the node pushes the wall along +x
+
+
+def test_unsupported_content_is_refused_with_the_keyword(tmp_path):
+    text = "\n".join(["*KEYWORD", "*NODE", "1,0,0,0", "2,1,0,0", "3,1,1,0",
+                      "*ELEMENT_SHELL", "1,1,1,2,3", "*PART", "p", "1,1,1", "*SECTION_SHELL", "1,2", "1.0",
+                      "*MAT_ELASTIC", "1,1e-9,1.0,0.3", "*END"])
+    p = tmp_path / "shell.k"
+    p.write_text(text)
+    with pytest.raises(SetupError) as e:
+        run(p)
+    assert "ELEMENT_SHELL" in str(e.value) and "ENDTIM" in str(e.value)
+
+
+def test_results_identical_on_one_and_two_threads(tmp_path):
+    import numba
+
+    springs = [f"{i},1,{a},{b}" for i, (a, b) in enumerate([(1, 2), (2, 3), (1, 3)], start=1)]
+    text = "\n".join(["*KEYWORD", "*NODE", "1,0,0,0,7,7", "2,100,0,0", "3,200,30,0",
+                      "*ELEMENT_MASS", "10,2,0.1", "11,3,0.2", "*ELEMENT_DISCRETE", *springs,
+                      "*INITIAL_VELOCITY_NODE", "2,1000,200,0", "3,-300,0,500",
+                      "*CONTROL_TERMINATION", "0.05", "*DATABASE_HISTORY_NODE", "2,3",
+                      *_parts(["*MAT_SPRING_ELASTIC", "1,50.0"]), "*END"])
+    p = tmp_path / "three.k"
+    p.write_text(text)
+    model = read_deck(p)
+    default = numba.get_num_threads()
+    try:
+        numba.set_num_threads(1)
+        one = run(model)
+        numba.set_num_threads(min(2, numba.config.NUMBA_NUM_THREADS))
+        two = run(model)
+    finally:
+        numba.set_num_threads(default)
+    assert np.array_equal(one.node_displacement, two.node_displacement)
+    assert np.array_equal(one.discrete_force, two.discrete_force)
+
+
+def test_cli_run_writes_results(tmp_path, capsys):
+    from crashlite.cli import main
+    from crashlite.solver import Results
+
+    _deck(tmp_path, ["1,1,1,2"], "\n".join(_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"])), end=0.1)
+    assert main(["run", str(tmp_path / "sm.k"), "-o", str(tmp_path / "out"), "--quiet"]) == 0
+    assert "energy ratio" in capsys.readouterr().out
+    r = Results.load(tmp_path / "out")
+    assert r.time[-1] >= 0.1 and r.node_displacement.shape[1:] == (1, 3)
