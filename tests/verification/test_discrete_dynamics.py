@@ -132,3 +132,21 @@ def test_cli_run_writes_results(tmp_path, capsys):
     assert "energy ratio" in capsys.readouterr().out
     r = Results.load(tmp_path / "out")
     assert r.time[-1] >= 0.1 and r.node_displacement.shape[1:] == (1, 3)
+
+
+def test_inelastic_spring_crushes_then_releases_its_elastic_energy(tmp_path):
+    """*MAT_S08, compression only: the mass crushes the spring along a 2 kN
+    plateau (stop at 25.5 mm as for the elastic envelope), unloads with KU
+    and leaves with the elastic energy F²/(2 KU); a permanent set remains."""
+    curve = ["*DEFINE_CURVE", "5", "-1000.0,-2000.0", "-1.0,-2000.0", "0.0,0.0", "1000.0,0.0"]
+    parts = _parts(["*MAT_SPRING_INELASTIC", "1,5,2000.0,1"]) + curve
+    m = _deck(tmp_path, ["1,1,1,2"], "\n".join(parts), v0=-1000.0, end=0.1)
+    r = run(m, output_dt=1e-4)
+    x = r.node_displacement[:, 0, 0]
+    assert -x.min() == pytest.approx(25.5, rel=5e-3)
+    e_el = 2000.0**2 / (2 * 2000.0)
+    assert r.final_v[1, 0] == pytest.approx(math.sqrt(2 * e_el / M), rel=1e-2)
+    assert r.discrete_force[-1, 0] == 0.0  # separated: compression only
+    e0 = 0.5 * M * 1000.0**2
+    # crushing energy stays in the spring: internal = e0 - final kinetic
+    assert r.internal[-1] == pytest.approx(e0 - e_el, rel=5e-3)

@@ -58,6 +58,7 @@ def integrate(s: Setup, output_dt: float | None = None,
     fe = np.zeros((ne, 3))
     force, elong = np.zeros(ne), np.zeros(ne)
     force_old, elong_old = np.zeros(ne), np.zeros(ne)
+    plastic = np.zeros(ne)  # S08 plastic deflection
     wall_force = np.zeros((nw, 3))
     output_dt = output_dt or s.end_time / 200.0
     rec = _Recorder(s)
@@ -67,7 +68,7 @@ def integrate(s: Setup, output_dt: float | None = None,
         if ne:
             discrete_forces(x, v_for_rate, d.n1, d.n2, d.kind, d.k, d.scale, d.offset, d.length0,
                             d.direction, d.curve_start, d.curve_stop, d.curve_x, d.curve_y, d.ground,
-                            fe, force, elong)
+                            d.ctf, plastic, fe, force, elong)
             scatter(d.n1, d.n2, fe, f)  # f: force the elements exert on the nodes
 
     def kinetic(v_mid):

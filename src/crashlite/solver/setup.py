@@ -15,7 +15,7 @@ import numpy as np
 
 from ..keyword.errors import DeckError, Problem
 from ..model.model import Model
-from .kernels.discrete import CURVE, DAMPER, LINEAR
+from .kernels.discrete import CURVE, DAMPER, INELASTIC, LINEAR
 
 # translational constraint code of *NODE TC -> fixed (x, y, z)
 _TC = {0: (0, 0, 0), 1: (1, 0, 0), 2: (0, 1, 0), 3: (0, 0, 1), 4: (1, 1, 0), 5: (0, 1, 1),
@@ -40,6 +40,7 @@ class Discrete:
     curve_stop: np.ndarray  # (n,) int64
     curve_x: np.ndarray  # (m,) float64 deflection [length]
     curve_y: np.ndarray  # (m,) float64 force [force]
+    ctf: np.ndarray  # (n,) int64 S08 sign restriction (1 compression only, -1 tension only)
 
 
 @dataclass
@@ -92,6 +93,7 @@ def _discrete(model: Model, problems: list) -> Discrete:
     kind = np.zeros(n, np.int64)
     k = np.zeros(n)
     starts, stops = np.zeros(n, np.int64), np.zeros(n, np.int64)
+    ctf = np.zeros(n, np.int64)
     cx, cy = [np.zeros(0)], [np.zeros(0)]
     used = 0
     for pid in np.unique(d.pid):
@@ -108,19 +110,23 @@ def _discrete(model: Model, problems: list) -> Discrete:
             kind[sel], k[sel] = LINEAR, float(mat["k"])
         elif mat.keyword == "MAT_DAMPER_VISCOUS":
             kind[sel], k[sel] = DAMPER, float(mat["dc"])
-        elif mat.keyword == "MAT_SPRING_NONLINEAR_ELASTIC":
-            if int(mat.get("lcd", 0)) not in model.curves:
-                problems.append(_problem(mat, "lcd", f"curve {mat.get('lcd')} is not defined"))
+        elif mat.keyword in ("MAT_SPRING_NONLINEAR_ELASTIC", "MAT_SPRING_INELASTIC"):
+            lc = "lcd" if mat.keyword == "MAT_SPRING_NONLINEAR_ELASTIC" else "lcfd"
+            if int(mat.get(lc, 0)) not in model.curves:
+                problems.append(_problem(mat, lc, f"curve {mat.get(lc)} is not defined"))
                 continue
-            a, o = _curve(model, int(mat["lcd"]))
-            kind[sel] = CURVE
+            a, o = _curve(model, int(mat[lc]))
+            if lc == "lcd":
+                kind[sel] = CURVE
+            else:
+                kind[sel], k[sel], ctf[sel] = INELASTIC, float(mat["ku"]), int(mat.get("ctf", 0))
             starts[sel], stops[sel] = used, used + len(a)
             cx.append(a)
             cy.append(o)
             used += len(a)
         else:
             problems.append(_problem(mat, None, f"*{mat.keyword} is not supported by the solver yet "
-                                                "(supported: MAT_S01, MAT_S02, MAT_S04)"))
+                                                "(supported: MAT_S01, MAT_S02, MAT_S04, MAT_S08)"))
     x = model.nodes.xyz
     n1 = d.nodes[:, 0].astype(np.int64)
     n2 = d.nodes[:, 1].astype(np.int64)
@@ -140,7 +146,7 @@ def _discrete(model: Model, problems: list) -> Discrete:
     fixed_dir = np.any(direction != 0, axis=1)
     length0 = np.where(fixed_dir, np.einsum("ij,ij->i", rel, direction), np.linalg.norm(rel, axis=1))
     return Discrete(d.ids, n1, n2, kind, k, d.scale.astype(float), d.offset.astype(float), length0,
-                    direction, ground, starts, stops, np.concatenate(cx), np.concatenate(cy))
+                    direction, ground, starts, stops, np.concatenate(cx), np.concatenate(cy), ctf)
 
 
 def _initial_velocity(model: Model, v: np.ndarray, problems: list) -> None:

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from .kernels.discrete import CURVE, DAMPER
+from .kernels.discrete import CURVE, DAMPER, INELASTIC
 from .setup import Setup
 
 
@@ -16,12 +16,13 @@ def stable_dt(s: Setup) -> float:
     inv = 1.0 / np.where(s.mass > 0, s.mass, np.inf)
     inv_sum = inv[d.n1] + np.where(d.n2 >= 0, inv[np.maximum(d.n2, 0)], 0.0)
     k = np.abs(d.k * d.scale)
-    for e in np.flatnonzero(d.kind == CURVE):
+    for e in np.flatnonzero((d.kind == CURVE) | (d.kind == INELASTIC)):
         xs = d.curve_x[d.curve_start[e]:d.curve_stop[e]]
         ys = d.curve_y[d.curve_start[e]:d.curve_stop[e]]
         dx = np.diff(xs)
         slope = np.abs(np.diff(ys)[dx > 0] / dx[dx > 0])
-        k[e] = abs(d.scale[e]) * (slope.max() if len(slope) else 0.0)
+        k[e] = abs(d.scale[e]) * max(slope.max() if len(slope) else 0.0,
+                                     abs(d.k[e]) if d.kind[e] == INELASTIC else 0.0)
     damper = d.kind == DAMPER
     with np.errstate(divide="ignore"):
         dt_spring = np.where(~damper & (k > 0), 2.0 / np.sqrt(k * inv_sum), np.inf)

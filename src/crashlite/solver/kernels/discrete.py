@@ -8,7 +8,7 @@ depend on the number of threads (the order of floating-point sums is fixed).
 import numpy as np
 from numba import njit, prange
 
-LINEAR, DAMPER, CURVE = 0, 1, 2
+LINEAR, DAMPER, CURVE, INELASTIC = 0, 1, 2, 3
 
 
 @njit(cache=True, inline="always")
@@ -37,14 +37,16 @@ def curve_value(xs, ys, start, stop, x):
 
 @njit(cache=True, parallel=True)
 def discrete_forces(x, v, n1, n2, kind, k, scale, offset, length0, direction, curve_start, curve_stop,
-                    curve_x, curve_y, ground, fe, force, elong):
+                    curve_x, curve_y, ground, ctf, plastic, fe, force, elong):
     """Axial force of each element (tension positive) and its force vector on n1.
 
     x, v (n_nodes, 3); n1, n2 (n,) node indices (n2 = -1: tied to ground at
     ``ground``); kind LINEAR (force = k·δ), DAMPER (force = k·δ̇) or CURVE
-    (force = curve(δ)); scale S; offset; length0 initial length; direction
-    (n, 3): unit vector, or zeros to follow the element axis. Outputs: fe
-    (n, 3) force on n1 (n2 gets -fe), force (n,), elong (n,) δ.
+    (force = curve(δ)) or INELASTIC (*MAT_S08: force = k (δ - δp) bounded by
+    the curve, δp the plastic deflection kept in ``plastic``; ``ctf`` 1 keeps
+    compression only, -1 tension only); scale S; offset; length0 initial
+    length; direction (n, 3): unit vector, or zeros to follow the element
+    axis. Outputs: fe (n, 3) force on n1 (n2 gets -fe), force (n,), elong δ.
     """
     for e in prange(n1.shape[0]):
         a = n1[e]
@@ -72,8 +74,16 @@ def discrete_forces(x, v, n1, n2, kind, k, scale, offset, length0, direction, cu
             f = k[e] * delta
         elif kind[e] == DAMPER:
             f = k[e] * rate
-        else:
+        elif kind[e] == CURVE:
             f = curve_value(curve_x, curve_y, curve_start[e], curve_stop[e], delta)
+        else:
+            f = k[e] * (delta - plastic[e])
+            env = curve_value(curve_x, curve_y, curve_start[e], curve_stop[e], delta)
+            if (delta >= 0.0 and f > env > 0.0) or (delta < 0.0 and f < env < 0.0):
+                f = env  # on the envelope: the deflection beyond it is permanent
+                plastic[e] = delta - f / k[e]
+            if (ctf[e] == 1 and f > 0.0) or (ctf[e] == -1 and f < 0.0):
+                f = 0.0  # the spring does not carry this sign: a gap opens
         f *= scale[e]
         force[e] = f
         elong[e] = delta
