@@ -76,9 +76,7 @@ def test_nonlinear_curve_spring_stops_mass_at_energy_balance(tmp_path):
 
 
 def test_mass_stops_on_rigid_wall_and_wall_takes_its_energy(tmp_path):
-    wall = "\n".join(["*RIGIDWALL_PLANAR", "0", "150,0,0,149,0,0",
-                      *_parts(["*MAT_SPRING_ELASTIC", "1,1e-6"])])
-    m = _deck(tmp_path, ["1,1,1,2"], wall, end=0.1)
+    m = _wall_deck(tmp_path, ["*RIGIDWALL_PLANAR", "0", "150,0,0,149,0,0"], (1000.0, 0.0, 0.0), end=0.1)
     r = run(m, output_dt=1e-3)
     x = r.node_displacement[:, 0, 0]
     assert x.max() == pytest.approx(50.0, abs=1e-9)  # stopped at the wall at x = 150
@@ -150,3 +148,38 @@ def test_inelastic_spring_crushes_then_releases_its_elastic_energy(tmp_path):
     e0 = 0.5 * M * 1000.0**2
     # crushing energy stays in the spring: internal = e0 - final kinetic
     assert r.internal[-1] == pytest.approx(e0 - e_el, rel=5e-3)
+
+
+def _wall_deck(tmp_path, wall_lines, v, end=0.02):
+    text = "\n".join(["*KEYWORD", "*NODE", "1,0,0,0,7,7", "2,100,0,0",
+                      "*ELEMENT_MASS", f"10,2,{M}", "*ELEMENT_DISCRETE", "1,1,1,2",
+                      "*INITIAL_VELOCITY_NODE", f"2,{v[0]},{v[1]},{v[2]}",
+                      "*CONTROL_TERMINATION", f"{end}", "*DATABASE_HISTORY_NODE", "2",
+                      "*CONTROL_TIMESTEP", "0.0,0.9,0,0.0,0.0,9", "*DEFINE_CURVE", "9", "0.0,1e-5", "1.0,1e-5",
+                      *wall_lines, *_parts(["*MAT_SPRING_ELASTIC", "1,1e-9"]), "*END"])
+    p = tmp_path / "wall.k"
+    p.write_text(text)
+    return read_deck(p)
+
+
+def test_moving_wall_impact_conserves_momentum(tmp_path):
+    """A 5 t wall at 1000 mm/s hits a 0.1 t free mass: plastic impact, common
+    velocity M v0 / (M + m), energy loss M m v0² / (2 (M + m))."""
+    wall = ["*RIGIDWALL_PLANAR_MOVING", "2", "90,0,0,91,0,0", "5.0,1000.0", "*SET_NODE_LIST", "2", "2"]
+    r = run(_wall_deck(tmp_path, wall, (0.0, 0.0, 0.0)), output_dt=1e-4)
+    common = 5.0 * 1000.0 / 5.1
+    assert r.wall_velocity[-1, 0] == pytest.approx(common, rel=1e-9)
+    assert r.final_v[1, 0] == pytest.approx(common, rel=1e-6)
+    e0 = 0.5 * 5.0 * 1000.0**2
+    assert r.wall[-1] == pytest.approx(e0 * M / 5.1, rel=1e-6)
+    assert r.kinetic[-1] + r.wall[-1] == pytest.approx(e0, rel=1e-9)
+
+
+@pytest.mark.parametrize("fric,vt", [(0.0, 1000.0), (0.2, 1000.0 - 0.2 * 300.0), (1.0, 0.0)])
+def test_stationary_wall_friction(tmp_path, fric, vt):
+    """Normal velocity 300 into the wall is stopped; Coulomb friction takes
+    μ·300 of the tangential 1000 (FRIC 1: no sliding)."""
+    wall = ["*RIGIDWALL_PLANAR", "0", f"0,-5,0,0,-4,0,{fric}"]
+    r = run(_wall_deck(tmp_path, wall, (0.0, -300.0, 1000.0)), output_dt=1e-3)
+    assert r.final_v[1, 1] == pytest.approx(0.0, abs=1e-9)
+    assert r.final_v[1, 2] == pytest.approx(vt, rel=1e-9, abs=1e-9)

@@ -27,9 +27,9 @@ class _Recorder:
     def __init__(self, s: Setup):
         self.s = s
         self.rows: dict[str, list] = {k: [] for k in ("time", "kinetic", "internal", "wall", "force",
-                                                      "elong", "wall_force", "disp", "vel")}
+                                                      "elong", "wall_force", "wall_velocity", "disp", "vel")}
 
-    def __call__(self, t, x, v_mid, ke, ie, ew, force, elong, wall_force):
+    def __call__(self, t, x, v_mid, ke, ie, ew, force, elong, wall_force, wall_v):
         r = self.rows
         h = self.s.history_nodes
         r["time"].append(t)
@@ -39,6 +39,7 @@ class _Recorder:
         r["force"].append(force.copy())
         r["elong"].append(elong.copy())
         r["wall_force"].append(wall_force.copy())
+        r["wall_velocity"].append(wall_v.copy())
         r["disp"].append(x[h] - self.s.x0[h])
         r["vel"].append(v_mid[h].copy())
 
@@ -71,30 +72,48 @@ def integrate(s: Setup, output_dt: float | None = None,
                             d.ctf, plastic, fe, force, elong)
             scatter(d.n1, d.n2, fe, f)  # f: force the elements exert on the nodes
 
+    walls = [(w, w.point.copy(), np.zeros(len(w.nodes), np.bool_)) for w in s.walls]
+    wall_v = np.array([w.velocity for w in s.walls])
+
     def kinetic(v_mid):
-        return 0.5 * float(np.einsum("i,ij,ij->", s.mass, v_mid, v_mid))
+        ke = 0.5 * float(np.einsum("i,ij,ij->", s.mass, v_mid, v_mid))
+        return ke + sum(0.5 * w.mass * wall_v[k] ** 2 for k, w in enumerate(s.walls))
 
     def apply_walls(t, dt):
+        """Wall corrections; returns the kinetic energy they took out."""
         ew = 0.0
         wall_force[:] = 0.0
-        for k, w in enumerate(s.walls):
+        for k, (w, point, hit) in enumerate(walls):
             if not (w.birth <= t <= w.death):
                 continue
             before = v[w.nodes].copy()
-            planar_wall(x, v, s.mass, w.nodes, w.point, w.normal, dt, wall_force[k])
-            after = v[w.nodes]
+            v_old = wall_v[k]
+            wall_v[k] = planar_wall(x, v, s.mass, w.nodes, point, w.normal, v_old, w.mass, w.fric, dt,
+                                    wall_force[k], hit)
             m = s.mass[w.nodes]
-            ew += 0.5 * float(np.sum(m[:, None] * (before**2 - after**2)))
+            ew += 0.5 * float(np.sum(m[:, None] * (before**2 - v[w.nodes] ** 2)))
+            ew += 0.5 * w.mass * (v_old**2 - wall_v[k] ** 2)
         return ew
+
+    def move_walls(dt):
+        for k, (w, point, _) in enumerate(walls):
+            point += dt * wall_v[k] * w.normal
+
+    dt_stable = stable_dt(s)
+
+    def step_size(t):
+        if s.dt_max is None:
+            return dt_stable
+        return min(dt_stable, float(np.interp(t, *s.dt_max)))
 
     # t = 0: forces, half-step velocity
     internal_forces(v)
     ie = 0.0
     ew_total = 0.0
-    dt = stable_dt(s)
+    dt = step_size(0.0)
     t = 0.0
     v_prev = v.copy()
-    rec(t, x, v, kinetic(v), ie, ew_total, force, elong, wall_force)
+    rec(t, x, v, kinetic(v), ie, ew_total, force, elong, wall_force, wall_v)
     update_velocity(v, f, inv_mass, s.fixed, 0.5 * dt)
     ew_total += apply_walls(t, dt)
     next_out = output_dt
@@ -102,6 +121,7 @@ def integrate(s: Setup, output_dt: float | None = None,
     while t < s.end_time and (not s.end_cycle or cycle < s.end_cycle):
         dt_step = dt  # full steps; the run ends at the first state past ENDTIM
         update_position(x, v, dt_step)
+        move_walls(dt_step)
         t += dt_step
         cycle += 1
         force_old[:] = force
@@ -110,13 +130,14 @@ def integrate(s: Setup, output_dt: float | None = None,
         ie += float(np.sum(0.5 * (force_old + force) * (elong - elong_old)))
         if not np.all(np.isfinite(f)):
             raise FloatingPointError(f"non-finite forces at t = {t:.6g} (cycle {cycle}): the run diverged")
-        dt_new = dt
+        dt_new = step_size(t)
         v_prev[:] = v
         update_velocity(v, f, inv_mass, s.fixed, 0.5 * (dt_step + dt_new))
         ew_total += apply_walls(t, dt_new)
+        dt = dt_new
         if t >= next_out * (1 - 1e-9) or t >= s.end_time:
             v_mid = 0.5 * (v_prev + v)
-            rec(t, x, v_mid, kinetic(v_mid), ie, ew_total, force, elong, wall_force)
+            rec(t, x, v_mid, kinetic(v_mid), ie, ew_total, force, elong, wall_force, wall_v)
             next_out += output_dt
             if progress is not None:
                 progress(t, cycle, dt, (kinetic(v_mid) + ie + ew_total) / max(rec.rows["kinetic"][0]
@@ -128,6 +149,7 @@ def integrate(s: Setup, output_dt: float | None = None,
         wall=np.array(r["wall"]), discrete_force=np.array(r["force"]).reshape(ns, ne),
         discrete_elong=np.array(r["elong"]).reshape(ns, ne),
         wall_force=np.array(r["wall_force"]).reshape(ns, nw, 3),
+        wall_velocity=np.array(r["wall_velocity"]).reshape(ns, nw),
         node_displacement=np.array(r["disp"]).reshape(ns, len(s.history_nodes), 3),
         node_velocity=np.array(r["vel"]).reshape(ns, len(s.history_nodes), 3),
         history_nodes=s.history_nodes, discrete_ids=d.ids,

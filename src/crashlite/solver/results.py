@@ -17,6 +17,7 @@ class Results:
     discrete_force: np.ndarray  # (n_states, n_discrete) axial force, tension positive [force]
     discrete_elong: np.ndarray  # (n_states, n_discrete) elongation δ [length]
     wall_force: np.ndarray  # (n_states, n_walls, 3) force of the nodes on each wall [force]
+    wall_velocity: np.ndarray  # (n_states, n_walls) velocity of moving walls along their normal
     node_displacement: np.ndarray  # (n_states, n_hist, 3) of the history nodes [length]
     node_velocity: np.ndarray  # (n_states, n_hist, 3) [length/time]
     history_nodes: np.ndarray  # (n_hist,) deck node IDs

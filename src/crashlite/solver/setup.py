@@ -51,6 +51,9 @@ class Wall:
     normal: np.ndarray  # (3,) unit normal towards the allowed side
     birth: float
     death: float
+    fric: float = 0.0
+    mass: float = 0.0  # _MOVING: wall mass (0: stationary)
+    velocity: float = 0.0  # _MOVING: velocity along the normal
 
 
 @dataclass
@@ -65,6 +68,7 @@ class Setup:
     end_cycle: int = 0
     tssfac: float = 0.9
     history_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
+    dt_max: tuple | None = None  # *CONTROL_TIMESTEP LCTM: (time, largest step) curve
 
 
 class SetupError(DeckError):
@@ -212,9 +216,9 @@ def _walls(model: Model, problems: list) -> list[Wall]:
     for rec in model.keywords:
         if getattr(rec, "keyword", "") != "RIGIDWALL_PLANAR":
             continue
-        if rec.options & {"MOVING", "FINITE"} or rec.get("fric", 0.0) or rec.get("wvel", 0.0):
-            problems.append(_problem(rec, None, "moving, finite and frictional rigid walls are not "
-                                                "supported yet (stationary planar walls are)"))
+        if "FINITE" in rec.options or rec.get("wvel", 0.0):
+            problems.append(_problem(rec, None, "finite rigid walls and WVEL are not supported yet "
+                                                "(infinite stationary and moving planar walls are)"))
             continue
         nodes = np.arange(n) if not rec.get("nsid") else _node_set(model, rec["nsid"])
         if rec.get("nsidex"):
@@ -227,8 +231,14 @@ def _walls(model: Model, problems: list) -> list[Wall]:
             continue
         normal /= np.linalg.norm(normal)
         point = tail + float(rec.get("offset", 0.0)) * normal
+        moving = "MOVING" in rec.options
+        if moving and not rec.get("mass", 0.0) > 0:
+            problems.append(_problem(rec, "mass", "a moving rigid wall needs a mass > 0"))
+            continue
         walls.append(Wall(int(rec.get("rwid") or len(walls) + 1), nodes.astype(np.int64), point, normal,
-                          float(rec.get("birth", 0.0)), float(rec.get("death", 1e20))))
+                          float(rec.get("birth", 0.0)), float(rec.get("death", 1e20)),
+                          float(rec.get("fric", 0.0)), float(rec.get("mass", 0.0)) if moving else 0.0,
+                          float(rec.get("v0", 0.0)) if moving else 0.0))
     return walls
 
 
@@ -269,8 +279,16 @@ def build(model: Model) -> Setup:
     hist = [model.node_index(r.rows[f"id{i}"]) for r in model.find("DATABASE_HISTORY_NODE")
             if "SET" not in r.options and "ID" not in r.options for i in range(1, 9)]
     hist_idx = np.unique(np.concatenate(hist)) if hist else np.zeros(0, np.int64)
+    dt_max = None
+    if ts and ts[0].get("lctm"):
+        if int(ts[0]["lctm"]) in model.curves:
+            dt_max = _curve(model, int(ts[0]["lctm"]))
+        else:
+            problems.append(_problem(ts[0], "lctm", f"curve {ts[0]['lctm']} is not defined"))
+    if ts and float(ts[0].get("dt2ms", 0.0) or 0.0) != 0.0:
+        problems.append(_problem(ts[0], "dt2ms", "mass scaling is not supported yet"))
     if problems:
         raise SetupError(problems)
     return Setup(model.nodes.xyz.copy(), v0, mass, fixed, disc, walls, end_time,
                  int(term[0].get("endcyc", 0)) if term else 0,
-                 float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9, hist_idx[hist_idx >= 0])
+                 float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9, hist_idx[hist_idx >= 0], dt_max)

@@ -1,25 +1,70 @@
-"""Stationary planar rigid walls, imposed kinematically as LS-DYNA does:
-a node that would pass the wall in this step has its normal velocity changed
-so that it lands on the wall; the wall force is the momentum change / dt."""
+"""Planar rigid walls, imposed kinematically as LS-DYNA does: a node that
+would pass the wall in this step has its normal velocity changed so that it
+lands on the wall; the wall force is the momentum change / dt.
 
+A moving wall (*RIGIDWALL_PLANAR_MOVING) has a mass and a velocity along its
+normal; the nodes it hits and the wall leave with the velocity that conserves
+their momentum (perfectly plastic impact), as a rigid impactor does.
+"""
+
+import numpy as np
 from numba import njit
 
 
 @njit(cache=True)
-def planar_wall(x, v, mass, nodes, point, normal, dt, force):
-    """Correct v of ``nodes`` against the wall through ``point`` with unit
-    ``normal`` (pointing to the allowed side). Adds the force the nodes exert
-    on the wall to ``force`` (3,); returns the number of nodes in contact."""
-    n_contact = 0
-    for k in range(nodes.shape[0]):
+def planar_wall(x, v, mass, nodes, point, normal, wall_v, wall_mass, fric, dt, force, hit):
+    """Correct v of ``nodes`` against the plane through ``point`` (moving at
+    ``wall_v`` along the unit ``normal``, which points to the allowed side).
+
+    wall_mass 0: the wall does not move. fric: 0 frictionless, 1 no sliding,
+    between: Coulomb coefficient on the normal impulse. Adds the force of the
+    nodes on the wall to ``force`` (3,); ``hit`` (len(nodes),) is scratch.
+    Returns the wall's new normal velocity.
+    """
+    nk = nodes.shape[0]
+    p_moved = 0.0
+    m_hit = 0.0
+    for k in range(nk):
         i = nodes[k]
         d = 0.0
+        vn = 0.0
+        gap = 0.0
         for j in range(3):
-            d += (x[i, j] + dt * v[i, j] - point[j]) * normal[j]
-        if d < 0.0:
-            dv = -d / dt  # normal velocity increment that puts the node on the wall
-            for j in range(3):
-                v[i, j] += dv * normal[j]
-                force[j] -= mass[i] * dv / dt * normal[j]
-            n_contact += 1
-    return n_contact
+            d += (x[i, j] + dt * v[i, j] - point[j] - dt * wall_v * normal[j]) * normal[j]
+            vn += v[i, j] * normal[j]
+            gap += (x[i, j] - point[j]) * normal[j]
+        hit[k] = d < 0.0
+        if hit[k]:
+            # momentum the node brings, counting the approach it makes this step
+            p_moved += mass[i] * (vn + gap / dt)
+            m_hit += mass[i]
+    if m_hit == 0.0:
+        return wall_v
+    v_new = wall_v
+    if wall_mass > 0.0:  # common normal velocity of the wall and the nodes it hits
+        v_new = (wall_mass * wall_v + p_moved) / (wall_mass + m_hit)
+    for k in range(nk):
+        if not hit[k]:
+            continue
+        i = nodes[k]
+        gap = 0.0
+        vn = 0.0
+        for j in range(3):
+            gap += (x[i, j] - point[j]) * normal[j]
+            vn += v[i, j] * normal[j]
+        target = v_new - gap / dt  # lands on the wall at the end of the step
+        dv = target - vn
+        vt0, vt1, vt2 = v[i, 0] - vn * normal[0], v[i, 1] - vn * normal[1], v[i, 2] - vn * normal[2]
+        vt = np.sqrt(vt0 * vt0 + vt1 * vt1 + vt2 * vt2)
+        keep = 1.0
+        if fric >= 1.0:
+            keep = 0.0
+        elif fric > 0.0 and vt > 0.0:
+            keep = max(0.0, 1.0 - fric * abs(dv) / vt)
+        v[i, 0] = target * normal[0] + keep * vt0
+        v[i, 1] = target * normal[1] + keep * vt1
+        v[i, 2] = target * normal[2] + keep * vt2
+        force[0] -= mass[i] * (v[i, 0] - (vn * normal[0] + vt0)) / dt
+        force[1] -= mass[i] * (v[i, 1] - (vn * normal[1] + vt1)) / dt
+        force[2] -= mass[i] * (v[i, 2] - (vn * normal[2] + vt2)) / dt
+    return v_new
