@@ -183,3 +183,23 @@ def test_stationary_wall_friction(tmp_path, fric, vt):
     r = run(_wall_deck(tmp_path, wall, (0.0, -300.0, 1000.0)), output_dt=1e-3)
     assert r.final_v[1, 1] == pytest.approx(0.0, abs=1e-9)
     assert r.final_v[1, 2] == pytest.approx(vt, rel=1e-9, abs=1e-9)
+
+
+@pytest.mark.parametrize("vad,curve,expected", [
+    (0, ["0.0,500.0", "1.0,500.0"], lambda t: 500.0 * t),  # constant velocity
+    (1, ["0.0,2.0e4", "1.0,2.0e4"], lambda t: 0.5 * 2.0e4 * t**2),  # constant acceleration
+    (2, ["0.0,0.0", "0.02,10.0", "1.0,10.0"], lambda t: np.minimum(10.0 * t / 0.02, 10.0)),  # ramp
+])
+def test_prescribed_motion(tmp_path, vad, curve, expected):
+    """Node 2 driven along x against a spring to the fixed node 1: its
+    displacement follows the prescription and the work put in equals the
+    kinetic plus spring energy."""
+    extra = ["*BOUNDARY_PRESCRIBED_MOTION_NODE", f"2,1,{vad},7", "*DEFINE_CURVE", "7", *curve,
+             *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"])]
+    m = _deck(tmp_path, ["1,1,1,2"], "\n".join(extra), v0=0.0, end=0.04)
+    r = run(m, output_dt=1e-3)
+    u = r.node_displacement[:, 0, 0]
+    np.testing.assert_allclose(u, expected(r.time), rtol=2e-3, atol=2e-3 * np.abs(u).max())
+    np.testing.assert_allclose(r.discrete_force[:, 0], K * u, rtol=1e-12, atol=1e-9)
+    if vad == 0:  # steady drive: the work put in is the kinetic plus the spring energy
+        assert np.all(np.abs(r.energy_ratio[1:] - 1.0) < 1e-2)

@@ -26,16 +26,17 @@ class _Recorder:
 
     def __init__(self, s: Setup):
         self.s = s
-        self.rows: dict[str, list] = {k: [] for k in ("time", "kinetic", "internal", "wall", "force",
+        self.rows: dict[str, list] = {k: [] for k in ("time", "kinetic", "internal", "wall", "external", "force",
                                                       "elong", "wall_force", "wall_velocity", "disp", "vel")}
 
-    def __call__(self, t, x, v_mid, ke, ie, ew, force, elong, wall_force, wall_v):
+    def __call__(self, t, x, v_mid, ke, ie, ew, work, force, elong, wall_force, wall_v):
         r = self.rows
         h = self.s.history_nodes
         r["time"].append(t)
         r["kinetic"].append(ke)
         r["internal"].append(ie)
         r["wall"].append(ew)
+        r["external"].append(work)
         r["force"].append(force.copy())
         r["elong"].append(elong.copy())
         r["wall_force"].append(wall_force.copy())
@@ -95,6 +96,28 @@ def integrate(s: Setup, output_dt: float | None = None,
             ew += 0.5 * w.mass * (v_old**2 - wall_v[k] ** 2)
         return ew
 
+    def impose_motions(t, dt_v, dt):
+        """Prescribed velocities for the half step t .. t + dt (dt_v: time
+        since the previous half step); returns the kinetic energy they put in
+        (the work of the prescribed motion)."""
+        work = 0.0
+        for mo in s.motions:
+            if not (mo.birth <= t <= mo.death):
+                continue
+            vn = v[mo.nodes] @ mo.direction
+            if mo.vad == 0:
+                target = mo.scale * np.interp(t + 0.5 * dt, *mo.curve)
+            elif mo.vad == 1:
+                target = v_prev[mo.nodes] @ mo.direction + dt_v * mo.scale * np.interp(t, *mo.curve)
+            else:
+                u = (x[mo.nodes] - s.x0[mo.nodes]) @ mo.direction
+                target = (mo.scale * np.interp(t + dt, *mo.curve) - u) / dt
+            before = 0.5 * float(np.sum(s.mass[mo.nodes] * np.einsum("ij,ij->i", v[mo.nodes], v[mo.nodes])))
+            v[mo.nodes] += np.outer(target - vn, mo.direction)
+            after = 0.5 * float(np.sum(s.mass[mo.nodes] * np.einsum("ij,ij->i", v[mo.nodes], v[mo.nodes])))
+            work += after - before
+        return work
+
     def move_walls(dt):
         for k, (w, point, _) in enumerate(walls):
             point += dt * wall_v[k] * w.normal
@@ -113,8 +136,10 @@ def integrate(s: Setup, output_dt: float | None = None,
     dt = step_size(0.0)
     t = 0.0
     v_prev = v.copy()
-    rec(t, x, v, kinetic(v), ie, ew_total, force, elong, wall_force, wall_v)
+    rec(t, x, v, kinetic(v), ie, ew_total, 0.0, force, elong, wall_force, wall_v)
     update_velocity(v, f, inv_mass, s.fixed, 0.5 * dt)
+    w_ext = impose_motions(0.0, 0.5 * dt, dt)
+    dw = 0.0
     ew_total += apply_walls(t, dt)
     next_out = output_dt
     cycle = 0
@@ -133,20 +158,23 @@ def integrate(s: Setup, output_dt: float | None = None,
         dt_new = step_size(t)
         v_prev[:] = v
         update_velocity(v, f, inv_mass, s.fixed, 0.5 * (dt_step + dt_new))
+        dw = impose_motions(t, 0.5 * (dt_step + dt_new), dt_new)
+        w_ext += dw
         ew_total += apply_walls(t, dt_new)
         dt = dt_new
         if t >= next_out * (1 - 1e-9) or t >= s.end_time:
             v_mid = 0.5 * (v_prev + v)
-            rec(t, x, v_mid, kinetic(v_mid), ie, ew_total, force, elong, wall_force, wall_v)
+            # the last work increment belongs to the half step after t: count half of it
+            rec(t, x, v_mid, kinetic(v_mid), ie, ew_total, w_ext - 0.5 * dw, force, elong, wall_force, wall_v)
             next_out += output_dt
             if progress is not None:
-                progress(t, cycle, dt, (kinetic(v_mid) + ie + ew_total) / max(rec.rows["kinetic"][0]
-                                                                              + rec.rows["internal"][0], 1e-300))
+                supplied = rec.rows["kinetic"][0] + rec.rows["internal"][0] + w_ext
+                progress(t, cycle, dt, (kinetic(v_mid) + ie + ew_total) / max(supplied, 1e-300))
     r = rec.rows
     ns = len(r["time"])
     return Results(
         time=np.array(r["time"]), kinetic=np.array(r["kinetic"]), internal=np.array(r["internal"]),
-        wall=np.array(r["wall"]), discrete_force=np.array(r["force"]).reshape(ns, ne),
+        wall=np.array(r["wall"]), external=np.array(r["external"]), discrete_force=np.array(r["force"]).reshape(ns, ne),
         discrete_elong=np.array(r["elong"]).reshape(ns, ne),
         wall_force=np.array(r["wall_force"]).reshape(ns, nw, 3),
         wall_velocity=np.array(r["wall_velocity"]).reshape(ns, nw),

@@ -14,6 +14,7 @@ class Results:
     kinetic: np.ndarray  # (n_states,) kinetic energy [energy]
     internal: np.ndarray  # (n_states,) internal energy of elements (dampers: dissipated) [energy]
     wall: np.ndarray  # (n_states,) energy taken by rigid walls [energy]
+    external: np.ndarray  # (n_states,) work of prescribed motions [energy]
     discrete_force: np.ndarray  # (n_states, n_discrete) axial force, tension positive [force]
     discrete_elong: np.ndarray  # (n_states, n_discrete) elongation δ [length]
     wall_force: np.ndarray  # (n_states, n_walls, 3) force of the nodes on each wall [force]
@@ -36,9 +37,10 @@ class Results:
 
     @property
     def energy_ratio(self) -> np.ndarray:
-        """(kinetic + internal + wall) / initial total: 1 when energy is conserved."""
-        e0 = self.total[0] if self.total[0] != 0 else 1.0
-        return (self.kinetic + self.internal + self.wall) / e0
+        """(kinetic + internal + wall) / (initial total + external work): 1
+        when energy is conserved."""
+        supplied = self.total[0] + self.external
+        return (self.kinetic + self.internal + self.wall) / np.where(supplied != 0, supplied, 1.0)
 
     def save(self, directory) -> Path:
         directory = Path(directory)

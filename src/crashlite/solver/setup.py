@@ -57,6 +57,20 @@ class Wall:
 
 
 @dataclass
+class Motion:
+    """*BOUNDARY_PRESCRIBED_MOTION on nodes: velocity (VAD 0), acceleration
+    (1) or displacement (2) along a global axis or a vector."""
+
+    nodes: np.ndarray  # (k,) int64
+    direction: np.ndarray  # (3,) unit vector
+    vad: int
+    curve: tuple  # (time, value) arrays
+    scale: float
+    birth: float
+    death: float
+
+
+@dataclass
 class Setup:
     x0: np.ndarray  # (n, 3) float64 initial coordinates
     v0: np.ndarray  # (n, 3) float64 initial velocities
@@ -69,6 +83,7 @@ class Setup:
     tssfac: float = 0.9
     history_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
     dt_max: tuple | None = None  # *CONTROL_TIMESTEP LCTM: (time, largest step) curve
+    motions: list[Motion] = field(default_factory=list)
 
 
 class SetupError(DeckError):
@@ -242,6 +257,42 @@ def _walls(model: Model, problems: list) -> list[Wall]:
     return walls
 
 
+def _motions(model: Model, problems: list) -> list[Motion]:
+    out = []
+    for rec in model.keywords:
+        name = getattr(rec, "keyword", "")
+        if not name.startswith("BOUNDARY_PRESCRIBED_MOTION"):
+            continue
+        if name.endswith("RIGID"):
+            problems.append(_problem(rec, None, "prescribed motion of rigid parts is not supported yet"))
+            continue
+        rows = rec.rows
+        for i in range(len(rows["dof"])):
+            dof, vad = int(rows["dof"][i]), int(rows["vad"][i])
+            if dof in (1, 2, 3):
+                direction = np.eye(3)[dof - 1]
+            elif dof == 4 and int(rows["vid"][i]) in model.vectors:
+                vec = model.vectors[int(rows["vid"][i])]
+                direction = np.array([vec["xh"] - vec["xt"], vec["yh"] - vec["yt"], vec["zh"] - vec["zt"]], float)
+                direction /= np.linalg.norm(direction)
+            else:
+                problems.append(_problem(rec, "dof", f"DOF {dof} is not supported yet (1, 2, 3 and 4 with "
+                                                     "a vector are)"))
+                continue
+            if vad not in (0, 1, 2):
+                problems.append(_problem(rec, "vad", f"VAD {vad} is not supported (0, 1, 2 are)"))
+                continue
+            lcid = int(rows["lcid"][i])
+            if lcid not in model.curves:
+                problems.append(_problem(rec, "lcid", f"curve {lcid} is not defined"))
+                continue
+            nodes = (model.node_index([rows["nid"][i]]) if name.endswith("NODE")
+                     else _node_set(model, int(rows["nsid"][i])))
+            out.append(Motion(nodes.astype(np.int64), direction, vad, _curve(model, lcid),
+                              float(rows["sf"][i]), float(rows["birth"][i]), float(rows["death"][i])))
+    return out
+
+
 _UNSUPPORTED_TABLES = ("shells", "solids", "beams")
 
 
@@ -263,10 +314,14 @@ def build(model: Model) -> Setup:
     _initial_velocity(model, v0, problems)
     fixed = _constraints(model, problems)
     walls = _walls(model, problems)
+    motions = _motions(model, problems)
     used = np.zeros(n, bool)
     used[disc.n1] = True
     used[disc.n2[disc.n2 >= 0]] = True
-    massless = np.flatnonzero(used & (mass <= 0) & ~fixed.all(axis=1))
+    driven = np.zeros(n, bool)
+    for mo in motions:
+        driven[mo.nodes] = True
+    massless = np.flatnonzero(used & (mass <= 0) & ~fixed.all(axis=1) & ~driven)
     for i in massless[:10]:
         problems.append(Problem(model.source or "", 0, "ELEMENT_MASS", None,
                                 f"node {int(model.nodes.ids[i])} carries elements but has no mass"))
@@ -291,4 +346,5 @@ def build(model: Model) -> Setup:
         raise SetupError(problems)
     return Setup(model.nodes.xyz.copy(), v0, mass, fixed, disc, walls, end_time,
                  int(term[0].get("endcyc", 0)) if term else 0,
-                 float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9, hist_idx[hist_idx >= 0], dt_max)
+                 float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9, hist_idx[hist_idx >= 0], dt_max,
+                 motions)
