@@ -6,8 +6,8 @@ _IDCARD = card("id:i heading:s70")
 
 
 def _rows_with_id(data):
-    """_ID puts an ID card before each data card."""
-    return lambda options: Layout(row=(_IDCARD, data) if "ID" in options else (data,))
+    """_ID puts one ID card (naming the whole definition) before the data cards."""
+    return lambda options: Layout(head=(_IDCARD,) if "ID" in options else (), row=(data,))
 
 
 _DOFS = "dofx:i=0 dofy:i=0 dofz:i=0 dofrx:i=0 dofry:i=0 dofrz:i=0"
@@ -54,7 +54,7 @@ def _planar(options: frozenset) -> Layout:
     if "MOVING" in options:
         head.append(card("mass:f=0 v0:f=0"))
     if "FORCES" in options:
-        head.append(card("soft:i=0 ssid:i=0 n1:i=0@node n2:i=0@node n3:i=0@node n4:i=0@node"))
+        head.append(card("soft:i=0 ssid:i=0@set_segment n1:i=0@node n2:i=0@node n3:i=0@node n4:i=0@node"))
     return Layout(head=tuple(head))
 
 

@@ -14,9 +14,18 @@ _CC = card("igap:i=1 ignore:i=0 dprfac:f=0 dtstif:f=0 edgek:f=0 unused:f flangl:
            optional=True)
 
 
+_D = card("q2tri:i=0 dtpchk:f=0 sfnbr:f=0 fnlscl:f=0 dnlscl:f=0 tcso:i=0 tiedid:i=0 shledg:i=0",
+          optional=True)
+_E = card("sharec:i=0 cparm8:i=0 ipback:i=0 srnde:i=0 fricsf:f=1 icor:i=0 ftorq:i=0 region:i=0",
+          optional=True)
+_F = card("pstiff:i=0 ignroff:i=0 unused_f:i fstol:f=2 twodbinr:i=0 ssftyp:i=0 swtpr:i=0 tetfac:f=0",
+          optional=True)
+_G = card("unused_g1:f unused_g2:f unused_g3:f unused_g4:f shloff:f=0", optional=True)
+
+
 def _layout(options: frozenset) -> Layout:
     head = (_ID,) if options & {"ID", "TITLE"} else ()
-    return Layout(head=head + (_C1, _C2, _C3, _A, _B, _CC))
+    return Layout(head=head + (_C1, _C2, _C3, _A, _B, _CC, _D, _E, _F, _G))
 
 
 _DOC = ("SSID/MSID are interpreted by SSTYP/MSTYP (0 segment set, 1 shell set, 2 part set, "
