@@ -76,9 +76,24 @@ def integrate(s: Setup, output_dt: float | None = None,
     walls = [(w, w.point.copy(), np.zeros(len(w.nodes), np.bool_)) for w in s.walls]
     wall_v = np.array([w.velocity for w in s.walls])
 
+    free_mass = s.mass.copy()
+    for b in s.bodies:
+        free_mass[b.nodes] = 0.0  # counted through the body
+
     def kinetic(v_mid):
-        ke = 0.5 * float(np.einsum("i,ij,ij->", s.mass, v_mid, v_mid))
+        ke = 0.5 * float(np.einsum("i,ij,ij->", free_mass, v_mid, v_mid))
+        ke += sum(b.kinetic() for b in s.bodies)
         return ke + sum(0.5 * w.mass * wall_v[k] ** 2 for k, w in enumerate(s.walls))
+
+    def kick_bodies(dt_v):
+        for b in s.bodies:
+            b.kick(f, x, dt_v)
+            b.place(x, v)
+
+    def drift_bodies(dt):
+        for b in s.bodies:
+            b.drift(dt)
+            b.place(x, v)
 
     def apply_walls(t, dt):
         """Wall corrections; returns the kinetic energy they took out."""
@@ -138,6 +153,7 @@ def integrate(s: Setup, output_dt: float | None = None,
     v_prev = v.copy()
     rec(t, x, v, kinetic(v), ie, ew_total, 0.0, force, elong, wall_force, wall_v)
     update_velocity(v, f, inv_mass, s.fixed, 0.5 * dt)
+    kick_bodies(0.5 * dt)
     w_ext = impose_motions(0.0, 0.5 * dt, dt)
     dw = 0.0
     ew_total += apply_walls(t, dt)
@@ -146,6 +162,7 @@ def integrate(s: Setup, output_dt: float | None = None,
     while t < s.end_time and (not s.end_cycle or cycle < s.end_cycle):
         dt_step = dt  # full steps; the run ends at the first state past ENDTIM
         update_position(x, v, dt_step)
+        drift_bodies(dt_step)
         move_walls(dt_step)
         t += dt_step
         cycle += 1
@@ -158,6 +175,7 @@ def integrate(s: Setup, output_dt: float | None = None,
         dt_new = step_size(t)
         v_prev[:] = v
         update_velocity(v, f, inv_mass, s.fixed, 0.5 * (dt_step + dt_new))
+        kick_bodies(0.5 * (dt_step + dt_new))
         dw = impose_motions(t, 0.5 * (dt_step + dt_new), dt_new)
         w_ext += dw
         ew_total += apply_walls(t, dt_new)
@@ -182,7 +200,10 @@ def integrate(s: Setup, output_dt: float | None = None,
         node_velocity=np.array(r["vel"]).reshape(ns, len(s.history_nodes), 3),
         history_nodes=s.history_nodes, discrete_ids=d.ids,
         wall_ids=np.array([w.wall_id for w in s.walls], np.int64), final_x=x, final_v=v,
-        cycles=cycle, dt=dt, wall_time=_time.perf_counter() - t_start)
+        cycles=cycle, dt=dt, wall_time=_time.perf_counter() - t_start,
+        info={"bodies": {b.body_id: {"cog": b.cog.copy(), "velocity": b.velocity.copy(),
+                                     "momentum": b.momentum.copy(), "rotation": b.rot.copy()}
+                         for b in s.bodies}})
 
 
 def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = None) -> Results:

@@ -84,6 +84,7 @@ class Setup:
     history_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
     dt_max: tuple | None = None  # *CONTROL_TIMESTEP LCTM: (time, largest step) curve
     motions: list[Motion] = field(default_factory=list)
+    bodies: list = field(default_factory=list)  # rigid.RigidBody
 
 
 class SetupError(DeckError):
@@ -293,6 +294,43 @@ def _motions(model: Model, problems: list) -> list[Motion]:
     return out
 
 
+def _bodies(model: Model, x, v, mass, problems: list) -> list:
+    from .rigid import build_body
+
+    bodies = []
+    owner = np.full(len(x), -1)
+    for rec in model.keywords:
+        if getattr(rec, "keyword", "") != "CONSTRAINED_NODAL_RIGID_BODY":
+            continue
+        nodes = _node_set(model, int(rec["nsid"]))
+        if np.any(owner[nodes] >= 0):
+            problems.append(_problem(rec, "nsid", "a node belongs to two nodal rigid bodies; merge them "
+                                                  "(one set) instead"))
+            continue
+        if "SPC" in rec.options or int(rec.get("cid", 0) or 0):
+            problems.append(_problem(rec, None, "SPC and CID of nodal rigid bodies are not supported yet"))
+            continue
+        given = None
+        if "INERTIA" in rec.options:
+            if int(rec.get("ircs", 0) or 0):
+                problems.append(_problem(rec, "ircs", "inertia in a local system is not supported yet"))
+                continue
+            g = {k: float(rec.get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+            given = {"tm": float(rec.get("tm", 0.0)),
+                     "cog": [rec.get("xc", 0.0), rec.get("yc", 0.0), rec.get("zc", 0.0)],
+                     "inertia": [[g["ixx"], g["ixy"], g["ixz"]], [g["ixy"], g["iyy"], g["iyz"]],
+                                 [g["ixz"], g["iyz"], g["izz"]]],
+                     "v": [rec.get("vtx", 0.0), rec.get("vty", 0.0), rec.get("vtz", 0.0)],
+                     "w": [rec.get("vrx", 0.0), rec.get("vry", 0.0), rec.get("vrz", 0.0)]}
+        try:
+            bodies.append(build_body(int(rec["pid"]), nodes, x, v, mass, given))
+        except ValueError as e:
+            problems.append(_problem(rec, "nsid", str(e)))
+            continue
+        owner[nodes] = len(bodies) - 1
+    return bodies
+
+
 _UNSUPPORTED_TABLES = ("shells", "solids", "beams")
 
 
@@ -318,9 +356,23 @@ def build(model: Model) -> Setup:
     used = np.zeros(n, bool)
     used[disc.n1] = True
     used[disc.n2[disc.n2 >= 0]] = True
-    driven = np.zeros(n, bool)
+    bodies = _bodies(model, model.nodes.xyz, v0, mass, problems)
+    in_body = np.zeros(n, bool)
+    for b in bodies:
+        in_body[b.nodes] = True
+    driven = in_body.copy()
     for mo in motions:
+        if in_body[mo.nodes].any():
+            problems.append(Problem(model.source or "", 0, "BOUNDARY_PRESCRIBED_MOTION", None,
+                                    "prescribed motion of nodal rigid body nodes is not supported yet"))
         driven[mo.nodes] = True
+    if any(in_body[w.nodes].any() for w in walls):
+        problems.append(Problem(model.source or "", 0, "RIGIDWALL_PLANAR", "NSID",
+                                "rigid walls acting on nodal rigid body nodes are not supported yet; "
+                                "exclude them with NSIDEX"))
+    if (fixed & in_body[:, None]).any():
+        problems.append(Problem(model.source or "", 0, "BOUNDARY_SPC", None,
+                                "constraints on nodal rigid body nodes are not supported yet"))
     massless = np.flatnonzero(used & (mass <= 0) & ~fixed.all(axis=1) & ~driven)
     for i in massless[:10]:
         problems.append(Problem(model.source or "", 0, "ELEMENT_MASS", None,
@@ -347,4 +399,4 @@ def build(model: Model) -> Setup:
     return Setup(model.nodes.xyz.copy(), v0, mass, fixed, disc, walls, end_time,
                  int(term[0].get("endcyc", 0)) if term else 0,
                  float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9, hist_idx[hist_idx >= 0], dt_max,
-                 motions)
+                 motions, bodies)

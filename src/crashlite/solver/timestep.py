@@ -13,7 +13,11 @@ def stable_dt(s: Setup) -> float:
     d = s.discrete
     if len(d.ids) == 0:
         return s.end_time / 1000.0
-    inv = 1.0 / np.where(s.mass > 0, s.mass, np.inf)
+    mass = s.mass.copy()
+    for b in s.bodies:  # a body node moves with the body's effective mass at that point
+        r2 = np.einsum("ij,ij->i", b.r_body, b.r_body)
+        mass[b.nodes] = 1.0 / (1.0 / b.mass + r2 / np.linalg.eigvalsh(b.inertia_body)[0])
+    inv = 1.0 / np.where(mass > 0, mass, np.inf)
     inv_sum = inv[d.n1] + np.where(d.n2 >= 0, inv[np.maximum(d.n2, 0)], 0.0)
     k = np.abs(d.k * d.scale)
     for e in np.flatnonzero((d.kind == CURVE) | (d.kind == INELASTIC)):
