@@ -18,7 +18,8 @@ def _deck(tmp_path, springs, extra="", v0=1000.0, end=0.6, mass=M):
         "*ELEMENT_DISCRETE", *springs,
         "*INITIAL_VELOCITY_NODE", f"2,{v0},0,0",
         "*CONTROL_TERMINATION", f"{end}",
-        "*CONTROL_TIMESTEP", ",0.02",  # small steps: the tests check accuracy, not stability
+        # small steps: the tests check accuracy, not stability
+        "" if "*CONTROL_TIMESTEP" in extra else "*CONTROL_TIMESTEP\n,0.02",
         "*DATABASE_HISTORY_NODE", "2",
         extra, "*END"])
     p = tmp_path / "sm.k"
@@ -203,3 +204,28 @@ def test_prescribed_motion(tmp_path, vad, curve, expected):
     np.testing.assert_allclose(r.discrete_force[:, 0], K * u, rtol=1e-12, atol=1e-9)
     if vad == 0:  # steady drive: the work put in is the kinetic plus the spring energy
         assert np.all(np.abs(r.energy_ratio[1:] - 1.0) < 1e-2)
+
+
+def test_gravity_free_fall(tmp_path):
+    """*LOAD_BODY_Z of 9810 mm/s² pulls the mass down: z = -g t²/2; the work
+    of gravity is its kinetic energy."""
+    extra = ["*LOAD_BODY_Z", "3", "*DEFINE_CURVE", "3", "0.0,9810.0", "1.0,9810.0",
+             *_parts(["*MAT_SPRING_ELASTIC", "1,1e-9"]), "*CONTROL_TIMESTEP", "0.0,0.9,0,0.0,0.0,9",
+             "*DEFINE_CURVE", "9", "0.0,1e-4", "1.0,1e-4"]
+    m = _deck(tmp_path, ["1,1,1,2"], "\n".join(extra), v0=0.0, end=0.1)
+    r = run(m, output_dt=1e-3)
+    z = r.node_displacement[:, 0, 2]
+    np.testing.assert_allclose(z, -0.5 * 9810.0 * r.time**2, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(r.kinetic[1:], r.external[1:], rtol=1e-2)
+
+
+def test_mass_scaling_reaches_the_requested_step(tmp_path):
+    """DT2MS = -0.01 s: the 0.1 t mass on a 50 N/mm spring (critical step
+    0.089 s) needs none; a 5e-4 t mass (0.0063 s) is raised to k·dt²/4."""
+    extra = _parts(["*MAT_SPRING_ELASTIC", f"1,{K}"]) + ["*CONTROL_TIMESTEP", "0.0,0.9,0,0.0,-0.01"]
+    light = _deck(tmp_path, ["1,1,1,2"], "\n".join(extra), end=0.05, mass=5e-4)
+    r = run(light)
+    assert r.dt == pytest.approx(0.9 * 0.01, rel=1e-12)
+    assert r.info["added_mass"] == {1: pytest.approx(K * 0.01**2 / 4 - 5e-4, rel=1e-12)}
+    heavy = _deck(tmp_path, ["1,1,1,2"], "\n".join(extra), end=0.05)
+    assert run(heavy).info["added_mass"] == {}

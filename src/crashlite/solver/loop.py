@@ -18,7 +18,7 @@ from .kernels.integrate import update_position, update_velocity
 from .kernels.rigidwall import planar_wall
 from .results import Results
 from .setup import Setup, build
-from .timestep import stable_dt
+from .timestep import scale_masses, stable_dt
 
 
 class _Recorder:
@@ -46,10 +46,12 @@ class _Recorder:
 
 
 def integrate(s: Setup, output_dt: float | None = None,
-              progress: Callable[[float, int, float, float], None] | None = None) -> Results:
+              progress: Callable[[float, int, float, float], None] | None = None,
+              discrete_pids: np.ndarray | None = None) -> Results:
     """Run the time loop on a Setup; states every ``output_dt`` (default:
     1/200 of the end time) and at the end."""
     t_start = _time.perf_counter()
+    added_mass = scale_masses(s, discrete_pids)
     d = s.discrete
     n, ne, nw = len(s.mass), len(d.ids), len(s.walls)
     x = s.x0.copy()
@@ -65,8 +67,10 @@ def integrate(s: Setup, output_dt: float | None = None,
     output_dt = output_dt or s.end_time / 200.0
     rec = _Recorder(s)
 
-    def internal_forces(v_for_rate):
+    def internal_forces(v_for_rate, t):
         f[:] = 0.0
+        for axis, curve, sf in s.body_loads:  # base acceleration a: inertial load -m a
+            f[:] -= np.outer(s.mass * sf * np.interp(t, *curve), axis)
         if ne:
             discrete_forces(x, v_for_rate, d.n1, d.n2, d.kind, d.k, d.scale, d.offset, d.length0,
                             d.direction, d.curve_start, d.curve_stop, d.curve_x, d.curve_y, d.ground,
@@ -75,6 +79,15 @@ def integrate(s: Setup, output_dt: float | None = None,
 
     walls = [(w, w.point.copy(), np.zeros(len(w.nodes), np.bool_)) for w in s.walls]
     wall_v = np.array([w.velocity for w in s.walls])
+
+    x_prev = np.zeros_like(x)
+    f_body_prev = np.zeros_like(x)
+
+    def body_force(t):
+        out = np.zeros_like(x)
+        for axis, curve, sf in s.body_loads:
+            out -= np.outer(s.mass * sf * np.interp(t, *curve), axis)
+        return out
 
     free_mass = s.mass.copy()
     for b in s.bodies:
@@ -145,7 +158,7 @@ def integrate(s: Setup, output_dt: float | None = None,
         return min(dt_stable, float(np.interp(t, *s.dt_max)))
 
     # t = 0: forces, half-step velocity
-    internal_forces(v)
+    internal_forces(v, 0.0)
     ie = 0.0
     ew_total = 0.0
     dt = step_size(0.0)
@@ -161,6 +174,9 @@ def integrate(s: Setup, output_dt: float | None = None,
     cycle = 0
     while t < s.end_time and (not s.end_cycle or cycle < s.end_cycle):
         dt_step = dt  # full steps; the run ends at the first state past ENDTIM
+        if s.body_loads:
+            x_prev[:] = x
+            f_body_prev[:] = body_force(t + 0.5 * dt_step)
         update_position(x, v, dt_step)
         drift_bodies(dt_step)
         move_walls(dt_step)
@@ -168,12 +184,14 @@ def integrate(s: Setup, output_dt: float | None = None,
         cycle += 1
         force_old[:] = force
         elong_old[:] = elong
-        internal_forces(v)
+        internal_forces(v, t)
         ie += float(np.sum(0.5 * (force_old + force) * (elong - elong_old)))
         if not np.all(np.isfinite(f)):
             raise FloatingPointError(f"non-finite forces at t = {t:.6g} (cycle {cycle}): the run diverged")
         dt_new = step_size(t)
         v_prev[:] = v
+        if s.body_loads:  # work of the body loads over the last step (positions t-dt .. t)
+            w_ext += float(np.einsum("ij,ij->", f_body_prev, x - x_prev))
         update_velocity(v, f, inv_mass, s.fixed, 0.5 * (dt_step + dt_new))
         kick_bodies(0.5 * (dt_step + dt_new))
         dw = impose_motions(t, 0.5 * (dt_step + dt_new), dt_new)
@@ -201,7 +219,7 @@ def integrate(s: Setup, output_dt: float | None = None,
         history_nodes=s.history_nodes, discrete_ids=d.ids,
         wall_ids=np.array([w.wall_id for w in s.walls], np.int64), final_x=x, final_v=v,
         cycles=cycle, dt=dt, wall_time=_time.perf_counter() - t_start,
-        info={"bodies": {b.body_id: {"cog": b.cog.copy(), "velocity": b.velocity.copy(),
+        info={"added_mass": added_mass, "bodies": {b.body_id: {"cog": b.cog.copy(), "velocity": b.velocity.copy(),
                                      "momentum": b.momentum.copy(), "rotation": b.rot.copy()}
                          for b in s.bodies}})
 
@@ -214,7 +232,7 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
     s = build(model)
     progress = None if quiet else _progress_bar(s.end_time)
     try:
-        res = integrate(s, output_dt, progress)
+        res = integrate(s, output_dt, progress, model.discretes.pid)
     finally:
         if progress is not None:
             progress.close()

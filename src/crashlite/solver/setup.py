@@ -85,6 +85,8 @@ class Setup:
     dt_max: tuple | None = None  # *CONTROL_TIMESTEP LCTM: (time, largest step) curve
     motions: list[Motion] = field(default_factory=list)
     bodies: list = field(default_factory=list)  # rigid.RigidBody
+    body_loads: list = field(default_factory=list)  # (unit axis (3,), (time, value) curve, scale)
+    dt2ms: float = 0.0  # *CONTROL_TIMESTEP DT2MS: mass scaling target step (0: none)
 
 
 class SetupError(DeckError):
@@ -392,11 +394,22 @@ def build(model: Model) -> Setup:
             dt_max = _curve(model, int(ts[0]["lctm"]))
         else:
             problems.append(_problem(ts[0], "lctm", f"curve {ts[0]['lctm']} is not defined"))
-    if ts and float(ts[0].get("dt2ms", 0.0) or 0.0) != 0.0:
-        problems.append(_problem(ts[0], "dt2ms", "mass scaling is not supported yet"))
+    loads = []
+    for rec in model.keywords:
+        name = getattr(rec, "keyword", "")
+        if name.startswith("LOAD_BODY_"):
+            if int(rec.get("lcid", 0)) not in model.curves:
+                problems.append(_problem(rec, "lcid", f"curve {rec.get('lcid')} is not defined"))
+                continue
+            if int(rec.get("cid", 0) or 0) or int(rec.get("lciddr", 0) or 0):
+                problems.append(_problem(rec, "cid", "body loads in a local system or with dynamic "
+                                                     "relaxation are not supported yet"))
+                continue
+            axis = np.eye(3)["XYZ".index(name[-1])]
+            loads.append((axis, _curve(model, int(rec["lcid"])), float(rec.get("sf", 1.0))))
     if problems:
         raise SetupError(problems)
     return Setup(model.nodes.xyz.copy(), v0, mass, fixed, disc, walls, end_time,
                  int(term[0].get("endcyc", 0)) if term else 0,
                  float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9, hist_idx[hist_idx >= 0], dt_max,
-                 motions, bodies)
+                 motions, bodies, loads, float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0)

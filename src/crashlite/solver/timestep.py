@@ -17,7 +17,7 @@ def stable_dt(s: Setup) -> float:
     for b in s.bodies:  # a body node moves with the body's effective mass at that point
         r2 = np.einsum("ij,ij->i", b.r_body, b.r_body)
         mass[b.nodes] = 1.0 / (1.0 / b.mass + r2 / np.linalg.eigvalsh(b.inertia_body)[0])
-    inv = 1.0 / np.where(mass > 0, mass, np.inf)
+    inv = 1.0 / np.where((mass > 0) & ~s.fixed.all(axis=1), mass, np.inf)  # held nodes: ground
     inv_sum = inv[d.n1] + np.where(d.n2 >= 0, inv[np.maximum(d.n2, 0)], 0.0)
     k = np.abs(d.k * d.scale)
     for e in np.flatnonzero((d.kind == CURVE) | (d.kind == INELASTIC)):
@@ -33,3 +33,44 @@ def stable_dt(s: Setup) -> float:
         dt_damper = np.where(damper & (k > 0), 2.0 / (k * inv_sum), np.inf)
     dt = min(dt_spring.min(), dt_damper.min())
     return s.tssfac * (dt if np.isfinite(dt) else s.end_time / 1000.0)
+
+
+def scale_masses(s: Setup, model_pids: np.ndarray | None = None) -> dict[int, float]:
+    """Mass scaling (*CONTROL_TIMESTEP DT2MS): raise the nodal masses of
+    elements whose critical step is below |DT2MS| so that it becomes |DT2MS|
+    (the run then steps at TSSFAC·|DT2MS|). Returns the mass added per part
+    of the elements that needed it."""
+    target = abs(s.dt2ms)
+    d = s.discrete
+    added_by_part: dict[int, float] = {}
+    if target <= 0 or len(d.ids) == 0:
+        return added_by_part
+    k = np.abs(d.k * d.scale)
+    for e in np.flatnonzero((d.kind == CURVE) | (d.kind == INELASTIC)):
+        xs = d.curve_x[d.curve_start[e]:d.curve_stop[e]]
+        ys = d.curve_y[d.curve_start[e]:d.curve_stop[e]]
+        dx = np.diff(xs)
+        slope = np.abs(np.diff(ys)[dx > 0] / dx[dx > 0])
+        k[e] = abs(d.scale[e]) * max(slope.max() if len(slope) else 0.0,
+                                     abs(d.k[e]) if d.kind[e] == INELASTIC else 0.0)
+    # 2/ω ≥ target with ω² = k (1/m1 + 1/m2): both node masses ≥ k·target²/2
+    # (grounded elements: ≥ k·target²/4); dampers: 2/(c(1/m1+1/m2)) ≥ target
+    # a fully constrained node acts as ground and gets no mass
+    held = s.fixed.all(axis=1)
+    grounded = (d.n2 < 0) | held[d.n1] | held[np.maximum(d.n2, 0)]
+    need = np.where(d.kind == DAMPER, k * target * (np.where(grounded, 0.5, 1.0)),
+                    k * target**2 * np.where(grounded, 0.25, 0.5))
+    before = s.mass.copy()
+    for nodes in (d.n1, d.n2):
+        ok = nodes >= 0
+        ok[ok] &= ~held[nodes[ok]]
+        np.maximum.at(s.mass, nodes[ok], need[ok])
+    added = s.mass - before
+    if model_pids is not None:
+        for e in range(len(d.ids)):
+            for nd in (d.n1[e], d.n2[e]):
+                if nd >= 0 and added[nd] > 0:
+                    pid = int(model_pids[e])
+                    added_by_part[pid] = added_by_part.get(pid, 0.0) + added[nd]
+                    added[nd] = 0.0  # count each node once
+    return added_by_part
