@@ -50,7 +50,39 @@ def main(argv: list[str] | None = None) -> int:
     print("  inertia about CoG [t·mm²]")
     for row in mp.inertia:
         print("          " + "  ".join(f"{v:12.5g}" for v in row))
-    return 0
+    return crash_pulse(out)
+
+
+def crash_pulse(out: Path) -> int:
+    """Run the single-mass crash pulse example and check it against the
+    closed-form answer (C = v0·sqrt(m/k), t_m = π/2·sqrt(m/k))."""
+    import math
+
+    import numpy as np
+
+    from .solver import run
+
+    deck = example_deck("pulse")
+    print(f"\n== 4. Run a deck with the explicit solver: {deck.name} (1263 kg at 56 km/h on a spring)\n")
+    model = read_deck(deck)
+    res = run(model, out=out / "pulse")
+    params = {p.name: p.value for p in model.parameters}
+    m, v0, k = params["m"], params["v0"], params["k"]
+    u = -res.node_displacement[:, 0, 0]
+    a = np.abs(np.gradient(res.node_velocity[:, 0, 0], res.time)) / 9810.0
+    rows = [("dynamic crush [mm]", u.max(), v0 * math.sqrt(m / k)),
+            ("time of max crush [ms]", 1e3 * res.time[np.argmax(u)], 1e3 * math.pi / 2 * math.sqrt(m / k)),
+            ("peak deceleration [g]", a.max(), v0 * math.sqrt(k / m) / 9810.0)]
+    print(f"  {'':<26}{'crashlite':>12}{'analytic':>12}{'deviation':>11}")
+    worst = 0.0
+    for name, got, exact in rows:
+        dev = (got - exact) / exact
+        worst = max(worst, abs(dev))
+        print(f"  {name:<26}{got:12.4g}{exact:12.4g}{dev:10.2%}")
+    ratio = res.energy_ratio
+    print(f"\n  {res.cycles} cycles of {res.dt * 1e3:.3g} ms in {res.wall_time:.2f} s; energy ratio "
+          f"{ratio.min():.5f}..{ratio.max():.5f}; results in {out / 'pulse'}/results.npz")
+    return 0 if worst < 0.02 else 1
 
 
 if __name__ == "__main__":

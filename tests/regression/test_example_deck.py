@@ -52,3 +52,12 @@ def test_info_text(capsys):
     assert main(["info", str(example_deck("tube"))]) == 0
     out = capsys.readouterr().out
     assert "mm-t-s" in out and "ELEMENT_SHELL" in out and "tube" in out
+
+
+def test_demo_runs_and_pulse_matches_closed_form(tmp_path, capsys):
+    from crashlite.demo import main as demo
+
+    assert demo([str(tmp_path / "demo")]) == 0
+    out = capsys.readouterr().out
+    assert "re-read: identical" in out and "dynamic crush" in out
+    assert (tmp_path / "demo" / "pulse" / "results.npz").is_file()
