@@ -98,7 +98,7 @@ class ParameterTable:
         if not text:
             problems.error(file, lineno, kw, "VAL", "parameter has no value")
             return None
-        from .expr import ExpressionError, evaluate
+        from .expression import ExpressionError, evaluate
 
         try:
             if expr or text.lstrip("-").startswith("&"):
