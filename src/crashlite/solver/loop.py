@@ -13,7 +13,7 @@ from typing import Callable
 import numpy as np
 
 from ..model.model import Model
-from .kernels.discrete import discrete_forces, scatter
+from .kernels.discrete import discrete_forces, energy_step, gather, incidence
 from .kernels.integrate import update_position, update_velocity
 from .kernels.rigidwall import planar_wall
 from .results import Results
@@ -61,21 +61,23 @@ def integrate(s: Setup, output_dt: float | None = None,
     f = np.zeros((n, 3))
     fe = np.zeros((ne, 3))
     force, elong = np.zeros(ne), np.zeros(ne)
-    force_old, elong_old = np.zeros(ne), np.zeros(ne)
+    force_old, elong_old = np.zeros(ne), np.zeros(ne)  # previous state, for the work
     plastic = np.zeros(ne)  # S08 plastic deflection
     wall_force = np.zeros((nw, 3))
     output_dt = output_dt or s.end_time / 200.0
     rec = _Recorder(s)
 
+    node_ptr, elem_of, sign_of = incidence(n, d.n1, d.n2)
+
     def internal_forces(v_for_rate, t):
-        f[:] = 0.0
-        for axis, curve, sf in s.body_loads:  # base acceleration a: inertial load -m a
-            f[:] -= np.outer(s.mass * sf * np.interp(t, *curve), axis)
+        """f: the force the elements (and body loads) exert on the nodes."""
         if ne:
             discrete_forces(x, v_for_rate, d.n1, d.n2, d.kind, d.k, d.scale, d.offset, d.length0,
                             d.direction, d.curve_start, d.curve_stop, d.curve_x, d.curve_y, d.ground,
                             d.ctf, plastic, fe, force, elong)
-            scatter(d.n1, d.n2, fe, f)  # f: force the elements exert on the nodes
+        gather(node_ptr, elem_of, sign_of, fe, f)
+        for axis, curve, sf in s.body_loads:  # base acceleration a: inertial load -m a
+            f[:] -= np.outer(s.mass * sf * np.interp(t, *curve), axis)
 
     walls = [(w, w.point.copy(), np.zeros(len(w.nodes), np.bool_)) for w in s.walls]
     wall_v = np.array([w.velocity for w in s.walls])
@@ -136,7 +138,9 @@ def integrate(s: Setup, output_dt: float | None = None,
             if mo.vad == 0:
                 target = mo.scale * np.interp(t + 0.5 * dt, *mo.curve)
             elif mo.vad == 1:
-                target = v_prev[mo.nodes] @ mo.direction + dt_v * mo.scale * np.interp(t, *mo.curve)
+                # replace the acceleration of the forces by the prescribed one
+                vn_before = vn - dt_v * (f[mo.nodes] @ mo.direction) * inv_mass[mo.nodes]
+                target = vn_before + dt_v * mo.scale * np.interp(t, *mo.curve)
             else:
                 u = (x[mo.nodes] - s.x0[mo.nodes]) @ mo.direction
                 target = (mo.scale * np.interp(t + dt, *mo.curve) - u) / dt
@@ -159,6 +163,8 @@ def integrate(s: Setup, output_dt: float | None = None,
 
     # t = 0: forces, half-step velocity
     internal_forces(v, 0.0)
+    force_old[:] = force
+    elong_old[:] = elong
     ie = 0.0
     ew_total = 0.0
     dt = step_size(0.0)
@@ -182,14 +188,12 @@ def integrate(s: Setup, output_dt: float | None = None,
         move_walls(dt_step)
         t += dt_step
         cycle += 1
-        force_old[:] = force
-        elong_old[:] = elong
         internal_forces(v, t)
-        ie += float(np.sum(0.5 * (force_old + force) * (elong - elong_old)))
-        if not np.all(np.isfinite(f)):
-            raise FloatingPointError(f"non-finite forces at t = {t:.6g} (cycle {cycle}): the run diverged")
+        ie += energy_step(force_old, force, elong_old, elong)
         dt_new = step_size(t)
-        v_prev[:] = v
+        output = t >= next_out * (1 - 1e-9) or t >= s.end_time
+        if output:  # the state at t needs the velocity on both sides of it
+            v_prev[:] = v
         if s.body_loads:  # work of the body loads over the last step (positions t-dt .. t)
             w_ext += float(np.einsum("ij,ij->", f_body_prev, x - x_prev))
         update_velocity(v, f, inv_mass, s.fixed, 0.5 * (dt_step + dt_new))
@@ -198,7 +202,11 @@ def integrate(s: Setup, output_dt: float | None = None,
         w_ext += dw
         ew_total += apply_walls(t, dt_new)
         dt = dt_new
-        if t >= next_out * (1 - 1e-9) or t >= s.end_time:
+        if output:
+            if not np.all(np.isfinite(v)):
+                bad = int(np.argwhere(~np.isfinite(v))[0, 0])
+                raise FloatingPointError(f"non-finite velocity at node index {bad}, t = {t:.6g} "
+                                         f"(cycle {cycle}): the run diverged")
             v_mid = 0.5 * (v_prev + v)
             # the last work increment belongs to the half step after t: count half of it
             rec(t, x, v_mid, kinetic(v_mid), ie, ew_total, w_ext - 0.5 * dw, force, elong, wall_force, wall_v)

@@ -1,8 +1,8 @@
 """Discrete springs and dampers (*ELEMENT_DISCRETE with *MAT_S01/S02/S04).
 
 Forces are computed per element into ``fe`` (n_elem, 3) in parallel, then
-summed into the nodes in element order by ``scatter``: the result does not
-depend on the number of threads (the order of floating-point sums is fixed).
+each node sums its elements' terms in a fixed order (``gather``): the result
+does not depend on the number of threads.
 """
 
 import numpy as np
@@ -92,13 +92,50 @@ def discrete_forces(x, v, n1, n2, kind, k, scale, offset, length0, direction, cu
         fe[e, 2] = f * u2
 
 
+@njit(cache=True, parallel=True)
+def gather(node_ptr, elem_of, sign_of, fe, out):
+    """out[i] = Σ sign · fe[e] over the elements of node i, in a fixed order.
+
+    The node-to-element incidence (CSR: node_ptr, elem_of, sign_of) is built
+    once; every node sums its own terms, so threads never write the same
+    row and the sum order does not depend on the thread count.
+    """
+    for i in prange(out.shape[0]):
+        a0 = 0.0
+        a1 = 0.0
+        a2 = 0.0
+        for k in range(node_ptr[i], node_ptr[i + 1]):
+            e = elem_of[k]
+            s = sign_of[k]
+            a0 += s * fe[e, 0]
+            a1 += s * fe[e, 1]
+            a2 += s * fe[e, 2]
+        out[i, 0] = a0
+        out[i, 1] = a1
+        out[i, 2] = a2
+
+
 @njit(cache=True)
-def scatter(n1, n2, fe, out):
-    """Add element forces to the nodal force array in element order."""
-    for e in range(n1.shape[0]):
-        a = n1[e]
-        b = n2[e]
-        for j in range(3):
-            out[a, j] += fe[e, j]
-            if b >= 0:
-                out[b, j] -= fe[e, j]
+def energy_step(force_old, force, elong_old, elong):
+    """Work of the element forces over the last step (trapezoid); the new
+    values become the old ones."""
+    w = 0.0
+    for e in range(force.shape[0]):
+        w += 0.5 * (force_old[e] + force[e]) * (elong[e] - elong_old[e])
+        force_old[e] = force[e]
+        elong_old[e] = elong[e]
+    return w
+
+
+def incidence(n_nodes: int, n1: np.ndarray, n2: np.ndarray):
+    """CSR node -> (element, sign): +1 where the node is n1, -1 where n2."""
+    ne = len(n1)
+    nodes = np.concatenate([n1, n2])
+    elems = np.concatenate([np.arange(ne), np.arange(ne)])
+    signs = np.concatenate([np.ones(ne), -np.ones(ne)])
+    keep = nodes >= 0
+    nodes, elems, signs = nodes[keep], elems[keep], signs[keep]
+    order = np.lexsort((elems, nodes))
+    ptr = np.zeros(n_nodes + 1, np.int64)
+    np.add.at(ptr, nodes + 1, 1)
+    return np.cumsum(ptr), elems[order].astype(np.int64), signs[order]
