@@ -246,3 +246,18 @@ def test_damped_oscillator_logarithmic_decrement(tmp_path):
     expected = 2 * math.pi * zeta / math.sqrt(1 - zeta**2)
     measured = np.log(u[peaks[0]] / u[peaks[2]]) / 2
     assert measured == pytest.approx(expected, rel=2e-2)
+
+
+def test_results_load_back_with_binout_names(tmp_path):
+    from crashlite.results import load
+
+    m = _deck(tmp_path, ["1,1,1,2"], "\n".join(_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"])), end=0.1)
+    r = run(m, out=tmp_path / "out", output_dt=1e-3)
+    h = load(tmp_path / "out")
+    assert h.read("nodout", "ids").tolist() == [2]
+    np.testing.assert_array_equal(h.read("nodout", "x_displacement"), r.node_displacement[:, :, 0])
+    np.testing.assert_array_equal(h.read("glstat", "internal_energy"), r.internal)
+    np.testing.assert_array_equal(h.read("deforc", "resultant_force"), r.discrete_force)
+    assert "x_displacement" in h.read("nodout")
+    with pytest.raises(KeyError, match="secforc"):
+        h.read("secforc", "x_force")
