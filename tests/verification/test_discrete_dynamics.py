@@ -261,3 +261,23 @@ def test_results_load_back_with_binout_names(tmp_path):
     assert "x_displacement" in h.read("nodout")
     with pytest.raises(KeyError, match="secforc"):
         h.read("secforc", "x_force")
+
+
+def test_divergence_stops_the_run_and_keeps_the_states(tmp_path):
+    """A time step far above the critical one (TSSFAC 3) blows up: the run
+    stops with a message naming time and cycle, the states so far are saved;
+    ENDENG stops a run whose energy ratio drifts."""
+    from crashlite.solver import RunError
+    from crashlite.solver.results import Results
+
+    extra = _parts(["*MAT_SPRING_ELASTIC", f"1,{K}"]) + ["*CONTROL_TIMESTEP", "0.0,3.0"]
+    m = _deck(tmp_path, ["1,1,1,2"], "\n".join(extra), end=100.0)
+    with pytest.raises(RunError, match=r"diverged|ENDENG") as e:
+        run(m, out=tmp_path / "out", output_dt=0.05)
+    assert "cycle" in str(e.value)
+    saved = Results.load(tmp_path / "out")
+    assert len(saved.time) == len(e.value.results.time) > 1
+    term = next(k for k in m.keywords if getattr(k, "keyword", "") == "CONTROL_TERMINATION")
+    term["endeng"] = 5.0  # percent
+    with pytest.raises(RunError, match="ENDENG"):
+        run(m, output_dt=0.05)

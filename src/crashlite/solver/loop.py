@@ -168,6 +168,7 @@ def integrate(s: Setup, output_dt: float | None = None,
     ie = 0.0
     ew_total = 0.0
     dt = step_size(0.0)
+    dt_first = dt
     t = 0.0
     v_prev = v.copy()
     rec(t, x, v, kinetic(v), ie, ew_total, 0.0, force, elong, wall_force, wall_v)
@@ -178,42 +179,55 @@ def integrate(s: Setup, output_dt: float | None = None,
     ew_total += apply_walls(t, dt)
     next_out = output_dt
     cycle = 0
-    while t < s.end_time and (not s.end_cycle or cycle < s.end_cycle):
-        dt_step = dt  # full steps; the run ends at the first state past ENDTIM
-        if s.body_loads:
-            x_prev[:] = x
-            f_body_prev[:] = body_force(t + 0.5 * dt_step)
-        update_position(x, v, dt_step)
-        drift_bodies(dt_step)
-        move_walls(dt_step)
-        t += dt_step
-        cycle += 1
-        internal_forces(v, t)
-        ie += energy_step(force_old, force, elong_old, elong)
-        dt_new = step_size(t)
-        output = t >= next_out * (1 - 1e-9) or t >= s.end_time
-        if output:  # the state at t needs the velocity on both sides of it
-            v_prev[:] = v
-        if s.body_loads:  # work of the body loads over the last step (positions t-dt .. t)
-            w_ext += float(np.einsum("ij,ij->", f_body_prev, x - x_prev))
-        update_velocity(v, f, inv_mass, s.fixed, 0.5 * (dt_step + dt_new))
-        kick_bodies(0.5 * (dt_step + dt_new))
-        dw = impose_motions(t, 0.5 * (dt_step + dt_new), dt_new)
-        w_ext += dw
-        ew_total += apply_walls(t, dt_new)
-        dt = dt_new
-        if output:
-            if not np.all(np.isfinite(v)):
-                bad = int(np.argwhere(~np.isfinite(v))[0, 0])
-                raise FloatingPointError(f"non-finite velocity at node index {bad}, t = {t:.6g} "
-                                         f"(cycle {cycle}): the run diverged")
-            v_mid = 0.5 * (v_prev + v)
-            # the last work increment belongs to the half step after t: count half of it
-            rec(t, x, v_mid, kinetic(v_mid), ie, ew_total, w_ext - 0.5 * dw, force, elong, wall_force, wall_v)
-            next_out += output_dt
-            if progress is not None:
-                supplied = rec.rows["kinetic"][0] + rec.rows["internal"][0] + w_ext
-                progress(t, cycle, dt, (kinetic(v_mid) + ie + ew_total) / max(supplied, 1e-300))
+    stopped = None
+    try:
+        while t < s.end_time and (not s.end_cycle or cycle < s.end_cycle):
+            dt_step = dt  # full steps; the run ends at the first state past ENDTIM
+            if s.body_loads:
+                x_prev[:] = x
+                f_body_prev[:] = body_force(t + 0.5 * dt_step)
+            update_position(x, v, dt_step)
+            drift_bodies(dt_step)
+            move_walls(dt_step)
+            t += dt_step
+            cycle += 1
+            internal_forces(v, t)
+            ie += energy_step(force_old, force, elong_old, elong)
+            dt_new = step_size(t)
+            if s.dt_min > 0 and dt_new < s.dt_min * dt_first:
+                raise FloatingPointError(f"time step {dt_new:.4g} at t = {t:.6g} (cycle {cycle}) fell below "
+                                         f"DTMIN x first step = {s.dt_min * dt_first:.4g}: the run is stopped")
+            output = t >= next_out * (1 - 1e-9) or t >= s.end_time
+            if output:  # the state at t needs the velocity on both sides of it
+                v_prev[:] = v
+            if s.body_loads:  # work of the body loads over the last step (positions t-dt .. t)
+                w_ext += float(np.einsum("ij,ij->", f_body_prev, x - x_prev))
+            update_velocity(v, f, inv_mass, s.fixed, 0.5 * (dt_step + dt_new))
+            kick_bodies(0.5 * (dt_step + dt_new))
+            dw = impose_motions(t, 0.5 * (dt_step + dt_new), dt_new)
+            w_ext += dw
+            ew_total += apply_walls(t, dt_new)
+            dt = dt_new
+            if output:
+                if not np.all(np.isfinite(v)):
+                    bad = int(np.argwhere(~np.isfinite(v))[0, 0])
+                    raise FloatingPointError(f"non-finite velocity at node index {bad}, t = {t:.6g} "
+                                             f"(cycle {cycle}): the run diverged")
+                v_mid = 0.5 * (v_prev + v)
+                # the last work increment belongs to the half step after t: count half of it
+                rec(t, x, v_mid, kinetic(v_mid), ie, ew_total, w_ext - 0.5 * dw, force, elong, wall_force, wall_v)
+                next_out += output_dt
+                supplied = rec.rows["kinetic"][0] + rec.rows["internal"][0] + w_ext - 0.5 * dw
+                ratio = (kinetic(v_mid) + ie + ew_total) / max(supplied, 1e-300)
+                if progress is not None:
+                    progress(t, cycle, dt, ratio)
+                if s.end_energy > 0 and abs(ratio - 1.0) * 100.0 > s.end_energy:
+                    raise FloatingPointError(f"energy ratio {ratio:.4f} at t = {t:.6g} (cycle {cycle}) is "
+                                             f"beyond ENDENG = {s.end_energy} %: the run is stopped")
+    except FloatingPointError as e:
+        stopped = str(e)
+    except KeyboardInterrupt:
+        stopped = f"interrupted at t = {t:.6g} (cycle {cycle})"
     r = rec.rows
     ns = len(r["time"])
     return Results(
@@ -227,7 +241,7 @@ def integrate(s: Setup, output_dt: float | None = None,
         history_nodes=s.history_nodes, discrete_ids=d.ids,
         wall_ids=np.array([w.wall_id for w in s.walls], np.int64), final_x=x, final_v=v,
         cycles=cycle, dt=dt, wall_time=_time.perf_counter() - t_start,
-        info={"added_mass": added_mass, "bodies": {b.body_id: {"cog": b.cog.copy(), "velocity": b.velocity.copy(),
+        info={"added_mass": added_mass, "stopped": stopped, "bodies": {b.body_id: {"cog": b.cog.copy(), "velocity": b.velocity.copy(),
                                      "momentum": b.momentum.copy(), "rotation": b.rot.copy()}
                          for b in s.bodies}})
 
@@ -246,8 +260,20 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
             progress.close()
     res.history_nodes = model.nodes.ids[s.history_nodes]
     if out is not None:
-        res.save(Path(out))
+        res.save(Path(out))  # also when the run stopped early: the states so far are kept
+    if res.info["stopped"] and not res.info["stopped"].startswith("interrupted"):
+        raise RunError(res.info["stopped"], res)
     return res
+
+
+class RunError(FloatingPointError):
+    """The run diverged or hit a termination criterion; ``results`` holds
+    the states recorded until then (also saved when an output folder was
+    given)."""
+
+    def __init__(self, message: str, results: Results):
+        super().__init__(message)
+        self.results = results
 
 
 class _progress_bar:

@@ -87,6 +87,8 @@ class Setup:
     bodies: list = field(default_factory=list)  # rigid.RigidBody
     body_loads: list = field(default_factory=list)  # (unit axis (3,), (time, value) curve, scale)
     dt2ms: float = 0.0  # *CONTROL_TIMESTEP DT2MS: mass scaling target step (0: none)
+    dt_min: float = 0.0  # *CONTROL_TERMINATION DTMIN: stop below this factor of the first step
+    end_energy: float = 0.0  # *CONTROL_TERMINATION ENDENG: stop when the energy ratio moves this %
 
 
 class SetupError(DeckError):
@@ -412,4 +414,6 @@ def build(model: Model) -> Setup:
     return Setup(model.nodes.xyz.copy(), v0, mass, fixed, disc, walls, end_time,
                  int(term[0].get("endcyc", 0)) if term else 0,
                  float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9, hist_idx[hist_idx >= 0], dt_max,
-                 motions, bodies, loads, float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0)
+                 motions, bodies, loads, float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0,
+                 float(term[0].get("dtmin", 0.0) or 0.0) if term else 0.0,
+                 float(term[0].get("endeng", 0.0) or 0.0) if term else 0.0)
