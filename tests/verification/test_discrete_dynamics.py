@@ -281,3 +281,31 @@ def test_divergence_stops_the_run_and_keeps_the_states(tmp_path):
     term["endeng"] = 5.0  # percent
     with pytest.raises(RunError, match="ENDENG"):
         run(m, output_dt=0.05)
+
+
+@pytest.mark.parametrize("corner,stops", [("0,-50,-50", True), ("0,10,10", False)])
+def test_finite_wall_only_over_its_rectangle(tmp_path, corner, stops):
+    """A 100 x 100 finite wall at x = 150 catches the mass when its
+    rectangle (corner at the tail point) lies in the mass's path."""
+    c = [float(v) for v in corner.split(",")]
+    wall = ["*RIGIDWALL_PLANAR_FINITE", "0", f"150,{c[1]},{c[2]},149,{c[1]},{c[2]}",
+            f"150,{c[1]},{c[2] + 1},100,100"]  # edge l along z, so m = n x l is +y
+    r = run(_wall_deck(tmp_path, wall, (1000.0, 0.0, 0.0), end=0.1), output_dt=1e-3)
+    x = r.node_displacement[:, 0, 0]
+    if stops:
+        assert x.max() == pytest.approx(50.0, abs=1e-9)
+    else:
+        assert x.max() > 90.0
+
+
+def test_cylinder_wall_deflects_a_mass(tmp_path):
+    """A mass moving along y at 1000 mm/s meets a cylinder (axis z, radius
+    40) head-on: stopped on its surface at y = -40, it keeps x and z."""
+    wall = ["*RIGIDWALL_GEOMETRIC_CYLINDER", "0", "100,0,-100,100,0,100", "40.0,0.0"]
+    text = _wall_deck(tmp_path, wall, (0.0, 1000.0, 0.0), end=0.2)
+    # put the mass below the cylinder on the y axis
+    text.nodes.xyz[1] = [100.0, -100.0, 0.0]
+    r = run(text, output_dt=1e-3)
+    y = r.node_displacement[:, 0, 1] - 100.0
+    assert y.max() == pytest.approx(-40.0, abs=1e-6)
+    assert r.final_v[1, 1] == pytest.approx(0.0, abs=1e-3)

@@ -15,7 +15,7 @@ import numpy as np
 from ..model.model import Model
 from .kernels.discrete import discrete_forces, energy_step, gather, incidence
 from .kernels.integrate import update_position, update_velocity
-from .kernels.rigidwall import planar_wall
+from .kernels.rigidwall import cylinder_wall, planar_wall
 from .results import Results
 from .setup import Setup, build
 from .timestep import scale_masses, stable_dt
@@ -119,8 +119,12 @@ def integrate(s: Setup, output_dt: float | None = None,
                 continue
             before = v[w.nodes].copy()
             v_old = wall_v[k]
-            wall_v[k] = planar_wall(x, v, s.mass, w.nodes, point, w.normal, v_old, w.mass, w.fric, dt,
-                                    wall_force[k], hit)
+            if w.radius > 0:
+                cylinder_wall(x, v, s.mass, w.nodes, point, w.normal, w.radius, w.length, w.fric, dt,
+                              wall_force[k])
+            else:
+                wall_v[k] = planar_wall(x, v, s.mass, w.nodes, point, w.normal, v_old, w.mass, w.fric, dt,
+                                        wall_force[k], hit, w.edge_l, w.edge_m, w.len_l, w.len_m)
             m = s.mass[w.nodes]
             ew += 0.5 * float(np.sum(m[:, None] * (before**2 - v[w.nodes] ** 2)))
             ew += 0.5 * w.mass * (v_old**2 - wall_v[k] ** 2)

@@ -54,6 +54,12 @@ class Wall:
     fric: float = 0.0
     mass: float = 0.0  # _MOVING: wall mass (0: stationary)
     velocity: float = 0.0  # _MOVING: velocity along the normal
+    edge_l: np.ndarray = field(default_factory=lambda: np.zeros(3))  # _FINITE: unit edge l
+    edge_m: np.ndarray = field(default_factory=lambda: np.zeros(3))  # _FINITE: unit edge m = n x l
+    len_l: float = 0.0  # _FINITE: edge lengths (0: infinite wall)
+    len_m: float = 0.0
+    radius: float = 0.0  # cylinder: radius (0: planar wall)
+    length: float = 0.0  # cylinder: length along the axis (0: infinite)
 
 
 @dataclass
@@ -234,11 +240,11 @@ def _walls(model: Model, problems: list) -> list[Wall]:
     walls = []
     n = len(model.nodes)
     for rec in model.keywords:
-        if getattr(rec, "keyword", "") != "RIGIDWALL_PLANAR":
+        kw = getattr(rec, "keyword", "")
+        if kw not in ("RIGIDWALL_PLANAR", "RIGIDWALL_GEOMETRIC_CYLINDER"):
             continue
-        if "FINITE" in rec.options or rec.get("wvel", 0.0):
-            problems.append(_problem(rec, None, "finite rigid walls and WVEL are not supported yet "
-                                                "(infinite stationary and moving planar walls are)"))
+        if rec.get("wvel", 0.0) or "MOTION" in rec.options:
+            problems.append(_problem(rec, None, "WVEL and moving cylinders are not supported yet"))
             continue
         nodes = np.arange(n) if not rec.get("nsid") else _node_set(model, rec["nsid"])
         if rec.get("nsidex"):
@@ -250,15 +256,34 @@ def _walls(model: Model, problems: list) -> list[Wall]:
             problems.append(_problem(rec, "xh", "wall normal (head - tail) has zero length"))
             continue
         normal /= np.linalg.norm(normal)
+        if kw == "RIGIDWALL_GEOMETRIC_CYLINDER":
+            walls.append(Wall(int(rec.get("rwid") or len(walls) + 1), nodes.astype(np.int64), tail, normal,
+                              float(rec.get("birth", 0.0)), float(rec.get("death", 1e20)),
+                              float(rec.get("fric", 0.0)), radius=float(rec.get("radcyl") or 0.0),
+                              length=float(rec.get("lencyl") or 0.0)))
+            if walls[-1].radius <= 0:
+                problems.append(_problem(rec, "radcyl", "the cylinder needs a radius > 0"))
+            continue
         point = tail + float(rec.get("offset", 0.0)) * normal
         moving = "MOVING" in rec.options
         if moving and not rec.get("mass", 0.0) > 0:
             problems.append(_problem(rec, "mass", "a moving rigid wall needs a mass > 0"))
             continue
-        walls.append(Wall(int(rec.get("rwid") or len(walls) + 1), nodes.astype(np.int64), point, normal,
-                          float(rec.get("birth", 0.0)), float(rec.get("death", 1e20)),
-                          float(rec.get("fric", 0.0)), float(rec.get("mass", 0.0)) if moving else 0.0,
-                          float(rec.get("v0", 0.0)) if moving else 0.0))
+        wall = Wall(int(rec.get("rwid") or len(walls) + 1), nodes.astype(np.int64), point, normal,
+                    float(rec.get("birth", 0.0)), float(rec.get("death", 1e20)),
+                    float(rec.get("fric", 0.0)), float(rec.get("mass", 0.0)) if moving else 0.0,
+                    float(rec.get("v0", 0.0)) if moving else 0.0)
+        if "FINITE" in rec.options:
+            edge = np.array([rec.get("xhev", 0.0), rec.get("yhev", 0.0), rec.get("zhev", 0.0)], float) - tail
+            edge -= (edge @ normal) * normal
+            if not np.linalg.norm(edge) or not rec.get("lenl") or not rec.get("lenm"):
+                problems.append(_problem(rec, "xhev", "a finite wall needs an edge vector not along the "
+                                                      "normal and LENL, LENM > 0"))
+                continue
+            wall.edge_l = edge / np.linalg.norm(edge)
+            wall.edge_m = np.cross(normal, wall.edge_l)
+            wall.len_l, wall.len_m = float(rec["lenl"]), float(rec["lenm"])
+        walls.append(wall)
     return walls
 
 

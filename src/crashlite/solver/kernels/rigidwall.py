@@ -12,13 +12,16 @@ from numba import njit
 
 
 @njit(cache=True)
-def planar_wall(x, v, mass, nodes, point, normal, wall_v, wall_mass, fric, dt, force, hit):
+def planar_wall(x, v, mass, nodes, point, normal, wall_v, wall_mass, fric, dt, force, hit,
+                edge_l, edge_m, len_l, len_m):
     """Correct v of ``nodes`` against the plane through ``point`` (moving at
     ``wall_v`` along the unit ``normal``, which points to the allowed side).
 
     wall_mass 0: the wall does not move. fric: 0 frictionless, 1 no sliding,
     between: Coulomb coefficient on the normal impulse. Adds the force of the
     nodes on the wall to ``force`` (3,); ``hit`` (len(nodes),) is scratch.
+    A finite wall (len_l > 0) is the rectangle [0, len_l] x [0, len_m] along
+    the unit edges ``edge_l``, ``edge_m`` from ``point`` (its corner).
     Returns the wall's new normal velocity.
     """
     nk = nodes.shape[0]
@@ -34,6 +37,13 @@ def planar_wall(x, v, mass, nodes, point, normal, wall_v, wall_mass, fric, dt, f
             vn += v[i, j] * normal[j]
             gap += (x[i, j] - point[j]) * normal[j]
         hit[k] = d < 0.0
+        if hit[k] and len_l > 0.0:  # finite wall: only nodes over the rectangle
+            pl = 0.0
+            pm = 0.0
+            for j in range(3):
+                pl += (x[i, j] - point[j]) * edge_l[j]
+                pm += (x[i, j] - point[j]) * edge_m[j]
+            hit[k] = 0.0 <= pl <= len_l and 0.0 <= pm <= len_m
         if hit[k]:
             # momentum the node brings, counting the approach it makes this step
             p_moved += mass[i] * (vn + gap / dt)
@@ -68,3 +78,41 @@ def planar_wall(x, v, mass, nodes, point, normal, wall_v, wall_mass, fric, dt, f
         force[1] -= mass[i] * (v[i, 1] - (vn * normal[1] + vt1)) / dt
         force[2] -= mass[i] * (v[i, 2] - (vn * normal[2] + vt2)) / dt
     return v_new
+
+
+@njit(cache=True)
+def cylinder_wall(x, v, mass, nodes, tail, axis, radius, length, fric, dt, force):
+    """Keep nodes outside a stationary cylinder (axis from ``tail`` along the
+    unit ``axis``, ``length`` 0: infinite): a node that would enter it this
+    step gets the radial velocity that puts it on the surface."""
+    for k in range(nodes.shape[0]):
+        i = nodes[k]
+        p = np.empty(3)
+        for j in range(3):
+            p[j] = x[i, j] + dt * v[i, j] - tail[j]
+        h = p[0] * axis[0] + p[1] * axis[1] + p[2] * axis[2]
+        if length > 0.0 and (h < 0.0 or h > length):
+            continue
+        r = np.empty(3)
+        for j in range(3):
+            r[j] = p[j] - h * axis[j]
+        dist = np.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2])
+        if dist >= radius or dist == 0.0:
+            continue
+        n = r / dist  # outward normal at the predicted point
+        vn = v[i, 0] * n[0] + v[i, 1] * n[1] + v[i, 2] * n[2]
+        dv = (radius - dist) / dt  # outward velocity increment that lands it on the surface
+        vt0, vt1, vt2 = v[i, 0] - vn * n[0], v[i, 1] - vn * n[1], v[i, 2] - vn * n[2]
+        vt = np.sqrt(vt0 * vt0 + vt1 * vt1 + vt2 * vt2)
+        keep = 1.0
+        if fric >= 1.0:
+            keep = 0.0
+        elif fric > 0.0 and vt > 0.0:
+            keep = max(0.0, 1.0 - fric * dv / vt)
+        old0, old1, old2 = v[i, 0], v[i, 1], v[i, 2]
+        v[i, 0] = (vn + dv) * n[0] + keep * vt0
+        v[i, 1] = (vn + dv) * n[1] + keep * vt1
+        v[i, 2] = (vn + dv) * n[2] + keep * vt2
+        force[0] -= mass[i] * (v[i, 0] - old0) / dt
+        force[1] -= mass[i] * (v[i, 1] - old1) / dt
+        force[2] -= mass[i] * (v[i, 2] - old2) / dt
