@@ -6,6 +6,20 @@ from .kernels.discrete import CURVE, DAMPER, INELASTIC
 from .setup import Setup
 
 
+def stiffness(d) -> np.ndarray:
+    """Largest stiffness (damping constant for dampers) of each element:
+    the steepest curve slope for non-linear springs, or KU if steeper."""
+    k = np.abs(d.k * d.scale)
+    for e in np.flatnonzero((d.kind == CURVE) | (d.kind == INELASTIC)):
+        xs = d.curve_x[d.curve_start[e]:d.curve_stop[e]]
+        ys = d.curve_y[d.curve_start[e]:d.curve_stop[e]]
+        dx = np.diff(xs)
+        slope = np.abs(np.diff(ys)[dx > 0] / dx[dx > 0])
+        k[e] = abs(d.scale[e]) * max(slope.max() if len(slope) else 0.0,
+                                     abs(d.k[e]) if d.kind[e] == INELASTIC else 0.0)
+    return k
+
+
 def stable_dt(s: Setup) -> float:
     """TSSFAC × the smallest critical step: 2/ω with ω² = k (1/m1 + 1/m2)
     for springs (k the steepest curve slope for non-linear ones), and
@@ -19,14 +33,7 @@ def stable_dt(s: Setup) -> float:
         mass[b.nodes] = 1.0 / (1.0 / b.mass + r2 / np.linalg.eigvalsh(b.inertia_body)[0])
     inv = 1.0 / np.where((mass > 0) & ~s.fixed.all(axis=1), mass, np.inf)  # held nodes: ground
     inv_sum = inv[d.n1] + np.where(d.n2 >= 0, inv[np.maximum(d.n2, 0)], 0.0)
-    k = np.abs(d.k * d.scale)
-    for e in np.flatnonzero((d.kind == CURVE) | (d.kind == INELASTIC)):
-        xs = d.curve_x[d.curve_start[e]:d.curve_stop[e]]
-        ys = d.curve_y[d.curve_start[e]:d.curve_stop[e]]
-        dx = np.diff(xs)
-        slope = np.abs(np.diff(ys)[dx > 0] / dx[dx > 0])
-        k[e] = abs(d.scale[e]) * max(slope.max() if len(slope) else 0.0,
-                                     abs(d.k[e]) if d.kind[e] == INELASTIC else 0.0)
+    k = stiffness(d)
     damper = d.kind == DAMPER
     with np.errstate(divide="ignore"):
         dt_spring = np.where(~damper & (k > 0), 2.0 / np.sqrt(k * inv_sum), np.inf)
@@ -45,14 +52,7 @@ def scale_masses(s: Setup, model_pids: np.ndarray | None = None) -> dict[int, fl
     added_by_part: dict[int, float] = {}
     if target <= 0 or len(d.ids) == 0:
         return added_by_part
-    k = np.abs(d.k * d.scale)
-    for e in np.flatnonzero((d.kind == CURVE) | (d.kind == INELASTIC)):
-        xs = d.curve_x[d.curve_start[e]:d.curve_stop[e]]
-        ys = d.curve_y[d.curve_start[e]:d.curve_stop[e]]
-        dx = np.diff(xs)
-        slope = np.abs(np.diff(ys)[dx > 0] / dx[dx > 0])
-        k[e] = abs(d.scale[e]) * max(slope.max() if len(slope) else 0.0,
-                                     abs(d.k[e]) if d.kind[e] == INELASTIC else 0.0)
+    k = stiffness(d)
     # 2/ω ≥ target with ω² = k (1/m1 + 1/m2): both node masses ≥ k·target²/2
     # (grounded elements: ≥ k·target²/4); dampers: 2/(c(1/m1+1/m2)) ≥ target
     # a fully constrained node acts as ground and gets no mass

@@ -11,6 +11,27 @@ import numpy as np
 from numba import njit
 
 
+@njit(cache=True, inline="always")
+def _contact_velocity(v, i, n0, n1, n2, vn, vn_new, fric, m, dt, force):
+    """Set node i's normal velocity to vn_new; friction takes up to fric
+    times the normal velocity change from the tangential velocity (fric ≥ 1:
+    no sliding). The momentum change goes into the wall ``force``."""
+    vt0, vt1, vt2 = v[i, 0] - vn * n0, v[i, 1] - vn * n1, v[i, 2] - vn * n2
+    vt = np.sqrt(vt0 * vt0 + vt1 * vt1 + vt2 * vt2)
+    keep = 1.0
+    if fric >= 1.0:
+        keep = 0.0
+    elif fric > 0.0 and vt > 0.0:
+        keep = max(0.0, 1.0 - fric * abs(vn_new - vn) / vt)
+    old0, old1, old2 = v[i, 0], v[i, 1], v[i, 2]
+    v[i, 0] = vn_new * n0 + keep * vt0
+    v[i, 1] = vn_new * n1 + keep * vt1
+    v[i, 2] = vn_new * n2 + keep * vt2
+    force[0] -= m * (v[i, 0] - old0) / dt
+    force[1] -= m * (v[i, 1] - old1) / dt
+    force[2] -= m * (v[i, 2] - old2) / dt
+
+
 @njit(cache=True)
 def planar_wall(x, v, mass, nodes, point, normal, wall_v, wall_mass, fric, dt, force, hit,
                 edge_l, edge_m, len_l, len_m):
@@ -63,20 +84,7 @@ def planar_wall(x, v, mass, nodes, point, normal, wall_v, wall_mass, fric, dt, f
             gap += (x[i, j] - point[j]) * normal[j]
             vn += v[i, j] * normal[j]
         target = v_new - gap / dt  # lands on the wall at the end of the step
-        dv = target - vn
-        vt0, vt1, vt2 = v[i, 0] - vn * normal[0], v[i, 1] - vn * normal[1], v[i, 2] - vn * normal[2]
-        vt = np.sqrt(vt0 * vt0 + vt1 * vt1 + vt2 * vt2)
-        keep = 1.0
-        if fric >= 1.0:
-            keep = 0.0
-        elif fric > 0.0 and vt > 0.0:
-            keep = max(0.0, 1.0 - fric * abs(dv) / vt)
-        v[i, 0] = target * normal[0] + keep * vt0
-        v[i, 1] = target * normal[1] + keep * vt1
-        v[i, 2] = target * normal[2] + keep * vt2
-        force[0] -= mass[i] * (v[i, 0] - (vn * normal[0] + vt0)) / dt
-        force[1] -= mass[i] * (v[i, 1] - (vn * normal[1] + vt1)) / dt
-        force[2] -= mass[i] * (v[i, 2] - (vn * normal[2] + vt2)) / dt
+        _contact_velocity(v, i, normal[0], normal[1], normal[2], vn, target, fric, mass[i], dt, force)
     return v_new
 
 
@@ -101,18 +109,5 @@ def cylinder_wall(x, v, mass, nodes, tail, axis, radius, length, fric, dt, force
             continue
         n = r / dist  # outward normal at the predicted point
         vn = v[i, 0] * n[0] + v[i, 1] * n[1] + v[i, 2] * n[2]
-        dv = (radius - dist) / dt  # outward velocity increment that lands it on the surface
-        vt0, vt1, vt2 = v[i, 0] - vn * n[0], v[i, 1] - vn * n[1], v[i, 2] - vn * n[2]
-        vt = np.sqrt(vt0 * vt0 + vt1 * vt1 + vt2 * vt2)
-        keep = 1.0
-        if fric >= 1.0:
-            keep = 0.0
-        elif fric > 0.0 and vt > 0.0:
-            keep = max(0.0, 1.0 - fric * dv / vt)
-        old0, old1, old2 = v[i, 0], v[i, 1], v[i, 2]
-        v[i, 0] = (vn + dv) * n[0] + keep * vt0
-        v[i, 1] = (vn + dv) * n[1] + keep * vt1
-        v[i, 2] = (vn + dv) * n[2] + keep * vt2
-        force[0] -= mass[i] * (v[i, 0] - old0) / dt
-        force[1] -= mass[i] * (v[i, 1] - old1) / dt
-        force[2] -= mass[i] * (v[i, 2] - old2) / dt
+        # the outward velocity increment that lands it on the surface
+        _contact_velocity(v, i, n[0], n[1], n[2], vn, vn + (radius - dist) / dt, fric, mass[i], dt, force)
