@@ -8,7 +8,7 @@ from ..model.mesh import Beams, Discretes, Inertias, Masses, Nodes, Shells, Soli
 from ..model.model import Model
 from .errors import Collector
 from .fastparse import first_duplicate
-from .schema import Record, RawKeyword, lookup
+from .schema import Record, RawKeyword
 
 
 def _rows(rec: Record, *names) -> list[np.ndarray]:
@@ -303,7 +303,3 @@ def mesh_records(model: Model) -> list[Record]:
                 rows.update(dict(zip(("x", "y", "z"), np.nan_to_num(t.offset).T)))
             out.append(Record("ELEMENT_INERTIA", opts, {}, rows))
     return out
-
-
-def is_typed(keyword: str) -> bool:
-    return lookup(keyword)[0] is not None
