@@ -38,20 +38,34 @@ class RigidBody:
     velocity: np.ndarray  # (3,) CoG velocity (half step)
     momentum: np.ndarray  # (3,) angular momentum about the CoG, world frame (half step)
     rot: np.ndarray  # (3, 3) body-to-world rotation
+    fix_v: np.ndarray | None = None  # (3,) bool: translations held (MAT_RIGID CON1)
+    fix_w: bool = False  # all rotations held (MAT_RIGID CON2 = 7)
+    prev: tuple | None = None  # (velocity, momentum) before the last kick
 
     def omega(self, rot: np.ndarray | None = None) -> np.ndarray:
         r = self.rot if rot is None else rot
         return r @ np.linalg.solve(self.inertia_body, r.T @ self.momentum)
 
     def kinetic(self) -> float:
-        return 0.5 * self.mass * float(self.velocity @ self.velocity) + 0.5 * float(self.omega() @ self.momentum)
+        """Kinetic energy at the full step: the mean of the half-step momenta
+        around it (as for the nodes)."""
+        vel, mom = self.velocity, self.momentum
+        if self.prev is not None:
+            vel, mom = 0.5 * (vel + self.prev[0]), 0.5 * (mom + self.prev[1])
+        w = self.rot @ np.linalg.solve(self.inertia_body, self.rot.T @ mom)
+        return 0.5 * self.mass * float(vel @ vel) + 0.5 * float(w @ mom)
 
     def kick(self, f: np.ndarray, x: np.ndarray, dt_v: float) -> None:
         """Change momenta by the nodal forces over dt_v."""
+        self.prev = (self.velocity.copy(), self.momentum.copy())
         fn = f[self.nodes]
         arm = x[self.nodes] - self.cog
         self.velocity += dt_v * fn.sum(axis=0) / self.mass
         self.momentum += dt_v * np.cross(arm, fn).sum(axis=0)
+        if self.fix_v is not None:
+            self.velocity[self.fix_v] = 0.0
+        if self.fix_w:
+            self.momentum[:] = 0.0
 
     def drift(self, dt: float) -> None:
         """Move and turn the body over dt."""
@@ -90,10 +104,11 @@ def build_body(body_id: int, nodes: np.ndarray, x: np.ndarray, v: np.ndarray, ma
     if given and given.get("tm", 0.0) > 0 and (np.any(given.get("v", 0)) or np.any(given.get("w", 0))):
         vel, w = np.asarray(given["v"], float), np.asarray(given["w"], float)
     else:  # from the nodes' initial velocities (least squares for ω)
-        vel = (m[:, None] * v[nodes]).sum(axis=0) / max(float(m.sum()), 1e-300)
-        ang = np.cross(r, m[:, None] * (v[nodes] - vel)).sum(axis=0)
-        i_nodes = np.einsum("k,kij->ij", m, (r * r).sum(1)[:, None, None] * np.eye(3)
+        wt = m if m.sum() > 0 else np.ones(len(nodes))  # massless nodes (element mass): equal weights
+        vel = (wt[:, None] * v[nodes]).sum(axis=0) / wt.sum()
+        ang = np.cross(r, wt[:, None] * (v[nodes] - vel)).sum(axis=0)
+        i_nodes = np.einsum("k,kij->ij", wt, (r * r).sum(1)[:, None, None] * np.eye(3)
                             - r[:, :, None] * r[:, None, :])
-        w = np.linalg.lstsq(i_nodes, ang, rcond=None)[0] if m.sum() > 0 else np.zeros(3)
+        w = np.linalg.lstsq(i_nodes, ang, rcond=None)[0]
     return RigidBody(body_id, nodes.astype(np.int64), float(total), cog.copy(), inertia.copy(), r.copy(),
                      vel.copy(), inertia @ w, np.eye(3))

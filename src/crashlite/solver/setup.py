@@ -366,12 +366,16 @@ _UNSUPPORTED_TABLES = ("shells", "solids", "beams")
 def build(model: Model) -> Setup:
     """Arrays for the time loop; raises SetupError listing everything the
     solver cannot run yet."""
+    from .rigid_parts import part_bodies, rigid_part_ids
+
     problems: list[Problem] = []
+    rigid = np.array(sorted(rigid_part_ids(model)), np.int64)
     for t in _UNSUPPORTED_TABLES:
-        if len(getattr(model, t)):
+        deformable = ~np.isin(getattr(model, t).pid, rigid)
+        if deformable.any():
             problems.append(Problem(model.source or "", 0, f"ELEMENT_{t[:-1].upper()}", None,
-                                    f"{len(getattr(model, t))} {t}: this solver stage runs masses, "
-                                    "springs and dampers only"))
+                                    f"{int(deformable.sum())} deformable {t}: this solver stage runs "
+                                    "masses, springs, dampers and rigid parts only"))
     n = len(model.nodes)
     mass = np.zeros(n)
     np.add.at(mass, model.masses.node, model.masses.mass)
@@ -386,6 +390,13 @@ def build(model: Model) -> Setup:
     used[disc.n1] = True
     used[disc.n2[disc.n2 >= 0]] = True
     bodies = _bodies(model, model.nodes.xyz, v0, mass, problems)
+    bodies += part_bodies(model, model.nodes.xyz, v0, mass, problems)
+    count = np.zeros(n, np.int64)
+    for b in bodies:
+        count[b.nodes] += 1
+    for i in np.flatnonzero(count > 1)[:10]:
+        problems.append(Problem(model.source or "", 0, "CONSTRAINED_NODAL_RIGID_BODY", None,
+                                f"node {int(model.nodes.ids[i])} belongs to two rigid bodies"))
     in_body = np.zeros(n, bool)
     for b in bodies:
         in_body[b.nodes] = True

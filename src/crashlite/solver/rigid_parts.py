@@ -1,0 +1,106 @@
+"""Rigid parts (*MAT_RIGID) as rigid bodies: their shells, solids and beams
+only give the body its mass, centre of gravity and inertia (or
+*PART_INERTIA does), *CONSTRAINED_EXTRA_NODES add nodes to it,
+*CONSTRAINED_RIGID_BODIES merges parts into their lead part, and CMO = 1
+with CON1/CON2 holds its translations/rotations in the global system."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..keyword.errors import Problem
+from ..model.mass import MassProperties
+from ..model.model import Model
+from .rigid import RigidBody, build_body
+
+# translational constraint codes (CON1) -> held global directions
+_CON = {0: (0, 0, 0), 1: (1, 0, 0), 2: (0, 1, 0), 3: (0, 0, 1), 4: (1, 1, 0), 5: (0, 1, 1),
+        6: (1, 0, 1), 7: (1, 1, 1)}
+
+
+def rigid_part_ids(model: Model) -> set[int]:
+    out = set()
+    for pid, part in model.parts.items():
+        mat = model.materials.get(part.get("mid"))
+        if mat is not None and mat.keyword == "MAT_RIGID":
+            out.add(pid)
+    return out
+
+
+def _elements_nodes(model: Model, pids) -> np.ndarray:
+    out = [np.zeros(0, np.int64)]
+    for t in (model.shells, model.solids, model.beams, model.discretes):
+        if len(t):
+            out.append(t.nodes[np.isin(t.pid, pids)].ravel())
+    nodes = np.unique(np.concatenate(out))
+    return nodes[nodes >= 0]
+
+
+def part_bodies(model: Model, x: np.ndarray, v: np.ndarray, mass: np.ndarray,
+                problems: list) -> list[RigidBody]:
+    rigid = rigid_part_ids(model)
+    if not rigid:
+        return []
+    lead = {pid: pid for pid in rigid}
+    extra: dict[int, list] = {}
+    for rec in model.keywords:
+        kw = getattr(rec, "keyword", "")
+        if kw == "CONSTRAINED_RIGID_BODIES":
+            for pl, pc in zip(rec.rows["pidl"], rec.rows["pidc"]):
+                if int(pl) not in rigid or int(pc) not in rigid:
+                    problems.append(Problem(*rec.where(None), rec.name, "PIDL",
+                                            f"parts {int(pl)} and {int(pc)} must both be rigid"))
+                    continue
+                lead[int(pc)] = int(pl)
+        elif kw == "CONSTRAINED_EXTRA_NODES":
+            ids = rec.rows["nid"] if "nid" in rec.rows else rec.rows["nsid"]
+            for pid, i in zip(rec.rows["pid"], ids):
+                nodes = (model.node_index([i]) if "nid" in rec.rows
+                         else model.node_index(model.set_members("NODE", int(i))))
+                extra.setdefault(int(pid), []).append(nodes)
+    bodies = []
+    for pid_lead in sorted(set(lead.values())):
+        members = [p for p, ld in lead.items() if ld == pid_lead]
+        nodes = _elements_nodes(model, members)
+        for p in members:
+            for e in extra.get(p, []):
+                nodes = np.union1d(nodes, e)
+        if not len(nodes):
+            continue
+        props = model.mass_properties(members)
+        point = mass[nodes]  # lumped masses on the body's nodes join it
+        if point.sum() > 0:
+            r = x[nodes]
+            c = (point[:, None] * r).sum(0) / point.sum()
+            d = r - c
+            inertia = np.einsum("k,kij->ij", point, (d * d).sum(1)[:, None, None] * np.eye(3)
+                                - d[:, :, None] * d[:, None, :])
+            props = props + MassProperties(float(point.sum()), c, inertia)
+        if props.mass <= 0:
+            problems.append(Problem(model.source or "", 0, "MAT_RIGID", "RO",
+                                    f"rigid part {pid_lead} has no mass"))
+            continue
+        lead_part = model.parts[pid_lead]
+        mat = model.materials[lead_part["mid"]]
+        given = {"tm": props.mass, "cog": props.cog, "inertia": props.inertia}
+        if "INERTIA" in lead_part.options:  # the given initial velocities
+            given["v"] = [lead_part.get(k, 0.0) for k in ("vtx", "vty", "vtz")]
+            given["w"] = [lead_part.get(k, 0.0) for k in ("vrx", "vry", "vrz")]
+        body = build_body(pid_lead, nodes, x, v, mass, given)
+        cmo = int(mat.get("cmo", 0) or 0)
+        if cmo == 1:
+            con1, con2 = int(mat.get("con1", 0) or 0), int(mat.get("con2", 0) or 0)
+            if con1 not in _CON or con2 not in (0, 7):
+                problems.append(Problem(*mat.where("con2"), mat.name, "CON2",
+                                        "rotation constraints other than none (0) or all (7) are "
+                                        "not supported yet"))
+            body.fix_v = np.array(_CON.get(con1, (0, 0, 0)), bool)
+            body.fix_w = con2 == 7
+            body.velocity[body.fix_v] = 0.0
+            if body.fix_w:
+                body.momentum[:] = 0.0
+        elif cmo != 0:
+            problems.append(Problem(*mat.where("cmo"), mat.name, "CMO",
+                                    "rigid-body constraints in a local system (CMO = -1) are not supported yet"))
+        bodies.append(body)
+    return bodies
