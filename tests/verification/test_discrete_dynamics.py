@@ -309,3 +309,17 @@ def test_cylinder_wall_deflects_a_mass(tmp_path):
     y = r.node_displacement[:, 0, 1] - 100.0
     assert y.max() == pytest.approx(-40.0, abs=1e-6)
     assert r.final_v[1, 1] == pytest.approx(0.0, abs=1e-3)
+
+
+def test_spc_reaction_balances_the_spring_load(tmp_path):
+    """Node 2 pulled at constant speed: the support of node 1 reacts with
+    minus the spring force, at every state; spcforc reads back by name."""
+    from crashlite.results import load
+
+    extra = ["*BOUNDARY_PRESCRIBED_MOTION_NODE", "2,1,0,7", "*DEFINE_CURVE", "7", "0.0,500.0", "1.0,500.0",
+             *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"])]
+    m = _deck(tmp_path, ["1,1,1,2"], "\n".join(extra), v0=0.0, end=0.04)
+    r = run(m, out=tmp_path / "out", output_dt=4e-3)
+    assert r.spc_nodes.tolist() == [1]
+    np.testing.assert_allclose(r.spc_force[:, 0, 0], -r.discrete_force[:, 0], rtol=1e-12, atol=1e-9)
+    np.testing.assert_array_equal(load(tmp_path / "out").read("spcforc", "x_force"), r.spc_force[:, :, 0])

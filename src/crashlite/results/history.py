@@ -47,7 +47,10 @@ def _from_crashlite(res, source: str) -> History:
         rw[("forces", f"{axis}_force")] = res.wall_force[:, :, k]
     rw[("forces", "normal_force")] = np.linalg.norm(res.wall_force, axis=2)
     rw[("forces", "velocity")] = res.wall_velocity
-    return History({"nodout": nod, "glstat": glstat, "deforc": deforc, "rwforc": rw}, source)
+    spc = {"time": t, "ids": np.asarray(res.spc_nodes)}
+    for k, axis in enumerate("xyz"):
+        spc[f"{axis}_force"] = res.spc_force[:, :, k]
+    return History({"nodout": nod, "glstat": glstat, "deforc": deforc, "rwforc": rw, "spcforc": spc}, source)
 
 
 def _from_binout(path: Path) -> History:

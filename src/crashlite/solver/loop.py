@@ -27,7 +27,11 @@ class _Recorder:
     def __init__(self, s: Setup):
         self.s = s
         self.rows: dict[str, list] = {k: [] for k in ("time", "kinetic", "internal", "wall", "external", "force",
-                                                      "elong", "wall_force", "wall_velocity", "disp", "vel")}
+                                                      "elong", "wall_force", "wall_velocity", "disp", "vel",
+                                                      "spc")}
+        # nodes with a constrained DOF: their reactions are written (spcforc)
+        self.spc_nodes = np.flatnonzero(s.fixed.any(axis=1))
+        self.spc_force = np.zeros((len(self.spc_nodes), 3))
 
     def __call__(self, t, x, v_mid, ke, ie, ew, work, force, elong, wall_force, wall_v):
         r = self.rows
@@ -42,6 +46,7 @@ class _Recorder:
         r["wall_force"].append(wall_force.copy())
         r["wall_velocity"].append(wall_v.copy())
         r["disp"].append(x[h] - self.s.x0[h])
+        r["spc"].append(self.spc_force.copy())
         r["vel"].append(v_mid[h].copy())
 
 
@@ -175,6 +180,7 @@ def integrate(s: Setup, output_dt: float | None = None,
     dt_first = dt
     t = 0.0
     v_prev = v.copy()
+    rec.spc_force[:] = np.where(s.fixed[rec.spc_nodes], -f[rec.spc_nodes], 0.0)
     rec(t, x, v, kinetic(v), ie, ew_total, 0.0, force, elong, wall_force, wall_v)
     update_velocity(v, f, inv_mass, s.fixed, 0.5 * dt)
     kick_bodies(0.5 * dt)
@@ -204,6 +210,9 @@ def integrate(s: Setup, output_dt: float | None = None,
             output = t >= next_out * (1 - 1e-9) or t >= s.end_time
             if output:  # the state at t needs the velocity on both sides of it
                 v_prev[:] = v
+                # reaction of the supports: minus the force on the held DOFs
+                sn = rec.spc_nodes
+                rec.spc_force[:] = np.where(s.fixed[sn], -f[sn], 0.0)
             if s.body_loads:  # work of the body loads over the last step (positions t-dt .. t)
                 w_ext += float(np.einsum("ij,ij->", f_body_prev, x - x_prev))
             update_velocity(v, f, inv_mass, s.fixed, 0.5 * (dt_step + dt_new))
@@ -242,6 +251,7 @@ def integrate(s: Setup, output_dt: float | None = None,
         wall_velocity=np.array(r["wall_velocity"]).reshape(ns, nw),
         node_displacement=np.array(r["disp"]).reshape(ns, len(s.history_nodes), 3),
         node_velocity=np.array(r["vel"]).reshape(ns, len(s.history_nodes), 3),
+        spc_force=np.array(r["spc"]).reshape(ns, len(rec.spc_nodes), 3), spc_nodes=rec.spc_nodes,
         history_nodes=s.history_nodes, discrete_ids=d.ids,
         wall_ids=np.array([w.wall_id for w in s.walls], np.int64), final_x=x, final_v=v,
         cycles=cycle, dt=dt, wall_time=_time.perf_counter() - t_start,
@@ -263,6 +273,7 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
         if progress is not None:
             progress.close()
     res.history_nodes = model.nodes.ids[s.history_nodes]
+    res.spc_nodes = model.nodes.ids[res.spc_nodes]
     if out is not None:
         res.save(Path(out))  # also when the run stopped early: the states so far are kept
     if res.info["stopped"] and not res.info["stopped"].startswith("interrupted"):

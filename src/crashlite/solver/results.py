@@ -21,6 +21,8 @@ class Results:
     wall_velocity: np.ndarray  # (n_states, n_walls) velocity of moving walls along their normal
     node_displacement: np.ndarray  # (n_states, n_hist, 3) of the history nodes [length]
     node_velocity: np.ndarray  # (n_states, n_hist, 3) [length/time]
+    spc_force: np.ndarray  # (n_states, n_spc, 3) reaction forces of the supports [force]
+    spc_nodes: np.ndarray  # (n_spc,) nodes with a constrained DOF (deck IDs after run())
     history_nodes: np.ndarray  # (n_hist,) deck node IDs
     discrete_ids: np.ndarray  # (n_discrete,) deck element IDs
     wall_ids: np.ndarray  # (n_walls,)
