@@ -81,3 +81,24 @@ def test_rotation_matrix():
     np.testing.assert_allclose(rot @ rot.T, np.eye(3), atol=1e-15)
     np.testing.assert_allclose(rot @ phi, phi, atol=1e-15)  # the axis does not move
     assert np.trace(rot) == pytest.approx(1 + 2 * math.cos(np.linalg.norm(phi)))
+
+
+def test_element_inertia_adds_to_the_body(tmp_path):
+    """*ELEMENT_INERTIA on a body node adds its mass and tensor (the
+    surrogate's mass at the centre of gravity)."""
+    extra = ["*NODE", "7,0,0,0", "*ELEMENT_INERTIA", "200,7,0", "5.0,0.0,0.0,6.0,0.0,7.0,0.5",
+             "*SET_NODE_LIST", "2", "1,2,3,4,5,6,7", "*CONSTRAINED_NODAL_RIGID_BODY", "2000,0,2"]
+    m = _body_deck(tmp_path, extra)
+    from crashlite.solver import build
+
+    bodies = {b.body_id: b for b in build(_without_first_body(m)).bodies}
+    b = bodies[2000]
+    assert b.mass == pytest.approx(_MASS.sum() + 0.5)
+    base = build_body(1, np.arange(6), _PTS, np.zeros_like(_PTS), _MASS.copy()).inertia_body
+    np.testing.assert_allclose(b.inertia_body, base + np.diag([5.0, 6.0, 7.0]), rtol=1e-12)
+
+
+def _without_first_body(m):
+    m.keywords = [k for k in m.keywords if not (getattr(k, "keyword", "") == "CONSTRAINED_NODAL_RIGID_BODY"
+                                                 and k["pid"] == 1000)]
+    return m

@@ -83,9 +83,10 @@ class RigidBody:
 
 
 def build_body(body_id: int, nodes: np.ndarray, x: np.ndarray, v: np.ndarray, mass: np.ndarray,
-               given: dict | None = None) -> RigidBody:
-    """A body from its nodes' lumped masses, or from _INERTIA values
-    (``given``: tm, cog (3,), inertia (3, 3) global, v (3,), w (3,))."""
+               given: dict | None = None, node_inertia: np.ndarray | None = None) -> RigidBody:
+    """A body from its nodes' lumped masses (plus the inertia tensors of
+    *ELEMENT_INERTIA on them, ``node_inertia`` (n, 3, 3) global), or from
+    _INERTIA values (``given``: tm, cog (3,), inertia (3, 3) global, v, w)."""
     m = mass[nodes]
     if given and given.get("tm", 0.0) > 0:
         total, cog, inertia = given["tm"], np.asarray(given["cog"], float), np.asarray(given["inertia"], float)
@@ -96,6 +97,8 @@ def build_body(body_id: int, nodes: np.ndarray, x: np.ndarray, v: np.ndarray, ma
         cog = (m[:, None] * x[nodes]).sum(axis=0) / total
         r = x[nodes] - cog
         inertia = np.einsum("k,kij->ij", m, (r * r).sum(1)[:, None, None] * np.eye(3) - r[:, :, None] * r[:, None, :])
+        if node_inertia is not None:
+            inertia = inertia + node_inertia[nodes].sum(axis=0)
     if np.linalg.matrix_rank(inertia) < 3:
         # collinear nodes: no inertia about their line; a tiny one keeps the
         # rotation defined without letting it matter

@@ -323,6 +323,20 @@ def _motions(model: Model, problems: list) -> list[Motion]:
     return out
 
 
+def node_inertia(model: Model, problems: list) -> np.ndarray:
+    """(n, 3, 3) *ELEMENT_INERTIA tensors summed per node (global system)."""
+    out = np.zeros((len(model.nodes), 3, 3))
+    it = model.inertias
+    if np.any(it.csid != 0):
+        problems.append(Problem(model.source or "", 0, "ELEMENT_INERTIA", "CSID",
+                                "inertia tensors in a local system are not supported yet"))
+    t = it.tensor
+    tensor = np.stack([np.stack([t[:, 0], t[:, 1], t[:, 2]], 1), np.stack([t[:, 1], t[:, 3], t[:, 4]], 1),
+                       np.stack([t[:, 2], t[:, 4], t[:, 5]], 1)], 1)
+    np.add.at(out, it.node, tensor)
+    return out
+
+
 def _bodies(model: Model, x, v, mass, problems: list) -> list:
     from .rigid import build_body
 
@@ -352,7 +366,8 @@ def _bodies(model: Model, x, v, mass, problems: list) -> list:
                      "v": [rec.get("vtx", 0.0), rec.get("vty", 0.0), rec.get("vtz", 0.0)],
                      "w": [rec.get("vrx", 0.0), rec.get("vry", 0.0), rec.get("vrz", 0.0)]}
         try:
-            bodies.append(build_body(int(rec["pid"]), nodes, x, v, mass, given))
+            bodies.append(build_body(int(rec["pid"]), nodes, x, v, mass, given,
+                                     node_inertia(model, problems)))
         except ValueError as e:
             problems.append(_problem(rec, "nsid", str(e)))
             continue
