@@ -342,6 +342,7 @@ def _bodies(model: Model, x, v, mass, problems: list) -> list:
 
     bodies = []
     owner = np.full(len(x), -1)
+    inertia = node_inertia(model, problems) if len(model.inertias) else None
     for rec in model.keywords:
         if getattr(rec, "keyword", "") != "CONSTRAINED_NODAL_RIGID_BODY":
             continue
@@ -366,8 +367,7 @@ def _bodies(model: Model, x, v, mass, problems: list) -> list:
                      "v": [rec.get("vtx", 0.0), rec.get("vty", 0.0), rec.get("vtz", 0.0)],
                      "w": [rec.get("vrx", 0.0), rec.get("vry", 0.0), rec.get("vrz", 0.0)]}
         try:
-            bodies.append(build_body(int(rec["pid"]), nodes, x, v, mass, given,
-                                     node_inertia(model, problems)))
+            bodies.append(build_body(int(rec["pid"]), nodes, x, v, mass, given, inertia))
         except ValueError as e:
             problems.append(_problem(rec, "nsid", str(e)))
             continue
