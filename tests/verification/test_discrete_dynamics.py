@@ -323,3 +323,28 @@ def test_spc_reaction_balances_the_spring_load(tmp_path):
     assert r.spc_nodes.tolist() == [1]
     np.testing.assert_allclose(r.spc_force[:, 0, 0], -r.discrete_force[:, 0], rtol=1e-12, atol=1e-9)
     np.testing.assert_array_equal(load(tmp_path / "out").read("spcforc", "x_force"), r.spc_force[:, :, 0])
+
+
+def test_glstat_ascii_written_and_read_back(tmp_path):
+    from crashlite.results.ascii import read_glstat
+
+    m = _deck(tmp_path, ["1,1,1,2"], "\n".join(_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"])), end=0.1)
+    r = run(m, out=tmp_path / "out", output_dt=1e-2)
+    text = (tmp_path / "out" / "glstat").read_text()
+    assert " kinetic energy................. " in text and "total energy / initial energy.. " in text
+    g = read_glstat(tmp_path / "out" / "glstat")
+    np.testing.assert_allclose(g["time"], r.time, rtol=1e-5)
+    np.testing.assert_allclose(g["kinetic_energy"], r.kinetic, rtol=1e-5, atol=1e-5 * r.kinetic.max())
+    np.testing.assert_allclose(g["energy_ratio"], r.energy_ratio, rtol=1e-5)
+    # an LS-DYNA style block (labels with dots, E-format values) parses the same way
+    (tmp_path / "dyna").mkdir()
+    (tmp_path / "dyna" / "glstat").write_text(
+        " dt of cycle     0 is controlled by shell    1 of part    1\n"
+        " time...........................   0.00000E+00\n"
+        " kinetic energy.................   2.50000E+06\n"
+        " time...........................   1.00000E-03\n"
+        " kinetic energy.................   2.40000E+06\n")
+    from crashlite.results import load
+
+    h = load(tmp_path / "dyna")
+    assert h.read("glstat", "kinetic_energy").tolist() == [2.5e6, 2.4e6]

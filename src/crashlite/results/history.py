@@ -81,4 +81,8 @@ def load(path) -> History:
         return _from_crashlite(Results.load(p), str(p))
     if p.name.startswith("binout") or (p.is_dir() and list(p.glob("binout*"))):
         return _from_binout(p if p.is_file() else p / "binout*")
+    if p.is_dir() and (p / "glstat").is_file():  # LS-DYNA ASCII output folder
+        from .ascii import read_glstat
+
+        return History({"glstat": read_glstat(p / "glstat")}, str(p))
     raise FileNotFoundError(f"{p}: neither a crashlite results folder nor an LS-DYNA binout")

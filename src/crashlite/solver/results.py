@@ -50,6 +50,15 @@ class Results:
         path = directory / "results.npz"
         arrays = {k: v for k, v in self.__dict__.items() if isinstance(v, np.ndarray)}
         np.savez_compressed(path, cycles=self.cycles, dt=self.dt, wall_time=self.wall_time, **arrays)
+        from ..results.ascii import write_glstat
+
+        added = sum(self.info.get("added_mass", {}).values()) if self.info else 0.0
+        write_glstat(directory / "glstat", {
+            "time": self.time, "time_step": np.full(len(self.time), self.dt),
+            "kinetic_energy": self.kinetic, "internal_energy": self.internal,
+            "spring_and_damper_energy": self.internal, "external_work": self.external,
+            "total_energy": self.kinetic + self.internal, "energy_ratio": self.energy_ratio,
+            "added_mass": np.full(len(self.time), added)})
         return path
 
     @classmethod
