@@ -38,10 +38,10 @@ def _section_thickness(model, pids: np.ndarray) -> np.ndarray:
 
 def _beam_area(model, pids: np.ndarray) -> np.ndarray:
     """Cross-section area of each beam from its *SECTION_BEAM."""
-    return _per_part(model, pids, "sections", "secid", _section_area)
+    return _per_part(model, pids, "sections", "secid", section_area)
 
 
-def _section_area(sec) -> float:
+def section_area(sec) -> float:
     """A for resultant beams and trusses; from TS1/TT1 and the shape CST for
     integrated beams (0 rectangle, 1 tube by diameters, 2 solid circle)."""
     a = float(sec.get("a", 0.0))

@@ -14,6 +14,7 @@ import numpy as np
 
 from ..model.model import Model
 from .kernels.discrete import discrete_forces, energy_step, gather, incidence
+from .kernels.beam import beam_forces, energy_step6, gather_ends, update_rotations
 from .kernels.integrate import update_position, update_velocity
 from .kernels.rigidwall import cylinder_wall, planar_wall
 from .results import Results
@@ -73,6 +74,26 @@ def integrate(s: Setup, output_dt: float | None = None,
     rec = _Recorder(s)
 
     node_ptr, elem_of, sign_of = incidence(n, d.n1, d.n2)
+    # beams: rotations, moments and the node -> element-end incidence
+    bm = s.beams
+    nb = len(bm.ids) if bm is not None else 0
+    rot = np.tile(np.eye(3), (n, 1, 1))
+    w = s.w0.copy() if s.w0 is not None else np.zeros((n, 3))
+    rot_inertia = s.rot_inertia if s.rot_inertia is not None else np.zeros(n)
+    fixed_rot = s.fixed_rot if s.fixed_rot is not None else np.zeros((n, 3), bool)
+    inv_j = np.where(rot_inertia > 0, 1.0 / np.where(rot_inertia > 0, rot_inertia, 1.0), 0.0)
+    w[inv_j == 0] = 0.0
+    w[fixed_rot] = 0.0
+    moment = np.zeros((n, 3))
+    bfe, bme = np.zeros((nb, 2, 3)), np.zeros((nb, 2, 3))
+    gf, gd, gf_old, gd_old = (np.zeros((nb, 6)) for _ in range(4))
+    if nb:
+        corner_nodes = np.stack([bm.n1, bm.n2], axis=1).ravel()
+        order = np.argsort(corner_nodes, kind="stable")
+        corner_of = order.astype(np.int64)
+        corner_ptr = np.zeros(n + 1, np.int64)
+        np.add.at(corner_ptr, corner_nodes + 1, 1)
+        corner_ptr = np.cumsum(corner_ptr)
 
     def internal_forces(v_for_rate, t):
         """f: the force the elements (and body loads) exert on the nodes."""
@@ -81,6 +102,12 @@ def integrate(s: Setup, output_dt: float | None = None,
                             d.direction, d.curve_start, d.curve_stop, d.curve_x, d.curve_y, d.ground,
                             d.ctf, plastic, fe, force, elong)
         gather(node_ptr, elem_of, sign_of, fe, f)
+        if nb:
+            beam_forces(x, rot, bm.n1, bm.n2, bm.q1, bm.q2, bm.length0, bm.ea, bm.gj, bm.ei2, bm.ei3,
+                        bfe, bme, gf, gd)
+            gather_ends(corner_ptr, corner_of, bfe, f)
+            moment[:] = 0.0
+            gather_ends(corner_ptr, corner_of, bme, moment)
         for axis, curve, sf in s.body_loads:  # base acceleration a: inertial load -m a
             f[:] -= np.outer(s.mass * sf * np.interp(t, *curve), axis)
 
@@ -97,23 +124,30 @@ def integrate(s: Setup, output_dt: float | None = None,
         return out
 
     free_mass = s.mass.copy()
+    rot_free = rot_inertia.copy()
     for b in s.bodies:
         free_mass[b.nodes] = 0.0  # counted through the body
+        rot_free[b.nodes] = 0.0
 
-    def kinetic(v_mid):
+    w_prev = w.copy()
+
+    def kinetic(v_mid, w_mid=None):
         ke = 0.5 * float(np.einsum("i,ij,ij->", free_mass, v_mid, v_mid))
+        if nb:
+            wm = w if w_mid is None else w_mid
+            ke += 0.5 * float(np.einsum("i,ij,ij->", rot_free, wm, wm))
         ke += sum(b.kinetic() for b in s.bodies)
         return ke + sum(0.5 * w.mass * wall_v[k] ** 2 for k, w in enumerate(s.walls))
 
     def kick_bodies(dt_v):
         for b in s.bodies:
-            b.kick(f, x, dt_v)
-            b.place(x, v)
+            b.kick(f, x, dt_v, moment if nb else None)
+            b.place(x, v, rot if nb else None, w if nb else None)
 
     def drift_bodies(dt):
         for b in s.bodies:
             b.drift(dt)
-            b.place(x, v)
+            b.place(x, v, rot if nb else None, w if nb else None)
 
     def apply_walls(t, dt):
         """Wall corrections; returns the kinetic energy they took out."""
@@ -174,6 +208,8 @@ def integrate(s: Setup, output_dt: float | None = None,
     internal_forces(v, 0.0)
     force_old[:] = force
     elong_old[:] = elong
+    gf_old[:] = gf
+    gd_old[:] = gd
     ie = 0.0
     ew_total = 0.0
     dt = step_size(0.0)
@@ -183,6 +219,8 @@ def integrate(s: Setup, output_dt: float | None = None,
     rec.spc_force[:] = np.where(s.fixed[rec.spc_nodes], -f[rec.spc_nodes], 0.0)
     rec(t, x, v, kinetic(v), ie, ew_total, 0.0, force, elong, wall_force, wall_v)
     update_velocity(v, f, inv_mass, s.fixed, 0.5 * dt)
+    if nb:
+        update_rotations(rot, w, moment, inv_j, fixed_rot, 0.5 * dt, 0.0)
     kick_bodies(0.5 * dt)
     w_ext = impose_motions(0.0, 0.5 * dt, dt)
     dw = 0.0
@@ -197,12 +235,16 @@ def integrate(s: Setup, output_dt: float | None = None,
                 x_prev[:] = x
                 f_body_prev[:] = body_force(t + 0.5 * dt_step)
             update_position(x, v, dt_step)
+            if nb:
+                update_rotations(rot, w, moment, inv_j, fixed_rot, 0.0, dt_step)
             drift_bodies(dt_step)
             move_walls(dt_step)
             t += dt_step
             cycle += 1
             internal_forces(v, t)
             ie += energy_step(force_old, force, elong_old, elong)
+            if nb:
+                ie += energy_step6(gf_old, gf, gd_old, gd)
             dt_new = step_size(t)
             if s.dt_min > 0 and dt_new < s.dt_min * dt_first:
                 raise FloatingPointError(f"time step {dt_new:.4g} at t = {t:.6g} (cycle {cycle}) fell below "
@@ -210,12 +252,15 @@ def integrate(s: Setup, output_dt: float | None = None,
             output = t >= next_out * (1 - 1e-9) or t >= s.end_time
             if output:  # the state at t needs the velocity on both sides of it
                 v_prev[:] = v
+                w_prev[:] = w
                 # reaction of the supports: minus the force on the held DOFs
                 sn = rec.spc_nodes
                 rec.spc_force[:] = np.where(s.fixed[sn], -f[sn], 0.0)
             if s.body_loads:  # work of the body loads over the last step (positions t-dt .. t)
                 w_ext += float(np.einsum("ij,ij->", f_body_prev, x - x_prev))
             update_velocity(v, f, inv_mass, s.fixed, 0.5 * (dt_step + dt_new))
+            if nb:
+                update_rotations(rot, w, moment, inv_j, fixed_rot, 0.5 * (dt_step + dt_new), 0.0)
             kick_bodies(0.5 * (dt_step + dt_new))
             dw = impose_motions(t, 0.5 * (dt_step + dt_new), dt_new)
             w_ext += dw
@@ -227,11 +272,13 @@ def integrate(s: Setup, output_dt: float | None = None,
                     raise FloatingPointError(f"non-finite velocity at node index {bad}, t = {t:.6g} "
                                              f"(cycle {cycle}): the run diverged")
                 v_mid = 0.5 * (v_prev + v)
+                w_mid = 0.5 * (w_prev + w)
                 # the last work increment belongs to the half step after t: count half of it
-                rec(t, x, v_mid, kinetic(v_mid), ie, ew_total, w_ext - 0.5 * dw, force, elong, wall_force, wall_v)
+                rec(t, x, v_mid, kinetic(v_mid, w_mid), ie, ew_total, w_ext - 0.5 * dw, force, elong, wall_force,
+                    wall_v)
                 next_out += output_dt
                 supplied = rec.rows["kinetic"][0] + rec.rows["internal"][0] + w_ext - 0.5 * dw
-                ratio = (kinetic(v_mid) + ie + ew_total) / max(supplied, 1e-300)
+                ratio = (kinetic(v_mid, w_mid) + ie + ew_total) / max(supplied, 1e-300)
                 if progress is not None:
                     progress(t, cycle, dt, ratio)
                 if s.end_energy > 0 and abs(ratio - 1.0) * 100.0 > s.end_energy:

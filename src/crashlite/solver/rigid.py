@@ -55,13 +55,15 @@ class RigidBody:
         w = self.rot @ np.linalg.solve(self.inertia_body, self.rot.T @ mom)
         return 0.5 * self.mass * float(vel @ vel) + 0.5 * float(w @ mom)
 
-    def kick(self, f: np.ndarray, x: np.ndarray, dt_v: float) -> None:
-        """Change momenta by the nodal forces over dt_v."""
+    def kick(self, f: np.ndarray, x: np.ndarray, dt_v: float, moment: np.ndarray | None = None) -> None:
+        """Change momenta by the nodal forces (and moments) over dt_v."""
         self.prev = (self.velocity.copy(), self.momentum.copy())
         fn = f[self.nodes]
         arm = x[self.nodes] - self.cog
         self.velocity += dt_v * fn.sum(axis=0) / self.mass
         self.momentum += dt_v * np.cross(arm, fn).sum(axis=0)
+        if moment is not None:
+            self.momentum += dt_v * moment[self.nodes].sum(axis=0)
         if self.fix_v is not None:
             self.velocity[self.fix_v] = 0.0
         if self.fix_w:
@@ -75,11 +77,17 @@ class RigidBody:
             w = self.omega(rotation(0.5 * dt * w) @ self.rot)
         self.rot = rotation(dt * w) @ self.rot
 
-    def place(self, x: np.ndarray, v: np.ndarray) -> None:
-        """Write member node positions and velocities from the body state."""
+    def place(self, x: np.ndarray, v: np.ndarray, rot: np.ndarray | None = None,
+              w: np.ndarray | None = None) -> None:
+        """Write member node positions and velocities (and, for nodes with
+        rotations, their orientation and angular velocity) from the body."""
         arm = self.r_body @ self.rot.T
+        omega = self.omega()
         x[self.nodes] = self.cog + arm
-        v[self.nodes] = self.velocity + np.cross(self.omega(), arm)
+        v[self.nodes] = self.velocity + np.cross(omega, arm)
+        if rot is not None:
+            rot[self.nodes] = self.rot
+            w[self.nodes] = omega
 
 
 def build_body(body_id: int, nodes: np.ndarray, x: np.ndarray, v: np.ndarray, mass: np.ndarray,

@@ -93,6 +93,10 @@ class Setup:
     bodies: list = field(default_factory=list)  # rigid.RigidBody
     body_loads: list = field(default_factory=list)  # (unit axis (3,), (time, value) curve, scale)
     dt2ms: float = 0.0  # *CONTROL_TIMESTEP DT2MS: mass scaling target step (0: none)
+    beams: object = None  # beams.BeamSet of the elastic beams (None: none)
+    rot_inertia: np.ndarray | None = None  # (n,) isotropic nodal rotational inertia (0: no rotation DOF)
+    fixed_rot: np.ndarray | None = None  # (n, 3) bool constrained rotations
+    w0: np.ndarray | None = None  # (n, 3) initial angular velocities
     dt_min: float = 0.0  # *CONTROL_TERMINATION DTMIN: stop below this factor of the first step
     end_energy: float = 0.0  # *CONTROL_TERMINATION ENDENG: stop when the energy ratio moves this %
 
@@ -216,6 +220,43 @@ def _part_nodes(model: Model, pids) -> np.ndarray:
         out.append(t.nodes[sel].ravel())
     nodes = np.unique(np.concatenate(out)) if out else np.zeros(0, np.int64)
     return nodes[nodes >= 0]
+
+
+def _spc_rotations(model: Model) -> np.ndarray:
+    """(n, 3) rotations held by *BOUNDARY_SPC_NODE/SET (DOFRX..DOFRZ)."""
+    held = np.zeros((len(model.nodes), 3), bool)
+    for rec in model.keywords:
+        name = getattr(rec, "keyword", "")
+        if name not in ("BOUNDARY_SPC_NODE", "BOUNDARY_SPC_SET"):
+            continue
+        rows = rec.rows
+        for i in range(len(rows["cid"])):
+            nodes = (model.node_index([rows["nid"][i]]) if name.endswith("NODE")
+                     else _node_set(model, int(rows["nsid"][i])))
+            held[nodes] |= np.array([rows["dofrx"][i], rows["dofry"][i], rows["dofrz"][i]], bool)
+    return held
+
+
+def _initial_rotation(model: Model, n: int) -> np.ndarray:
+    """(n, 3) initial angular velocities: VXR.. of *INITIAL_VELOCITY(_NODE)
+    and OMEGA of *INITIAL_VELOCITY_GENERATION."""
+    w = np.zeros((n, 3))
+    for rec in model.keywords:
+        name = getattr(rec, "keyword", "")
+        if name == "INITIAL_VELOCITY":
+            nodes = np.arange(n) if not rec.get("nsid") else _node_set(model, rec["nsid"])
+            w[nodes] = [rec.get("vxr", 0.0), rec.get("vyr", 0.0), rec.get("vzr", 0.0)]
+        elif name == "INITIAL_VELOCITY_NODE":
+            idx = model.node_index(rec.rows["nid"])
+            w[idx] = np.stack([rec.rows["vxr"], rec.rows["vyr"], rec.rows["vzr"]], axis=1)
+        elif name == "INITIAL_VELOCITY_GENERATION" and rec.get("omega"):
+            styp = int(rec.get("styp", 2))
+            nodes = (_node_set(model, rec["id"]) if styp == 3 else
+                     _part_nodes(model, [rec["id"]] if styp == 2 else model.set_members("PART", rec["id"])))
+            axis = np.array([rec.get("nx", 0.0), rec.get("ny", 0.0), rec.get("nz", 0.0)], float)
+            if np.linalg.norm(axis) > 0:
+                w[nodes] = float(rec["omega"]) * axis / np.linalg.norm(axis)
+    return w
 
 
 def _constraints(model: Model, problems: list) -> np.ndarray:
@@ -375,7 +416,8 @@ def _bodies(model: Model, x, v, mass, problems: list) -> list:
     return bodies
 
 
-_UNSUPPORTED_TABLES = ("shells", "solids", "beams")
+_UNSUPPORTED_TABLES = ("shells", "solids")
+_RC = _TC  # rotational constraint codes use the same numbering
 
 
 def build(model: Model) -> Setup:
@@ -396,12 +438,22 @@ def build(model: Model) -> Setup:
     np.add.at(mass, model.masses.node, model.masses.mass)
     np.add.at(mass, model.inertias.node, model.inertias.mass)
     disc = _discrete(model, problems)
+    from .beams import build_beams, lumped
+
+    beams = build_beams(model, rigid, problems)
+    rot_inertia = np.zeros(n)
+    if beams is not None:
+        beam_mass, rot_inertia = lumped(beams, n)
+        mass += beam_mass
+    fixed_rot = np.array([_RC.get(int(r), (0, 0, 0)) for r in model.nodes.rc], dtype=bool).reshape(-1, 3)
     v0 = np.zeros((n, 3))
     _initial_velocity(model, v0, problems)
     fixed = _constraints(model, problems)
     walls = _walls(model, problems)
     motions = _motions(model, problems)
     used = np.zeros(n, bool)
+    if beams is not None:
+        used[beams.n1] = used[beams.n2] = True
     used[disc.n1] = True
     used[disc.n2[disc.n2 >= 0]] = True
     bodies = _bodies(model, model.nodes.xyz, v0, mass, problems)
@@ -462,9 +514,13 @@ def build(model: Model) -> Setup:
             loads.append((axis, _curve(model, int(rec["lcid"])), float(rec.get("sf", 1.0))))
     if problems:
         raise SetupError(problems)
-    return Setup(model.nodes.xyz.copy(), v0, mass, fixed, disc, walls, end_time,
-                 int(term[0].get("endcyc", 0)) if term else 0,
-                 float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9, hist_idx[hist_idx >= 0], dt_max,
-                 motions, bodies, loads, float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0,
-                 float(term[0].get("dtmin", 0.0) or 0.0) if term else 0.0,
-                 float(term[0].get("endeng", 0.0) or 0.0) if term else 0.0)
+    return Setup(
+        x0=model.nodes.xyz.copy(), v0=v0, mass=mass, fixed=fixed, discrete=disc, walls=walls,
+        end_time=end_time, end_cycle=int(term[0].get("endcyc", 0)) if term else 0,
+        tssfac=float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9,
+        history_nodes=hist_idx[hist_idx >= 0], dt_max=dt_max, motions=motions, bodies=bodies,
+        body_loads=loads, dt2ms=float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0,
+        beams=beams, rot_inertia=rot_inertia, fixed_rot=fixed_rot | _spc_rotations(model),
+        w0=_initial_rotation(model, n),
+        dt_min=float(term[0].get("dtmin", 0.0) or 0.0) if term else 0.0,
+        end_energy=float(term[0].get("endeng", 0.0) or 0.0) if term else 0.0)
