@@ -65,3 +65,20 @@ def test_rigid_spin_about_the_axis_makes_no_strain(tmp_path):
     r = run(m, output_dt=1e-5)
     assert np.max(np.abs(r.internal)) < 1e-9 * r.kinetic[0]
     np.testing.assert_allclose(r.kinetic, r.kinetic[0], rtol=1e-9)
+
+
+def test_field_states_written_as_vtk(tmp_path):
+    """States at the *DATABASE_BINARY_D3PLOT interval become VTK files with
+    the deformed points and their displacement."""
+    from crashlite.results.vtk import read_points
+
+    m = _bar(tmp_path, extra=["*INITIAL_VELOCITY", "0", "0,0,100.0", "*DATABASE_BINARY_D3PLOT", "2.5e-4"],
+             end=1e-3)
+    r = run(m, out=tmp_path / "out")
+    assert len(r.states_time) == 5  # t = 0, 0.25, 0.5, 0.75, 1.0 ms
+    files = sorted((tmp_path / "out" / "states").glob("state_*.vtk"))
+    assert len(files) == 5 and (tmp_path / "out" / "states" / "states.pvd").is_file()
+    pts, disp = read_points(files[-1])
+    np.testing.assert_allclose(pts, r.states_x[-1], rtol=1e-8)
+    np.testing.assert_allclose(disp[:, 2], 100.0 * r.states_time[-1], rtol=1e-6)
+    assert "CELLS 20 60" in files[0].read_text()

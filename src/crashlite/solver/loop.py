@@ -226,6 +226,8 @@ def integrate(s: Setup, output_dt: float | None = None,
     dw = 0.0
     ew_total += apply_walls(t, dt)
     next_out = output_dt
+    states_t, states_x = [0.0], [x.copy()]  # field states at the d3plot interval
+    next_state = s.state_dt if s.state_dt > 0 else np.inf
     cycle = 0
     stopped = None
     try:
@@ -250,6 +252,10 @@ def integrate(s: Setup, output_dt: float | None = None,
                 raise FloatingPointError(f"time step {dt_new:.4g} at t = {t:.6g} (cycle {cycle}) fell below "
                                          f"DTMIN x first step = {s.dt_min * dt_first:.4g}: the run is stopped")
             output = t >= next_out * (1 - 1e-9) or t >= s.end_time
+            if t >= next_state * (1 - 1e-9) or (t >= s.end_time and np.isfinite(next_state)):
+                states_t.append(t)
+                states_x.append(x.copy())
+                next_state += s.state_dt
             if output:  # the state at t needs the velocity on both sides of it
                 v_prev[:] = v
                 w_prev[:] = w
@@ -302,6 +308,8 @@ def integrate(s: Setup, output_dt: float | None = None,
         history_nodes=s.history_nodes, discrete_ids=d.ids,
         wall_ids=np.array([w.wall_id for w in s.walls], np.int64), final_x=x, final_v=v,
         cycles=cycle, dt=dt, wall_time=_time.perf_counter() - t_start,
+        states_time=np.array(states_t) if s.state_dt > 0 else np.zeros(0),
+        states_x=np.array(states_x) if s.state_dt > 0 else np.zeros((0, n, 3)),
         info={"added_mass": added_mass, "stopped": stopped, "bodies": {b.body_id: {"cog": b.cog.copy(), "velocity": b.velocity.copy(),
                                      "momentum": b.momentum.copy(), "rotation": b.rot.copy()}
                          for b in s.bodies}})
@@ -323,6 +331,10 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
     res.spc_nodes = model.nodes.ids[res.spc_nodes]
     if out is not None:
         res.save(Path(out))  # also when the run stopped early: the states so far are kept
+        if len(res.states_time):
+            from ..results.vtk import write_states
+
+            write_states(Path(out) / "states", model, res.states_time, res.states_x)
     if res.info["stopped"] and not res.info["stopped"].startswith("interrupted"):
         raise RunError(res.info["stopped"], res)
     return res

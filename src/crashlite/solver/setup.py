@@ -97,6 +97,7 @@ class Setup:
     rot_inertia: np.ndarray | None = None  # (n,) isotropic nodal rotational inertia (0: no rotation DOF)
     fixed_rot: np.ndarray | None = None  # (n, 3) bool constrained rotations
     w0: np.ndarray | None = None  # (n, 3) initial angular velocities
+    state_dt: float = 0.0  # *DATABASE_BINARY_D3PLOT DT: field states interval (0: none)
     dt_min: float = 0.0  # *CONTROL_TERMINATION DTMIN: stop below this factor of the first step
     end_energy: float = 0.0  # *CONTROL_TERMINATION ENDENG: stop when the energy ratio moves this %
 
@@ -522,5 +523,7 @@ def build(model: Model) -> Setup:
         body_loads=loads, dt2ms=float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0,
         beams=beams, rot_inertia=rot_inertia, fixed_rot=fixed_rot | _spc_rotations(model),
         w0=_initial_rotation(model, n),
+        state_dt=float(model.find("DATABASE_BINARY_D3PLOT")[0].get("dt", 0.0) or 0.0)
+        if model.find("DATABASE_BINARY_D3PLOT") else 0.0,
         dt_min=float(term[0].get("dtmin", 0.0) or 0.0) if term else 0.0,
         end_energy=float(term[0].get("endeng", 0.0) or 0.0) if term else 0.0)
