@@ -348,3 +348,21 @@ def test_glstat_ascii_written_and_read_back(tmp_path):
 
     h = load(tmp_path / "dyna")
     assert h.read("glstat", "kinetic_energy").tolist() == [2.5e6, 2.4e6]
+
+
+def test_part_internal_energy_matsum(tmp_path):
+    """Two springs in series in two parts: each part's internal energy is
+    ½ k_i δ_i², and they add up to the global internal energy."""
+    from crashlite.results import load
+
+    extra = ["*PART", "soft", "2,2,2", "*SECTION_DISCRETE", "2,0", "*MAT_SPRING_ELASTIC", f"2,{2 * K}",
+             *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"]), "*ELEMENT_MASS", "11,3,0.05"]
+    m = _deck(tmp_path, ["1,1,1,2", "2,2,2,3"], "\n".join(extra), end=0.05)
+    r = run(m, out=tmp_path / "out", output_dt=1e-3)
+    assert r.part_ids.tolist() == [1, 2]
+    d1, d2 = r.discrete_elong[:, 0], r.discrete_elong[:, 1]
+    np.testing.assert_allclose(r.part_internal[:, 0], 0.5 * K * d1**2, rtol=1e-9, atol=1e-6)
+    np.testing.assert_allclose(r.part_internal[:, 1], 0.5 * 2 * K * d2**2, rtol=1e-9, atol=1e-6)
+    np.testing.assert_allclose(r.part_internal.sum(axis=1), r.internal, rtol=1e-12)
+    h = load(tmp_path / "out")
+    np.testing.assert_array_equal(h.read("matsum", "internal_energy"), r.part_internal)

@@ -50,7 +50,9 @@ def _from_crashlite(res, source: str) -> History:
     spc = {"time": t, "ids": np.asarray(res.spc_nodes)}
     for k, axis in enumerate("xyz"):
         spc[f"{axis}_force"] = res.spc_force[:, :, k]
-    return History({"nodout": nod, "glstat": glstat, "deforc": deforc, "rwforc": rw, "spcforc": spc}, source)
+    matsum = {"time": t, "ids": np.asarray(res.part_ids), "internal_energy": res.part_internal}
+    return History({"nodout": nod, "glstat": glstat, "deforc": deforc, "rwforc": rw, "spcforc": spc,
+                    "matsum": matsum}, source)
 
 
 def _from_binout(path: Path) -> History:

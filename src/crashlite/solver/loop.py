@@ -29,12 +29,12 @@ class _Recorder:
         self.s = s
         self.rows: dict[str, list] = {k: [] for k in ("time", "kinetic", "internal", "wall", "external", "force",
                                                       "elong", "wall_force", "wall_velocity", "disp", "vel",
-                                                      "spc")}
+                                                      "spc", "part_ie")}
         # nodes with a constrained DOF: their reactions are written (spcforc)
         self.spc_nodes = np.flatnonzero(s.fixed.any(axis=1))
         self.spc_force = np.zeros((len(self.spc_nodes), 3))
 
-    def __call__(self, t, x, v_mid, ke, ie, ew, work, force, elong, wall_force, wall_v):
+    def __call__(self, t, x, v_mid, ke, ie, ew, work, force, elong, wall_force, wall_v, part_ie):
         r = self.rows
         h = self.s.history_nodes
         r["time"].append(t)
@@ -48,16 +48,17 @@ class _Recorder:
         r["wall_velocity"].append(wall_v.copy())
         r["disp"].append(x[h] - self.s.x0[h])
         r["spc"].append(self.spc_force.copy())
+        r["part_ie"].append(part_ie)
         r["vel"].append(v_mid[h].copy())
 
 
 def integrate(s: Setup, output_dt: float | None = None,
               progress: Callable[[float, int, float, float], None] | None = None,
-              discrete_pids: np.ndarray | None = None) -> Results:
+              ) -> Results:
     """Run the time loop on a Setup; states every ``output_dt`` (default:
     1/200 of the end time) and at the end."""
     t_start = _time.perf_counter()
-    added_mass = scale_masses(s, discrete_pids)
+    added_mass = scale_masses(s, s.discrete_pid if len(s.discrete_pid) == len(s.discrete.ids) else None)
     d = s.discrete
     n, ne, nw = len(s.mass), len(d.ids), len(s.walls)
     x = s.x0.copy()
@@ -87,6 +88,17 @@ def integrate(s: Setup, output_dt: float | None = None,
     moment = np.zeros((n, 3))
     bfe, bme = np.zeros((nb, 2, 3)), np.zeros((nb, 2, 3))
     gf, gd, gf_old, gd_old = (np.zeros((nb, 6)) for _ in range(4))
+    disc_energy, beam_energy = np.zeros(ne), np.zeros(nb)  # per element, for matsum
+    # part of each element (0 where a hand-built Setup gives none)
+    dpid = s.discrete_pid if len(s.discrete_pid) == ne else np.zeros(ne, np.int64)
+    bpid = s.beam_pid if len(s.beam_pid) == nb else np.zeros(nb, np.int64)
+    part_ids = np.unique(np.concatenate([dpid, bpid]))
+    disc_part = np.searchsorted(part_ids, dpid)
+    beam_part = np.searchsorted(part_ids, bpid)
+
+    def part_energy():
+        return (np.bincount(disc_part, disc_energy, len(part_ids))
+                + np.bincount(beam_part, beam_energy, len(part_ids)))
     if nb:
         corner_nodes = np.stack([bm.n1, bm.n2], axis=1).ravel()
         order = np.argsort(corner_nodes, kind="stable")
@@ -217,7 +229,7 @@ def integrate(s: Setup, output_dt: float | None = None,
     t = 0.0
     v_prev = v.copy()
     rec.spc_force[:] = np.where(s.fixed[rec.spc_nodes], -f[rec.spc_nodes], 0.0)
-    rec(t, x, v, kinetic(v), ie, ew_total, 0.0, force, elong, wall_force, wall_v)
+    rec(t, x, v, kinetic(v), ie, ew_total, 0.0, force, elong, wall_force, wall_v, part_energy())
     update_velocity(v, f, inv_mass, s.fixed, 0.5 * dt)
     if nb:
         update_rotations(rot, w, moment, inv_j, fixed_rot, 0.5 * dt, 0.0)
@@ -244,9 +256,9 @@ def integrate(s: Setup, output_dt: float | None = None,
             t += dt_step
             cycle += 1
             internal_forces(v, t)
-            ie += energy_step(force_old, force, elong_old, elong)
+            ie += energy_step(force_old, force, elong_old, elong, disc_energy)
             if nb:
-                ie += energy_step6(gf_old, gf, gd_old, gd)
+                ie += energy_step6(gf_old, gf, gd_old, gd, beam_energy)
             dt_new = step_size(t)
             if s.dt_min > 0 and dt_new < s.dt_min * dt_first:
                 raise FloatingPointError(f"time step {dt_new:.4g} at t = {t:.6g} (cycle {cycle}) fell below "
@@ -281,7 +293,7 @@ def integrate(s: Setup, output_dt: float | None = None,
                 w_mid = 0.5 * (w_prev + w)
                 # the last work increment belongs to the half step after t: count half of it
                 rec(t, x, v_mid, kinetic(v_mid, w_mid), ie, ew_total, w_ext - 0.5 * dw, force, elong, wall_force,
-                    wall_v)
+                    wall_v, part_energy())
                 next_out += output_dt
                 supplied = rec.rows["kinetic"][0] + rec.rows["internal"][0] + w_ext - 0.5 * dw
                 ratio = (kinetic(v_mid, w_mid) + ie + ew_total) / max(supplied, 1e-300)
@@ -308,6 +320,7 @@ def integrate(s: Setup, output_dt: float | None = None,
         history_nodes=s.history_nodes, discrete_ids=d.ids,
         wall_ids=np.array([w.wall_id for w in s.walls], np.int64), final_x=x, final_v=v,
         cycles=cycle, dt=dt, wall_time=_time.perf_counter() - t_start,
+        part_ids=part_ids, part_internal=np.array(r["part_ie"]).reshape(ns, len(part_ids)),
         states_time=np.array(states_t) if s.state_dt > 0 else np.zeros(0),
         states_x=np.array(states_x) if s.state_dt > 0 else np.zeros((0, n, 3)),
         info={"added_mass": added_mass, "stopped": stopped, "bodies": {b.body_id: {"cog": b.cog.copy(), "velocity": b.velocity.copy(),
@@ -323,7 +336,7 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
     s = build(model)
     progress = None if quiet else _progress_bar(s.end_time)
     try:
-        res = integrate(s, output_dt, progress, model.discretes.pid)
+        res = integrate(s, output_dt, progress)
     finally:
         if progress is not None:
             progress.close()

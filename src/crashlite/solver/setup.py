@@ -98,6 +98,8 @@ class Setup:
     fixed_rot: np.ndarray | None = None  # (n, 3) bool constrained rotations
     w0: np.ndarray | None = None  # (n, 3) initial angular velocities
     state_dt: float = 0.0  # *DATABASE_BINARY_D3PLOT DT: field states interval (0: none)
+    discrete_pid: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (n_discrete,) part IDs
+    beam_pid: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (n_beams,) part IDs
     dt_min: float = 0.0  # *CONTROL_TERMINATION DTMIN: stop below this factor of the first step
     end_energy: float = 0.0  # *CONTROL_TERMINATION ENDENG: stop when the energy ratio moves this %
 
@@ -523,6 +525,8 @@ def build(model: Model) -> Setup:
         body_loads=loads, dt2ms=float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0,
         beams=beams, rot_inertia=rot_inertia, fixed_rot=fixed_rot | _spc_rotations(model),
         w0=_initial_rotation(model, n),
+        discrete_pid=model.discretes.pid.astype(np.int64),
+        beam_pid=model.beams.pid[~np.isin(model.beams.pid, rigid)].astype(np.int64),
         state_dt=float(model.find("DATABASE_BINARY_D3PLOT")[0].get("dt", 0.0) or 0.0)
         if model.find("DATABASE_BINARY_D3PLOT") else 0.0,
         dt_min=float(term[0].get("dtmin", 0.0) or 0.0) if term else 0.0,

@@ -94,12 +94,15 @@ def gather_ends(node_ptr, corner_of, ends, out):
 
 
 @njit(cache=True)
-def energy_step6(gf_old, gf, gd_old, gd):
-    """Trapezoid work of the generalized resultants; new values become old."""
+def energy_step6(gf_old, gf, gd_old, gd, elem_energy):
+    """Trapezoid work of the generalized resultants, per element into
+    ``elem_energy`` and in total; new values become old."""
     w = 0.0
     for e in range(gf.shape[0]):
         for k in range(6):
-            w += 0.5 * (gf_old[e, k] + gf[e, k]) * (gd[e, k] - gd_old[e, k])
+            de = 0.5 * (gf_old[e, k] + gf[e, k]) * (gd[e, k] - gd_old[e, k])
+            elem_energy[e] += de
+            w += de
             gf_old[e, k] = gf[e, k]
             gd_old[e, k] = gd[e, k]
     return w

@@ -116,12 +116,15 @@ def gather(node_ptr, elem_of, sign_of, fe, out):
 
 
 @njit(cache=True)
-def energy_step(force_old, force, elong_old, elong):
-    """Work of the element forces over the last step (trapezoid); the new
-    values become the old ones."""
+def energy_step(force_old, force, elong_old, elong, elem_energy):
+    """Work of the element forces over the last step (trapezoid), added per
+    element to ``elem_energy`` and returned in total; the new values become
+    the old ones."""
     w = 0.0
     for e in range(force.shape[0]):
-        w += 0.5 * (force_old[e] + force[e]) * (elong[e] - elong_old[e])
+        de = 0.5 * (force_old[e] + force[e]) * (elong[e] - elong_old[e])
+        elem_energy[e] += de
+        w += de
         force_old[e] = force[e]
         elong_old[e] = elong[e]
     return w
