@@ -256,9 +256,9 @@ def integrate(s: Setup, output_dt: float | None = None,
             t += dt_step
             cycle += 1
             internal_forces(v, t)
-            ie += energy_step(force_old, force, elong_old, elong, disc_energy)
+            energy_step(force_old, force, elong_old, elong, disc_energy)
             if nb:
-                ie += energy_step6(gf_old, gf, gd_old, gd, beam_energy)
+                energy_step6(gf_old, gf, gd_old, gd, beam_energy)
             dt_new = step_size(t)
             if s.dt_min > 0 and dt_new < s.dt_min * dt_first:
                 raise FloatingPointError(f"time step {dt_new:.4g} at t = {t:.6g} (cycle {cycle}) fell below "
@@ -285,6 +285,7 @@ def integrate(s: Setup, output_dt: float | None = None,
             ew_total += apply_walls(t, dt_new)
             dt = dt_new
             if output:
+                ie = float(disc_energy.sum() + beam_energy.sum())
                 if not np.all(np.isfinite(v)):
                     bad = int(np.argwhere(~np.isfinite(v))[0, 0])
                     raise FloatingPointError(f"non-finite velocity at node index {bad}, t = {t:.6g} "

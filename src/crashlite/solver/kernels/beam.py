@@ -93,19 +93,15 @@ def gather_ends(node_ptr, corner_of, ends, out):
             out[i, 2] += flat[c, 2]
 
 
-@njit(cache=True)
+@njit(cache=True, parallel=True)
 def energy_step6(gf_old, gf, gd_old, gd, elem_energy):
     """Trapezoid work of the generalized resultants, per element into
-    ``elem_energy`` and in total; new values become old."""
-    w = 0.0
-    for e in range(gf.shape[0]):
+    ``elem_energy``; new values become old."""
+    for e in prange(gf.shape[0]):
         for k in range(6):
-            de = 0.5 * (gf_old[e, k] + gf[e, k]) * (gd[e, k] - gd_old[e, k])
-            elem_energy[e] += de
-            w += de
+            elem_energy[e] += 0.5 * (gf_old[e, k] + gf[e, k]) * (gd[e, k] - gd_old[e, k])
             gf_old[e, k] = gf[e, k]
             gd_old[e, k] = gd[e, k]
-    return w
 
 
 @njit(cache=True, parallel=True)

@@ -115,19 +115,15 @@ def gather(node_ptr, elem_of, sign_of, fe, out):
         out[i, 2] = a2
 
 
-@njit(cache=True)
+@njit(cache=True, parallel=True)
 def energy_step(force_old, force, elong_old, elong, elem_energy):
     """Work of the element forces over the last step (trapezoid), added per
-    element to ``elem_energy`` and returned in total; the new values become
-    the old ones."""
-    w = 0.0
-    for e in range(force.shape[0]):
-        de = 0.5 * (force_old[e] + force[e]) * (elong[e] - elong_old[e])
-        elem_energy[e] += de
-        w += de
+    element to ``elem_energy`` (totals are summed at output, in a fixed
+    order); the new values become the old ones."""
+    for e in prange(force.shape[0]):
+        elem_energy[e] += 0.5 * (force_old[e] + force[e]) * (elong[e] - elong_old[e])
         force_old[e] = force[e]
         elong_old[e] = elong[e]
-    return w
 
 
 def incidence(n_nodes: int, n1: np.ndarray, n2: np.ndarray):
