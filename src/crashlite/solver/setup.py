@@ -17,7 +17,7 @@ from ..keyword.errors import DeckError, Problem
 from ..model.model import Model
 from .kernels.discrete import CURVE, DAMPER, INELASTIC, LINEAR
 
-# translational constraint code of *NODE TC -> fixed (x, y, z)
+# constraint code of *NODE TC (and RC, same numbering) -> held (x, y, z)
 _TC = {0: (0, 0, 0), 1: (1, 0, 0), 2: (0, 1, 0), 3: (0, 0, 1), 4: (1, 1, 0), 5: (0, 1, 1),
        6: (1, 0, 1), 7: (1, 1, 1)}
 
@@ -225,21 +225,6 @@ def _part_nodes(model: Model, pids) -> np.ndarray:
     return nodes[nodes >= 0]
 
 
-def _spc_rotations(model: Model) -> np.ndarray:
-    """(n, 3) rotations held by *BOUNDARY_SPC_NODE/SET (DOFRX..DOFRZ)."""
-    held = np.zeros((len(model.nodes), 3), bool)
-    for rec in model.keywords:
-        name = getattr(rec, "keyword", "")
-        if name not in ("BOUNDARY_SPC_NODE", "BOUNDARY_SPC_SET"):
-            continue
-        rows = rec.rows
-        for i in range(len(rows["cid"])):
-            nodes = (model.node_index([rows["nid"][i]]) if name.endswith("NODE")
-                     else _node_set(model, int(rows["nsid"][i])))
-            held[nodes] |= np.array([rows["dofrx"][i], rows["dofry"][i], rows["dofrz"][i]], bool)
-    return held
-
-
 def _initial_rotation(model: Model, n: int) -> np.ndarray:
     """(n, 3) initial angular velocities: VXR.. of *INITIAL_VELOCITY(_NODE)
     and OMEGA of *INITIAL_VELOCITY_GENERATION."""
@@ -262,8 +247,11 @@ def _initial_rotation(model: Model, n: int) -> np.ndarray:
     return w
 
 
-def _constraints(model: Model, problems: list) -> np.ndarray:
+def _constraints(model: Model, problems: list) -> tuple[np.ndarray, np.ndarray]:
+    """(n, 3) held translations and (n, 3) held rotations: node TC/RC codes
+    and *BOUNDARY_SPC_NODE/SET."""
     fixed = np.array([_TC.get(int(t), (0, 0, 0)) for t in model.nodes.tc], dtype=bool).reshape(-1, 3)
+    fixed_rot = np.array([_TC.get(int(r), (0, 0, 0)) for r in model.nodes.rc], dtype=bool).reshape(-1, 3)
     for rec in model.keywords:
         name = getattr(rec, "keyword", "")
         if name not in ("BOUNDARY_SPC_NODE", "BOUNDARY_SPC_SET"):
@@ -275,9 +263,9 @@ def _constraints(model: Model, problems: list) -> np.ndarray:
                 continue
             nodes = (model.node_index([rows["nid"][i]]) if name.endswith("NODE")
                      else _node_set(model, int(rows["nsid"][i])))
-            dofs = [rows["dofx"][i], rows["dofy"][i], rows["dofz"][i]]
-            fixed[nodes] |= np.array(dofs, bool)
-    return fixed
+            fixed[nodes] |= np.array([rows["dofx"][i], rows["dofy"][i], rows["dofz"][i]], bool)
+            fixed_rot[nodes] |= np.array([rows["dofrx"][i], rows["dofry"][i], rows["dofrz"][i]], bool)
+    return fixed, fixed_rot
 
 
 def _walls(model: Model, problems: list) -> list[Wall]:
@@ -420,7 +408,6 @@ def _bodies(model: Model, x, v, mass, problems: list) -> list:
 
 
 _UNSUPPORTED_TABLES = ("shells", "solids")
-_RC = _TC  # rotational constraint codes use the same numbering
 
 
 def build(model: Model) -> Setup:
@@ -448,10 +435,9 @@ def build(model: Model) -> Setup:
     if beams is not None:
         beam_mass, rot_inertia = lumped(beams, n)
         mass += beam_mass
-    fixed_rot = np.array([_RC.get(int(r), (0, 0, 0)) for r in model.nodes.rc], dtype=bool).reshape(-1, 3)
     v0 = np.zeros((n, 3))
     _initial_velocity(model, v0, problems)
-    fixed = _constraints(model, problems)
+    fixed, fixed_rot = _constraints(model, problems)
     walls = _walls(model, problems)
     motions = _motions(model, problems)
     used = np.zeros(n, bool)
@@ -523,7 +509,7 @@ def build(model: Model) -> Setup:
         tssfac=float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9,
         history_nodes=hist_idx[hist_idx >= 0], dt_max=dt_max, motions=motions, bodies=bodies,
         body_loads=loads, dt2ms=float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0,
-        beams=beams, rot_inertia=rot_inertia, fixed_rot=fixed_rot | _spc_rotations(model),
+        beams=beams, rot_inertia=rot_inertia, fixed_rot=fixed_rot,
         w0=_initial_rotation(model, n),
         discrete_pid=model.discretes.pid.astype(np.int64),
         beam_pid=model.beams.pid[~np.isin(model.beams.pid, rigid)].astype(np.int64),
