@@ -210,8 +210,11 @@ class Record:
 
     @property
     def name(self) -> str:
-        """Full keyword name with options, as written in a deck."""
-        opts = sorted(self.options, key=lambda o: (o == "TITLE", o))
+        """Full keyword name with options, as written in a deck: options in
+        the order the spec lists them (the manual's), ID and TITLE last."""
+        order = {o: i for i, o in enumerate(self.spec.options)}
+        last = {"ID": 1000, "TITLE": 1001}
+        opts = sorted(self.options, key=lambda o: (last.get(o, order.get(o, 999)), o))
         return "_".join([self.keyword, *opts])
 
     def __getitem__(self, key):
