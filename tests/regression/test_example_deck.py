@@ -61,3 +61,21 @@ def test_demo_runs_and_pulse_matches_closed_form(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "re-read: identical" in out and "dynamic crush" in out
     assert (tmp_path / "demo" / "pulse" / "results.npz").is_file()
+
+
+def test_impactor_on_crush_springs_matches_closed_form():
+    """5 t at 15 km/h on a 230 kN S08 bank: stroke m v0²/(2F), stop time
+    m v0/F, plateau F and rebound sqrt(F²/(K m)) within 2 %."""
+    import math
+
+    from crashlite.solver import run
+
+    model = read_deck(example_deck("impactor"))
+    r = run(model)
+    v = r.wall_velocity[:, 0]
+    stroke = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(r.time))])
+    m, v0, f, k = 5.0, 4166.67, 230000.0, 230000.0
+    assert stroke.max() == pytest.approx(m * v0**2 / (2 * f), rel=0.02)
+    assert r.time[np.argmax(stroke)] == pytest.approx(m * v0 / f, rel=0.02)
+    assert np.abs(r.wall_force[:, 0, 0]).max() == pytest.approx(f, rel=0.02)
+    assert -v[-1] == pytest.approx(math.sqrt(f**2 / k / m), rel=0.02)
