@@ -42,6 +42,10 @@ def test_linear_spring_mass_oscillates_at_analytic_frequency(tmp_path):
     # energy: kinetic + spring energy constant
     e0 = 0.5 * M * 1000.0**2
     assert np.max(np.abs(r.kinetic + r.internal - e0)) < 2e-3 * e0
+    # amplitude v0·sqrt(m/k) and period 2π·sqrt(m/k) within 0.5 %
+    assert np.max(ux) == pytest.approx(1000.0 / w, rel=5e-3)
+    ups = r.time[1:][(ux[:-1] < 0) & (ux[1:] >= 0)]
+    assert np.diff(ups).mean() == pytest.approx(2 * math.pi / w, rel=5e-3)
     # spring force = -K x at every state (tension positive, node 2 moves away)
     np.testing.assert_allclose(r.discrete_force[:, 0], K * ux, rtol=1e-12, atol=1e-9)
 
