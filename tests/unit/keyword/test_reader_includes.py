@@ -162,3 +162,25 @@ def test_include_loop_is_reported(deck):
     deck("b.k", "*KEYWORD\n*INCLUDE\na.k\n*END\n")
     with pytest.raises(DeckError, match="include loop"):
         read_deck(deck("main.k", "*KEYWORD\n*INCLUDE\na.k\n*END\n"))
+
+
+def test_include_transform_rotate_and_scale(deck):
+    """ROTATE 90° about z through (10, 0, 0), then SCALE 2 in x."""
+    deck("pt.k", "*KEYWORD\n*NODE\n       1            20.0             0.0             5.0\n*END\n")
+    main = deck("main.k", """
+        *KEYWORD
+        *INCLUDE_TRANSFORM
+        pt.k
+               100         0         0         0         0         0         0
+                 0
+               1.0       1.0       1.0
+                 7
+        *DEFINE_TRANSFORMATION
+                 7
+        ROTATE          0.0       0.0       1.0      10.0       0.0       0.0      90.0
+        SCALE           2.0       1.0       1.0
+        *END
+        """)
+    m = read_deck(main)
+    assert m.nodes.ids.tolist() == [101]
+    np.testing.assert_allclose(m.nodes.xyz[0], [20.0, 10.0, 5.0], atol=1e-12)
