@@ -263,8 +263,8 @@ def test_results_load_back_with_binout_names(tmp_path):
     np.testing.assert_array_equal(h.read("glstat", "internal_energy"), r.internal)
     np.testing.assert_array_equal(h.read("deforc", "resultant_force"), r.discrete_force)
     assert "x_displacement" in h.read("nodout")
-    with pytest.raises(KeyError, match="secforc"):
-        h.read("secforc", "x_force")
+    with pytest.raises(KeyError, match="bndout"):
+        h.read("bndout", "x_force")
 
 
 def test_divergence_stops_the_run_and_keeps_the_states(tmp_path):
@@ -370,3 +370,24 @@ def test_part_internal_energy_matsum(tmp_path):
     np.testing.assert_allclose(r.part_internal.sum(axis=1), r.internal, rtol=1e-12)
     h = load(tmp_path / "out")
     np.testing.assert_array_equal(h.read("matsum", "internal_energy"), r.part_internal)
+
+
+@pytest.mark.parametrize("section", [
+    ["*DATABASE_CROSS_SECTION_PLANE_ID", "7,plane", "0,150,0,0,151,0,0"],
+    ["*DATABASE_CROSS_SECTION_SET_ID", "7,set", "8,0,0,0,0,9", "*SET_NODE_LIST", "8", "3",
+     "*SET_DISCRETE_LIST", "9", "2"],
+])
+def test_section_force_through_the_cut_spring(tmp_path, section):
+    """A section between nodes 2 and 3 cuts the second spring: the force on
+    the far side is minus its axial force along +x, plane or set alike."""
+    from crashlite.results import load
+
+    extra = ["*PART", "second", "2,2,2", "*SECTION_DISCRETE", "2,0", "*MAT_SPRING_ELASTIC", f"2,{2 * K}",
+             *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"]), "*ELEMENT_MASS", "11,3,0.05", *section]
+    m = _deck(tmp_path, ["1,1,1,2", "2,2,2,3"], "\n".join(extra), end=0.05)
+    r = run(m, out=tmp_path / "out", output_dt=1e-3)
+    assert r.section_ids.tolist() == [7]
+    np.testing.assert_allclose(r.section_force[:, 0, 0], -r.discrete_force[:, 1], rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(r.section_force[:, 0, 1:], 0.0, atol=1e-9)
+    h = load(tmp_path / "out")
+    np.testing.assert_array_equal(h.read("secforc", "x_force"), r.section_force[:, :, 0])

@@ -50,9 +50,13 @@ def _from_crashlite(res, source: str) -> History:
     spc = {"time": t, "ids": np.asarray(res.spc_nodes)}
     for k, axis in enumerate("xyz"):
         spc[f"{axis}_force"] = res.spc_force[:, :, k]
+    sec = {"time": t, "ids": np.asarray(res.section_ids),
+           "total_force": np.linalg.norm(res.section_force, axis=2)}
+    for k, axis in enumerate("xyz"):
+        sec[f"{axis}_force"] = res.section_force[:, :, k]
     matsum = {"time": t, "ids": np.asarray(res.part_ids), "internal_energy": res.part_internal}
     return History({"nodout": nod, "glstat": glstat, "deforc": deforc, "rwforc": rw, "spcforc": spc,
-                    "matsum": matsum}, source)
+                    "matsum": matsum, "secforc": sec}, source)
 
 
 def _from_binout(path: Path) -> History:

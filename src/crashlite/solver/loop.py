@@ -18,6 +18,7 @@ from .kernels.beam import beam_forces, energy_step6, gather_ends, update_rotatio
 from .kernels.integrate import update_position, update_velocity
 from .kernels.rigidwall import cylinder_wall, planar_wall
 from .results import Results
+from .sections import section_forces
 from .setup import Setup, build
 from .timestep import scale_masses, stable_dt
 
@@ -29,7 +30,8 @@ class _Recorder:
         self.s = s
         self.rows: dict[str, list] = {k: [] for k in ("time", "kinetic", "internal", "wall", "external", "force",
                                                       "elong", "wall_force", "wall_velocity", "disp", "vel",
-                                                      "spc", "part_ie")}
+                                                      "spc", "part_ie", "sec")}
+        self.section_force = np.zeros((len(s.sections), 3))
         # nodes with a constrained DOF: their reactions are written (spcforc)
         self.spc_nodes = np.flatnonzero(s.fixed.any(axis=1))
         self.spc_force = np.zeros((len(self.spc_nodes), 3))
@@ -49,6 +51,7 @@ class _Recorder:
         r["disp"].append(x[h] - self.s.x0[h])
         r["spc"].append(self.spc_force.copy())
         r["part_ie"].append(part_ie)
+        r["sec"].append(self.section_force.copy())
         r["vel"].append(v_mid[h].copy())
 
 
@@ -229,6 +232,7 @@ def integrate(s: Setup, output_dt: float | None = None,
     t = 0.0
     v_prev = v.copy()
     rec.spc_force[:] = np.where(s.fixed[rec.spc_nodes], -f[rec.spc_nodes], 0.0)
+    rec.section_force[:] = section_forces(s.sections, fe, bfe)
     rec(t, x, v, kinetic(v), ie, ew_total, 0.0, force, elong, wall_force, wall_v, part_energy())
     update_velocity(v, f, inv_mass, s.fixed, 0.5 * dt)
     if nb:
@@ -274,6 +278,7 @@ def integrate(s: Setup, output_dt: float | None = None,
                 # reaction of the supports: minus the force on the held DOFs
                 sn = rec.spc_nodes
                 rec.spc_force[:] = np.where(s.fixed[sn], -f[sn], 0.0)
+                rec.section_force[:] = section_forces(s.sections, fe, bfe)
             if s.body_loads:  # work of the body loads over the last step (positions t-dt .. t)
                 w_ext += float(np.einsum("ij,ij->", f_body_prev, x - x_prev))
             update_velocity(v, f, inv_mass, s.fixed, 0.5 * (dt_step + dt_new))
@@ -321,6 +326,8 @@ def integrate(s: Setup, output_dt: float | None = None,
         history_nodes=s.history_nodes, discrete_ids=d.ids,
         wall_ids=np.array([w.wall_id for w in s.walls], np.int64), final_x=x, final_v=v,
         cycles=cycle, dt=dt, wall_time=_time.perf_counter() - t_start,
+        section_ids=np.array([sec.csid for sec in s.sections], np.int64),
+        section_force=np.array(r["sec"]).reshape(ns, len(s.sections), 3),
         part_ids=part_ids, part_internal=np.array(r["part_ie"]).reshape(ns, len(part_ids)),
         states_time=np.array(states_t) if s.state_dt > 0 else np.zeros(0),
         states_x=np.array(states_x) if s.state_dt > 0 else np.zeros((0, n, 3)),

@@ -26,6 +26,8 @@ class Results:
     history_nodes: np.ndarray  # (n_hist,) deck node IDs
     discrete_ids: np.ndarray  # (n_discrete,) deck element IDs
     wall_ids: np.ndarray  # (n_walls,)
+    section_ids: np.ndarray  # (n_sections,) *DATABASE_CROSS_SECTION IDs
+    section_force: np.ndarray  # (n_states, n_sections, 3) force through each section (secforc) [force]
     part_ids: np.ndarray  # (n_parts,) parts with elements that store energy
     part_internal: np.ndarray  # (n_states, n_parts) internal energy per part (matsum) [energy]
     states_time: np.ndarray  # (n_fields,) times of the field states (d3plot interval)

@@ -100,6 +100,7 @@ class Setup:
     state_dt: float = 0.0  # *DATABASE_BINARY_D3PLOT DT: field states interval (0: none)
     discrete_pid: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (n_discrete,) part IDs
     beam_pid: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (n_beams,) part IDs
+    sections: list = field(default_factory=list)  # sections.Section (secforc)
     dt_min: float = 0.0  # *CONTROL_TERMINATION DTMIN: stop below this factor of the first step
     end_energy: float = 0.0  # *CONTROL_TERMINATION ENDENG: stop when the energy ratio moves this %
 
@@ -414,6 +415,7 @@ def build(model: Model) -> Setup:
     """Arrays for the time loop; raises SetupError listing everything the
     solver cannot run yet."""
     from .rigid_parts import part_bodies, rigid_part_ids
+    from .sections import build_sections
 
     problems: list[Problem] = []
     rigid = np.array(sorted(rigid_part_ids(model)), np.int64)
@@ -501,6 +503,7 @@ def build(model: Model) -> Setup:
                 continue
             axis = np.eye(3)["XYZ".index(name[-1])]
             loads.append((axis, _curve(model, int(rec["lcid"])), float(rec.get("sf", 1.0))))
+    sections = build_sections(model, beams.ids if beams is not None else np.zeros(0, np.int64), problems)
     if problems:
         raise SetupError(problems)
     return Setup(
@@ -512,6 +515,7 @@ def build(model: Model) -> Setup:
         beams=beams, rot_inertia=rot_inertia, fixed_rot=fixed_rot,
         w0=_initial_rotation(model, n),
         discrete_pid=model.discretes.pid.astype(np.int64),
+        sections=sections,
         beam_pid=model.beams.pid[~np.isin(model.beams.pid, rigid)].astype(np.int64),
         state_dt=float(model.find("DATABASE_BINARY_D3PLOT")[0].get("dt", 0.0) or 0.0)
         if model.find("DATABASE_BINARY_D3PLOT") else 0.0,

@@ -60,7 +60,7 @@ def _section(fields):
 
 register(Spec("DATABASE_CROSS_SECTION_PLANE", _section((
     card("psid:i=0@set_part xct:f=0 yct:f=0 zct:f=0 xch:f=0 ych:f=0 zch:f=0 radius:f=0"),
-    card("xhev:f=0 yhev:f=0 zhev:f=0 lenl:f=0 lenm:f=0 id:i=0 itype:i=0"))),
+    card("xhev:f=0 yhev:f=0 zhev:f=0 lenl:f=0 lenm:f=0 id:i=0 itype:i=0", optional=True))),
     options=("ID",), id_field="csid", title_option=False,
     doc="Section force output through a plane: normal from (XCT..) to (XCH..), "
         "of the parts in PSID."))
