@@ -53,6 +53,17 @@ def main(argv: list[str] | None = None) -> int:
     return crash_pulse(out)
 
 
+def _compare(rows) -> float:
+    """Print (quantity, crashlite, analytic) rows; return the worst deviation."""
+    print(f"  {'':<26}{'crashlite':>12}{'analytic':>12}{'deviation':>11}")
+    worst = 0.0
+    for name, got, exact in rows:
+        dev = (got - exact) / exact
+        worst = max(worst, abs(dev))
+        print(f"  {name:<26}{got:12.4g}{exact:12.4g}{dev:10.2%}")
+    return worst
+
+
 def crash_pulse(out: Path) -> int:
     """Run the single-mass crash pulse example and check it against the
     closed-form answer (C = v0·sqrt(m/k), t_m = π/2·sqrt(m/k))."""
@@ -73,12 +84,7 @@ def crash_pulse(out: Path) -> int:
     rows = [("dynamic crush [mm]", u.max(), v0 * math.sqrt(m / k)),
             ("time of max crush [ms]", 1e3 * res.time[np.argmax(u)], 1e3 * math.pi / 2 * math.sqrt(m / k)),
             ("peak deceleration [g]", a.max(), v0 * math.sqrt(k / m) / 9810.0)]
-    print(f"  {'':<26}{'crashlite':>12}{'analytic':>12}{'deviation':>11}")
-    worst = 0.0
-    for name, got, exact in rows:
-        dev = (got - exact) / exact
-        worst = max(worst, abs(dev))
-        print(f"  {name:<26}{got:12.4g}{exact:12.4g}{dev:10.2%}")
+    worst = _compare(rows)
     ratio = res.energy_ratio
     print(f"\n  {res.cycles} cycles of {res.dt * 1e3:.3g} ms in {res.wall_time:.2f} s; energy ratio "
           f"{ratio.min():.5f}..{ratio.max():.5f}; results in {out / 'pulse'}/results.npz")
@@ -108,12 +114,7 @@ def impactor(out: Path) -> int:
             ("time to stop [ms]", 1e3 * res.time[np.argmax(stroke)], 1e3 * m * v0 / force),
             ("plateau force [kN]", np.abs(res.wall_force[:, 0, 0]).max() / 1e3, force / 1e3),
             ("rebound velocity [mm/s]", -v[-1], math.sqrt(force**2 / k_total / m))]
-    print(f"  {'':<26}{'crashlite':>12}{'analytic':>12}{'deviation':>11}")
-    worst = 0.0
-    for name, got, exact in rows:
-        dev = (got - exact) / exact
-        worst = max(worst, abs(dev))
-        print(f"  {name:<26}{got:12.4g}{exact:12.4g}{dev:10.2%}")
+    worst = _compare(rows)
     print(f"\n  {res.cycles} cycles in {res.wall_time:.2f} s; results in {out / 'impactor'}/")
     return 0 if worst < 0.02 else 1
 
