@@ -102,3 +102,16 @@ def _without_first_body(m):
     m.keywords = [k for k in m.keywords if not (getattr(k, "keyword", "") == "CONSTRAINED_NODAL_RIGID_BODY"
                                                  and k["pid"] == 1000)]
     return m
+
+
+def test_wall_over_all_nodes_leaves_far_rigid_bodies_alone(tmp_path):
+    """A wall with NSID 0 includes the rigid body's nodes: the run goes on
+    while they stay clear, and stops with a message if they reach it."""
+    from crashlite.solver import RunError
+
+    far = _body_deck(tmp_path, ["*RIGIDWALL_PLANAR", "0", "500,0,0,499,0,0"], v=(100.0, 0, 0), end=0.1)
+    r = run(far)
+    assert r.info["stopped"] is None
+    near = _body_deck(tmp_path, ["*RIGIDWALL_PLANAR", "0", "110,0,0,109,0,0"], v=(100.0, 0, 0), end=0.2)
+    with pytest.raises(RunError, match="rigid wall"):
+        run(near)

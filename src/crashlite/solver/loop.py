@@ -171,6 +171,19 @@ def integrate(s: Setup, output_dt: float | None = None,
         for k, (w, point, hit) in enumerate(walls):
             if not (w.birth <= t <= w.death):
                 continue
+            if len(w.watch):
+                rel = x[w.watch] - point
+                if w.radius > 0:  # distance outside the cylinder surface
+                    h = rel @ w.normal
+                    inside = (h >= 0) & ((w.length == 0) | (h <= w.length))
+                    radial = np.linalg.norm(rel - np.outer(h, w.normal), axis=1) - w.radius
+                    gap = np.where(inside, radial, np.inf)
+                else:
+                    gap = rel @ w.normal
+                if gap.min() < 0:
+                    raise FloatingPointError(
+                        f"a rigid-body node (index {int(w.watch[np.argmin(gap)])}) reached rigid wall "
+                        f"{w.wall_id} at t = {t:.6g}: walls acting on rigid bodies are not supported yet")
             before = v[w.nodes].copy()
             v_old = wall_v[k]
             if w.radius > 0:

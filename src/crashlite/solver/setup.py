@@ -58,6 +58,7 @@ class Wall:
     edge_m: np.ndarray = field(default_factory=lambda: np.zeros(3))  # _FINITE: unit edge m = n x l
     len_l: float = 0.0  # _FINITE: edge lengths (0: infinite wall)
     len_m: float = 0.0
+    watch: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # rigid-body nodes
     radius: float = 0.0  # cylinder: radius (0: planar wall)
     length: float = 0.0  # cylinder: length along the axis (0: infinite)
 
@@ -464,10 +465,9 @@ def build(model: Model) -> Setup:
             problems.append(Problem(model.source or "", 0, "BOUNDARY_PRESCRIBED_MOTION", None,
                                     "prescribed motion of nodal rigid body nodes is not supported yet"))
         driven[mo.nodes] = True
-    if any(in_body[w.nodes].any() for w in walls):
-        problems.append(Problem(model.source or "", 0, "RIGIDWALL_PLANAR", "NSID",
-                                "rigid walls acting on nodal rigid body nodes are not supported yet; "
-                                "exclude them with NSIDEX"))
+    for w in walls:  # rigid-body nodes are watched, not pushed: reaching the wall stops the run
+        w.watch = w.nodes[in_body[w.nodes]]
+        w.nodes = w.nodes[~in_body[w.nodes]]
     if (fixed & in_body[:, None]).any():
         problems.append(Problem(model.source or "", 0, "BOUNDARY_SPC", None,
                                 "constraints on nodal rigid body nodes are not supported yet"))
