@@ -205,6 +205,9 @@ def integrate(s: Setup, output_dt: float | None = None,
         for mo in s.motions:
             if not (mo.birth <= t <= mo.death):
                 continue
+            if mo.body_pid:
+                work += impose_body_motion(mo, t, dt_v, dt)
+                continue
             vn = v[mo.nodes] @ mo.direction
             if mo.vad == 0:
                 target = mo.scale * np.interp(t + 0.5 * dt, *mo.curve)
@@ -220,6 +223,27 @@ def integrate(s: Setup, output_dt: float | None = None,
             after = 0.5 * float(np.sum(s.mass[mo.nodes] * np.einsum("ij,ij->i", v[mo.nodes], v[mo.nodes])))
             work += after - before
         return work
+
+    bodies_by_id = {b.body_id: b for b in s.bodies}
+    cog0 = {b.body_id: b.cog.copy() for b in s.bodies}
+
+    def impose_body_motion(mo, t, dt_v, dt):
+        """Prescribed motion of a rigid part: its CoG velocity along the
+        direction is set (the force along it is taken by the prescription)."""
+        b = bodies_by_id[mo.body_pid]
+        vn = float(b.velocity @ mo.direction)
+        if mo.vad == 0:
+            target = mo.scale * np.interp(t + 0.5 * dt, *mo.curve)
+        elif mo.vad == 1:
+            force = float(f[b.nodes].sum(axis=0) @ mo.direction)
+            target = vn - dt_v * force / b.mass + dt_v * mo.scale * np.interp(t, *mo.curve)
+        else:
+            u = float((b.cog - cog0[b.body_id]) @ mo.direction)
+            target = (mo.scale * np.interp(t + dt, *mo.curve) - u) / dt
+        before = 0.5 * b.mass * float(b.velocity @ b.velocity)
+        b.velocity += (target - vn) * mo.direction
+        b.place(x, v, rot if nb else None, w if nb else None)
+        return 0.5 * b.mass * float(b.velocity @ b.velocity) - before
 
     def move_walls(dt):
         for k, (w, point, _) in enumerate(walls):

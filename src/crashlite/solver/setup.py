@@ -75,6 +75,7 @@ class Motion:
     scale: float
     birth: float
     death: float
+    body_pid: int = 0  # _RIGID: the rigid part moved (its body), 0 for nodes
 
 
 @dataclass
@@ -327,9 +328,6 @@ def _motions(model: Model, problems: list) -> list[Motion]:
         name = getattr(rec, "keyword", "")
         if not name.startswith("BOUNDARY_PRESCRIBED_MOTION"):
             continue
-        if name.endswith("RIGID"):
-            problems.append(_problem(rec, None, "prescribed motion of rigid parts is not supported yet"))
-            continue
         rows = rec.rows
         for i in range(len(rows["dof"])):
             dof, vad = int(rows["dof"][i]), int(rows["vad"][i])
@@ -350,10 +348,13 @@ def _motions(model: Model, problems: list) -> list[Motion]:
             if lcid not in model.curves:
                 problems.append(_problem(rec, "lcid", f"curve {lcid} is not defined"))
                 continue
-            nodes = (model.node_index([rows["nid"][i]]) if name.endswith("NODE")
-                     else _node_set(model, int(rows["nsid"][i])))
+            if name.endswith("RIGID"):
+                nodes, body_pid = np.zeros(0, np.int64), int(rows["pid"][i])
+            else:
+                nodes, body_pid = (model.node_index([rows["nid"][i]]) if name.endswith("NODE")
+                                   else _node_set(model, int(rows["nsid"][i]))), 0
             out.append(Motion(nodes.astype(np.int64), direction, vad, _curve(model, lcid),
-                              float(rows["sf"][i]), float(rows["birth"][i]), float(rows["death"][i])))
+                              float(rows["sf"][i]), float(rows["birth"][i]), float(rows["death"][i]), body_pid))
     return out
 
 
@@ -450,6 +451,11 @@ def build(model: Model) -> Setup:
     used[disc.n2[disc.n2 >= 0]] = True
     bodies = _bodies(model, model.nodes.xyz, v0, mass, problems)
     bodies += part_bodies(model, model.nodes.xyz, v0, mass, problems)
+    body_of = {b.body_id: b for b in bodies}
+    for mo in motions:
+        if mo.body_pid and mo.body_pid not in body_of:
+            problems.append(Problem(model.source or "", 0, "BOUNDARY_PRESCRIBED_MOTION_RIGID", "PID",
+                                    f"part {mo.body_pid} is not a rigid part (or not the lead of a merged body)"))
     count = np.zeros(n, np.int64)
     for b in bodies:
         count[b.nodes] += 1
