@@ -82,3 +82,14 @@ def test_field_states_written_as_vtk(tmp_path):
     np.testing.assert_allclose(pts, r.states_x[-1], rtol=1e-8)
     np.testing.assert_allclose(disp[:, 2], 100.0 * r.states_time[-1], rtol=1e-6)
     assert "CELLS 20 60" in files[0].read_text()
+
+
+def test_mass_scaling_of_beams(tmp_path):
+    """DT2MS = -1e-5: the 50 mm steel beams (L/c = 9.7e-6 s) get mass so the
+    step becomes TSSFAC·1e-5, and the added mass (a few %) is reported."""
+    m = _bar(tmp_path, extra=["*CONTROL_TIMESTEP", "0.0,0.9,0,0.0,-1.0e-5"], end=1e-4)
+    r = run(m)
+    assert r.dt == pytest.approx(0.9e-5, rel=1e-6)
+    added = r.info["added_mass"][1]
+    total = RO * A * 1000.0
+    assert 0.0 < added < 0.2 * total

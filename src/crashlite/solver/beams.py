@@ -24,7 +24,7 @@ class BeamSet:
     ei2: np.ndarray  # (n,) E·ISS: bending with deflection along e3 [force·length²]
     ei3: np.ndarray  # (n,) E·ITT: bending with deflection along e2
     mass: np.ndarray  # (n,) ρ·A·L0 [mass]
-    wave: np.ndarray  # (n,) axial wave speed sqrt(E/ρ) [length/time]
+    wave: np.ndarray  # (n,) axial wave speed sqrt(E/ρ) [length/time], of the (scaled) mass
 
 
 def _properties(sec, mat):
@@ -117,18 +117,44 @@ def lumped(beams: BeamSet, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
     return mass, inertia
 
 
-def beam_dt(beams: BeamSet, mass: np.ndarray, inertia: np.ndarray) -> float:
-    """Critical step: axial wave L/c, and the bending/rotation modes with the
-    lumped masses and inertias (2/ω with ω² from the end stiffnesses)."""
-    if beams is None or not len(beams.ids):
-        return np.inf
+def element_dt(beams: BeamSet, mass: np.ndarray, inertia: np.ndarray) -> np.ndarray:
+    """Critical step of each beam: axial wave L/c, and the axial, bending
+    and rotation modes with the lumped masses and inertias (2/ω with ω²
+    from the end stiffnesses)."""
     L = beams.length0
-    dt_axial = L / beams.wave
     ei = np.maximum(beams.ei2, beams.ei3)
     m_end = np.minimum(mass[beams.n1], mass[beams.n2])
     j_end = np.minimum(inertia[beams.n1], inertia[beams.n2])
     with np.errstate(divide="ignore", invalid="ignore"):
-        dt_rot = 2.0 * np.sqrt(j_end / (2.0 * 6.0 * ei / L))
-        dt_trans = 2.0 * np.sqrt(m_end / (2.0 * 2.0 * 12.0 * ei / L**3))
-        dt_ax = 2.0 * np.sqrt(m_end / (2.0 * beams.ea / L))
-    return float(np.nanmin(np.concatenate([dt_axial, dt_rot, dt_trans, dt_ax])))
+        dts = np.stack([L / beams.wave,
+                        2.0 * np.sqrt(j_end / (2.0 * 6.0 * ei / L)),
+                        2.0 * np.sqrt(m_end / (2.0 * 2.0 * 12.0 * ei / L**3)),
+                        2.0 * np.sqrt(m_end / (2.0 * beams.ea / L))])
+    return np.nanmin(np.where(np.isfinite(dts), dts, np.nan), axis=0)
+
+
+def beam_dt(beams: BeamSet, mass: np.ndarray, inertia: np.ndarray) -> float:
+    if beams is None or not len(beams.ids):
+        return np.inf
+    return float(np.nanmin(element_dt(beams, mass, inertia)))
+
+
+def scale_beams(beams: BeamSet, mass: np.ndarray, inertia: np.ndarray, target: float) -> np.ndarray:
+    """Mass scaling of the beams whose step is below ``target``: their mass
+    (and rotational inertia) grows by (target/dt)², split to their nodes,
+    and their wave speed drops accordingly. Returns the mass added per beam."""
+    added = np.zeros(len(beams.ids))
+    for _ in range(3):  # nodes share elements: a few passes settle the steps
+        dt = element_dt(beams, mass, inertia)
+        need = dt < target * (1 - 1e-9)
+        if not need.any():
+            break
+        factor = np.where(need, (target / dt) ** 2, 1.0)
+        extra = (factor - 1.0) * beams.mass
+        for nodes in (beams.n1, beams.n2):
+            np.add.at(mass, nodes, 0.5 * extra)
+            np.add.at(inertia, nodes, 0.5 * extra * beams.length0**2 / 12.0)
+        beams.mass = beams.mass * factor
+        beams.wave = beams.wave / np.sqrt(factor)
+        added += extra
+    return added

@@ -53,7 +53,16 @@ def scale_masses(s: Setup, model_pids: np.ndarray | None = None) -> dict[int, fl
     target = abs(s.dt2ms)
     d = s.discrete
     added_by_part: dict[int, float] = {}
-    if target <= 0 or len(d.ids) == 0:
+    if target <= 0:
+        return added_by_part
+    if s.beams is not None and s.rot_inertia is not None:
+        from .beams import scale_beams
+
+        extra = scale_beams(s.beams, s.mass, s.rot_inertia, target)
+        pids = s.beam_pid if len(s.beam_pid) == len(extra) else np.zeros(len(extra), np.int64)
+        for pid in np.unique(pids[extra > 0]):
+            added_by_part[int(pid)] = float(extra[pids == pid].sum())
+    if len(d.ids) == 0:
         return added_by_part
     k = stiffness(d)
     # 2/ω ≥ target with ω² = k (1/m1 + 1/m2): both node masses ≥ k·target²/2
@@ -74,6 +83,6 @@ def scale_masses(s: Setup, model_pids: np.ndarray | None = None) -> dict[int, fl
             for nd in (d.n1[e], d.n2[e]):
                 if nd >= 0 and added[nd] > 0:
                     pid = int(model_pids[e])
-                    added_by_part[pid] = added_by_part.get(pid, 0.0) + added[nd]
+                    added_by_part[pid] = added_by_part.get(pid, 0.0) + float(added[nd])
                     added[nd] = 0.0  # count each node once
     return added_by_part
