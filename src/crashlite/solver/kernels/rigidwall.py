@@ -15,7 +15,8 @@ from numba import njit
 def _contact_velocity(v, i, n0, n1, n2, vn, vn_new, fric, m, dt, force):
     """Set node i's normal velocity to vn_new; friction takes up to fric
     times the normal velocity change from the tangential velocity (fric ≥ 1:
-    no sliding). The momentum change goes into the wall ``force``."""
+    no sliding). The momentum change goes into the wall ``force`` (3,) and
+    the kinetic energy taken out into force[3]."""
     vt0, vt1, vt2 = v[i, 0] - vn * n0, v[i, 1] - vn * n1, v[i, 2] - vn * n2
     vt = np.sqrt(vt0 * vt0 + vt1 * vt1 + vt2 * vt2)
     keep = 1.0
@@ -30,6 +31,8 @@ def _contact_velocity(v, i, n0, n1, n2, vn, vn_new, fric, m, dt, force):
     force[0] -= m * (v[i, 0] - old0) / dt
     force[1] -= m * (v[i, 1] - old1) / dt
     force[2] -= m * (v[i, 2] - old2) / dt
+    force[3] += 0.5 * m * (old0 * old0 + old1 * old1 + old2 * old2
+                           - v[i, 0] * v[i, 0] - v[i, 1] * v[i, 1] - v[i, 2] * v[i, 2])
 
 
 @njit(cache=True)
