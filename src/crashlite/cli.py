@@ -43,7 +43,8 @@ def _run(args) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="crashlite", description=__doc__.split("\n")[0])
+    p = argparse.ArgumentParser(prog="crashlite", description="crashlite: LS-DYNA decks in and out, and "
+                                "an explicit solver for simplified frontal crash models")
     sub = p.add_subparsers(dest="command", required=True)
     info = sub.add_parser("info", help="summarise a keyword deck: counts, parts, mass, CoG")
     info.add_argument("deck", type=Path)
@@ -57,8 +58,8 @@ def build_parser() -> argparse.ArgumentParser:
     conv.add_argument("--split", action="store_true", help="nodes and elements in an include file")
     conv.add_argument("--strict", action="store_true")
     conv.set_defaults(func=_convert)
-    run = sub.add_parser("run", help="run a deck with the explicit solver (masses, springs, "
-                                     "dampers, rigid walls at this stage)")
+    run = sub.add_parser("run", help="run a deck with the explicit solver (masses, springs, dampers, "
+                                     "beams, rigid bodies, rigid walls at this stage)")
     run.add_argument("deck", type=Path)
     run.add_argument("-o", "--output", type=Path, required=True, help="results folder")
     run.add_argument("--quiet", action="store_true", help="no progress bar")
