@@ -74,3 +74,25 @@ def test_model_roundtrip_every_format(tmp_path, model):
         back = read_deck(out)
         assert model_differences(first, back) == [], fmt
         np.testing.assert_array_equal(back.nodes.xyz, model.nodes.xyz)
+
+
+@settings(max_examples=5, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(seed=st.integers(0, 2**32 - 1), wide=st.booleans())
+def test_large_blocks_take_the_fast_layout_and_stay_exact(tmp_path, seed, wide):
+    """Blocks of thousands of rows are laid out by the Numba kernel; values
+    that do not fit (wide=True) send the block to long or free format."""
+    rng = np.random.default_rng(seed)
+    n = 3000
+    xyz = np.round(rng.normal(0, 500, (n, 3)), 3)
+    if wide:
+        xyz[rng.integers(0, n, 5)] = rng.normal(0, 1, (5, 3)) / 3.0  # 17 digits: never fits 16
+    ids = np.sort(rng.choice(np.arange(1, 10**7), n, replace=False)).astype(np.int64)
+    tc = rng.integers(0, 8, n).astype(np.int8)
+    model = Model(nodes=Nodes(ids, xyz, tc, np.zeros(n, np.int8)))
+    for fmt in ("fixed", "long", "i10", "free"):
+        out = tmp_path / f"big_{fmt}.k"
+        write_deck(model, out, fmt=fmt)
+        back = read_deck(out)
+        assert back.nodes.equals(model.nodes), fmt
+        if fmt == "fixed":
+            assert ("*NODE+" in out.read_text()) == wide

@@ -19,6 +19,7 @@ from ..model.model import ENTITY_GROUPS, Model
 from . import cards
 from .cards import I10, LONG, STD
 from .convert import mesh_records
+from .fastformat import fixed_lines
 from .schema import FLOAT, INT, STR, Field, RawKeyword, Record
 
 FORMATS = {"fixed": STD, "std": STD, "long": LONG, "i10": I10, "free": "free"}
@@ -61,6 +62,13 @@ def _card_lines(columns: list, fields: tuple[Field, ...], mode: str):
         # a line without a comma would be read by columns: keep one
         return [ln if "," in ln else ln + "," for ln in lines], np.ones(n, bool)
     widths = [cards.width(f, mode) for f in fields]
+    if n >= 1024 and all(f.kind != STR and isinstance(c, np.ndarray) and c.dtype.kind in "iuf"
+                         for c, f in zip(columns, fields)):
+        if not all(np.isfinite(c).all() for c in columns if c.dtype.kind == "f"):
+            raise ValueError("cannot write non-finite values")
+        fast = fixed_lines(columns, [0 if f.kind == INT else 1 for f in fields], widths)
+        if fast is not None:  # mesh blocks: laid out by a Numba kernel
+            return fast, np.ones(n, bool)
     cols = [_texts(c, f, w) for c, f, w in zip(columns, fields, widths)]
     fits = np.ones(n, dtype=bool)
     for col, w in zip(cols, widths):

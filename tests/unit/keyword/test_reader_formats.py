@@ -162,3 +162,11 @@ def test_two_card_solids_and_eight_node_shells(deck):
                        + "\n*ELEMENT_SOLID")
     with pytest.raises(DeckError, match="8-node shells are not supported"):
         read_deck(deck("bad.k", bad))
+
+
+def test_fast_layout_kernel_signs_and_overflow():
+    from crashlite.keyword.fastformat import fixed_lines
+
+    lines = fixed_lines([np.array([-5, 12, 0, -1234567]), np.array([0.5, -1e-05, 3.0, 1e16])], [0, 1], [8, 10])
+    assert lines == ["      -5       0.5", "      12    -1e-05", "       0       3.0", "-1234567     1e+16"]
+    assert fixed_lines([np.array([-12345678])], [0], [8]) is None  # 9 characters: does not fit
