@@ -55,6 +55,11 @@ class RigidBody:
         w = self.rot @ np.linalg.solve(self.inertia_body, self.rot.T @ mom)
         return 0.5 * self.mass * float(vel @ vel) + 0.5 * float(w @ mom)
 
+    def kinetic_now(self) -> float:
+        """Kinetic energy of the current (half-step) momenta."""
+        w = self.omega()
+        return 0.5 * self.mass * float(self.velocity @ self.velocity) + 0.5 * float(w @ self.momentum)
+
     def kick(self, f: np.ndarray, x: np.ndarray, dt_v: float, moment: np.ndarray | None = None) -> None:
         """Change momenta by the nodal forces (and moments) over dt_v."""
         self.prev = (self.velocity.copy(), self.momentum.copy())

@@ -21,6 +21,11 @@ class Section:
     beam_elems: np.ndarray  # (j,) beam element indices (in the solver's beam set)
     beam_ends: np.ndarray  # (j,)
 
+    def cuts(self):
+        """(group kind, element indices, corner indices) of the cut elements."""
+        yield "discrete", self.disc_elems, self.disc_ends
+        yield "beam", self.beam_elems, self.beam_ends
+
 
 def _ids(model: Model, kind: str, sid: int) -> np.ndarray:
     return model.set_members(kind, sid) if sid else np.zeros(0, np.int64)
@@ -71,14 +76,33 @@ def build_sections(model: Model, beam_ids: np.ndarray, problems: list) -> list[S
     return out
 
 
-def section_forces(sections: list[Section], fe: np.ndarray, bfe: np.ndarray) -> np.ndarray:
-    """(n_sections, 3): discrete ``fe`` is the force on n1 (n2 gets -fe);
-    beam ``bfe`` (n, 2, 3) the forces on both ends."""
-    out = np.zeros((len(sections), 3))
+def section_forces(sections: list[Section], groups, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Force and moment (n_sections, 3) through each section: the sum of the
+    cut elements' corner forces ON the section-side nodes, and their moment
+    (plus the corner moments of rotational elements) about the centroid of
+    those nodes, as LS-DYNA's secforc reports them."""
+    by_kind = {g.kind: g for g in groups}
+    force = np.zeros((len(sections), 3))
+    moment = np.zeros((len(sections), 3))
+    cache = {}
     for k, s in enumerate(sections):
-        if len(s.disc_elems):
-            sign = np.where(s.disc_ends == 0, 1.0, -1.0)
-            out[k] += (sign[:, None] * fe[s.disc_elems]).sum(axis=0)
-        if len(s.beam_elems):
-            out[k] += bfe[s.beam_elems, s.beam_ends].sum(axis=0)
-    return out
+        rows, points, moments = [], [], []
+        for kind, elems, ends in s.cuts():
+            g = by_kind.get(kind)
+            if g is None or not len(elems):
+                continue
+            if kind not in cache:
+                cache[kind] = (g.corner_forces(), g.corner_moments())
+            cf, cm = cache[kind]
+            rows.append(cf[elems, ends])
+            points.append(x[g.conn[elems, ends]])
+            if cm is not None:
+                moments.append(cm[elems, ends])
+        if not rows:
+            continue
+        f, p = np.concatenate(rows), np.concatenate(points)
+        force[k] = f.sum(axis=0)
+        moment[k] = np.cross(p - p.mean(axis=0), f).sum(axis=0)
+        for m in moments:
+            moment[k] += m.sum(axis=0)
+    return force, moment

@@ -105,6 +105,7 @@ class Setup:
     sections: list = field(default_factory=list)  # sections.Section (secforc)
     dt_min: float = 0.0  # *CONTROL_TERMINATION DTMIN: stop below this factor of the first step
     end_energy: float = 0.0  # *CONTROL_TERMINATION ENDENG: stop when the energy ratio moves this %
+    groups: list = field(default_factory=list)  # further element groups (groups.ElementGroup)
 
 
 class SetupError(DeckError):
@@ -471,7 +472,7 @@ def build(model: Model) -> Setup:
             problems.append(Problem(model.source or "", 0, "BOUNDARY_PRESCRIBED_MOTION", None,
                                     "prescribed motion of nodal rigid body nodes is not supported yet"))
         driven[mo.nodes] = True
-    for w in walls:  # rigid-body nodes are watched, not pushed: reaching the wall stops the run
+    for w in walls:  # rigid-body nodes: the wall pushes their body (walls.Walls)
         w.watch = w.nodes[in_body[w.nodes]]
         w.nodes = w.nodes[~in_body[w.nodes]]
     if (fixed & in_body[:, None]).any():
