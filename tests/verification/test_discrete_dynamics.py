@@ -391,3 +391,30 @@ def test_section_force_through_the_cut_spring(tmp_path, section):
     np.testing.assert_allclose(r.section_force[:, 0, 1:], 0.0, atol=1e-9)
     h = load(tmp_path / "out")
     np.testing.assert_array_equal(h.read("secforc", "x_force"), r.section_force[:, :, 0])
+
+
+def test_general_nonlinear_spring_unloads_on_its_shifted_curve(tmp_path):
+    """*MAT_S06: loads along LCDL (100 N/mm to 200 N, then 10 N/mm), yields
+    past TYI = 150 N, unloads on LCDU (500 N/mm) shifted through the point
+    of largest deflection, reloads on it back to LCDL. Driven by a
+    prescribed displacement 0 -> 10 -> 9.6 -> 12 mm; forces match the rule
+    along the path and the stored energy is its integral (2700 N·mm)."""
+    path = ["0.0,0.0", "0.4,10.0", "0.5,9.6", "0.7,12.0"]
+    extra = ["*BOUNDARY_PRESCRIBED_MOTION_NODE", "2,1,2,7", "*DEFINE_CURVE", "7", *path,
+             *_parts(["*MAT_SPRING_GENERAL_NONLINEAR", "1,5,6,0.0,150.0,-150.0"]),
+             "*DEFINE_CURVE", "5", "-100.0,-10000.0", "0.0,0.0", "2.0,200.0", "100.0,1180.0",
+             "*DEFINE_CURVE", "6", "-100.0,-50000.0", "100.0,50000.0"]
+    m = _deck(tmp_path, ["1,1,1,2"], "\n".join(extra), v0=0.0, end=0.7)
+    r = run(m, output_dt=5e-3)
+    delta, force = r.discrete_elong[:, 0], r.discrete_force[:, 0]
+    load = np.where(delta < 2.0, 100.0 * delta, 200.0 + 10.0 * (delta - 2.0))
+    shift = 10.0 - 280.0 / 500.0  # the unloading curve through (10, 280)
+    after_peak = r.time > 0.4 + 1e-3
+    expected = np.where(after_peak, np.minimum(load, 500.0 * (delta - shift)), load)
+    # the steps straddle the peak: its deflection is known to ~1e-3 mm, the steep branch to ~1 N
+    np.testing.assert_allclose(force, expected, rtol=1e-3, atol=1.0)
+    i = np.argmin(np.abs(r.time - 0.5))
+    assert delta[i] == pytest.approx(9.6, abs=0.01) and force[i] == pytest.approx(80.0, abs=3.0)  # unloaded
+    assert force[-1] == pytest.approx(300.0, rel=1e-3)  # back on the loading curve
+    assert r.internal[-1] == pytest.approx(2700.0, rel=5e-3)
+

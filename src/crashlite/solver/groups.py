@@ -65,6 +65,10 @@ class DiscreteGroup(ElementGroup):
         self._force_old = np.zeros(ne)
         self._elong_old = np.zeros(ne)
         self.plastic = np.zeros(ne)  # S08 plastic deflection [length]
+        self.hist = np.zeros((ne, 4))  # S06 largest deflections and unloading shifts [length]
+        zi, zf = np.zeros(ne, np.int64), np.zeros(ne)
+        self._s06 = tuple(a if a is not None else z for a, z in
+                          ((d.ucurve_start, zi), (d.ucurve_stop, zi), (d.yield_t, zf), (d.yield_c, zf)))
         self.energy = np.zeros(ne)
         self._scratch = np.zeros((n_nodes, 3))
         self._ptr, self._elem, self._sign = incidence(n_nodes, d.n1, d.n2)
@@ -74,8 +78,8 @@ class DiscreteGroup(ElementGroup):
         if not len(d.ids):
             return
         discrete_forces(st.x, st.v, d.n1, d.n2, d.kind, d.k, d.scale, d.offset, d.length0, d.direction,
-                        d.curve_start, d.curve_stop, d.curve_x, d.curve_y, d.ground, d.ctf, self.plastic,
-                        self.fe, self.force, self.elong)
+                        d.curve_start, d.curve_stop, d.curve_x, d.curve_y, d.ground, d.ctf, *self._s06,
+                        self.plastic, self.hist, self.fe, self.force, self.elong)
         gather(self._ptr, self._elem, self._sign, self.fe, self._scratch)
         st.f += self._scratch
 

@@ -15,7 +15,7 @@ import numpy as np
 
 from ..keyword.errors import DeckError, Problem
 from ..model.model import Model
-from .kernels.discrete import CURVE, DAMPER, INELASTIC, LINEAR
+from .kernels.discrete import CURVE, DAMPER, GENERAL, INELASTIC, LINEAR
 
 # constraint code of *NODE TC (and RC, same numbering) -> held (x, y, z)
 _TC = {0: (0, 0, 0), 1: (1, 0, 0), 2: (0, 1, 0), 3: (0, 0, 1), 4: (1, 1, 0), 5: (0, 1, 1),
@@ -41,6 +41,10 @@ class Discrete:
     curve_x: np.ndarray  # (m,) float64 deflection [length]
     curve_y: np.ndarray  # (m,) float64 force [force]
     ctf: np.ndarray  # (n,) int64 S08 sign restriction (1 compression only, -1 tension only)
+    ucurve_start: np.ndarray | None = None  # (n,) int64 S06 unloading curve in curve_x/y (None: none)
+    ucurve_stop: np.ndarray | None = None  # (n,) int64
+    yield_t: np.ndarray | None = None  # (n,) S06 initial yield force in tension (> 0) [force]
+    yield_c: np.ndarray | None = None  # (n,) S06 initial yield force in compression (< 0) [force]
 
 
 @dataclass
@@ -135,8 +139,18 @@ def _discrete(model: Model, problems: list) -> Discrete:
     k = np.zeros(n)
     starts, stops = np.zeros(n, np.int64), np.zeros(n, np.int64)
     ctf = np.zeros(n, np.int64)
+    ustart, ustop = np.zeros(n, np.int64), np.zeros(n, np.int64)
+    yield_t, yield_c = np.zeros(n), np.zeros(n)
     cx, cy = [np.zeros(0)], [np.zeros(0)]
     used = 0
+
+    def add_curve(lcid):
+        nonlocal used
+        a, o = _curve(model, lcid)
+        cx.append(a)
+        cy.append(o)
+        used += len(a)
+        return used - len(a), used
     for pid in np.unique(d.pid):
         sel = d.pid == pid
         part = model.parts.get(int(pid))
@@ -156,18 +170,30 @@ def _discrete(model: Model, problems: list) -> Discrete:
             if int(mat.get(lc, 0)) not in model.curves:
                 problems.append(_problem(mat, lc, f"curve {mat.get(lc)} is not defined"))
                 continue
-            a, o = _curve(model, int(mat[lc]))
             if lc == "lcd":
                 kind[sel] = CURVE
             else:
                 kind[sel], k[sel], ctf[sel] = INELASTIC, float(mat["ku"]), int(mat.get("ctf", 0))
-            starts[sel], stops[sel] = used, used + len(a)
-            cx.append(a)
-            cy.append(o)
-            used += len(a)
+            starts[sel], stops[sel] = add_curve(int(mat[lc]))
+        elif mat.keyword == "MAT_SPRING_GENERAL_NONLINEAR":
+            bad = [f for f in ("lcdl", "lcdu") if mat.get(f) and int(mat[f]) not in model.curves]
+            if not mat.get("lcdl") or bad:
+                problems.append(_problem(mat, (bad or ["lcdl"])[0], f"curve {mat.get((bad or ['lcdl'])[0])} "
+                                                                    "is not defined"))
+                continue
+            if float(mat.get("beta", 0.0) or 0.0) != 0.0:
+                problems.append(_problem(mat, "beta", "BETA other than 0 (coupled hardening) is not "
+                                                      "supported yet"))
+                continue
+            kind[sel] = GENERAL
+            starts[sel], stops[sel] = add_curve(int(mat["lcdl"]))
+            if mat.get("lcdu"):
+                ustart[sel], ustop[sel] = add_curve(int(mat["lcdu"]))
+            yield_t[sel] = abs(float(mat.get("tyi", 0.0) or 0.0))
+            yield_c[sel] = -abs(float(mat.get("cyi", 0.0) or 0.0))
         else:
             problems.append(_problem(mat, None, f"*{mat.keyword} is not supported by the solver yet "
-                                                "(supported: MAT_S01, MAT_S02, MAT_S04, MAT_S08)"))
+                                                "(supported: MAT_S01, MAT_S02, MAT_S04, MAT_S06, MAT_S08)"))
     x = model.nodes.xyz
     n1 = d.nodes[:, 0].astype(np.int64)
     n2 = d.nodes[:, 1].astype(np.int64)
@@ -187,7 +213,8 @@ def _discrete(model: Model, problems: list) -> Discrete:
     fixed_dir = np.any(direction != 0, axis=1)
     length0 = np.where(fixed_dir, np.einsum("ij,ij->i", rel, direction), np.linalg.norm(rel, axis=1))
     return Discrete(d.ids, n1, n2, kind, k, d.scale.astype(float), d.offset.astype(float), length0,
-                    direction, ground, starts, stops, np.concatenate(cx), np.concatenate(cy), ctf)
+                    direction, ground, starts, stops, np.concatenate(cx), np.concatenate(cy), ctf,
+                    ustart, ustop, yield_t, yield_c)
 
 
 def _initial_velocity(model: Model, v: np.ndarray, problems: list) -> None:

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from .kernels.discrete import CURVE, DAMPER, INELASTIC
+from .kernels.discrete import CURVE, DAMPER, GENERAL, INELASTIC
 from .setup import Setup
 
 
@@ -10,13 +10,17 @@ def stiffness(d) -> np.ndarray:
     """Largest stiffness (damping constant for dampers) of each element:
     the steepest curve slope for non-linear springs, or KU if steeper."""
     k = np.abs(d.k * d.scale)
-    for e in np.flatnonzero((d.kind == CURVE) | (d.kind == INELASTIC)):
-        xs = d.curve_x[d.curve_start[e]:d.curve_stop[e]]
-        ys = d.curve_y[d.curve_start[e]:d.curve_stop[e]]
-        dx = np.diff(xs)
-        slope = np.abs(np.diff(ys)[dx > 0] / dx[dx > 0])
-        k[e] = abs(d.scale[e]) * max(slope.max() if len(slope) else 0.0,
-                                     abs(d.k[e]) if d.kind[e] == INELASTIC else 0.0)
+
+    def steepest(a, b):
+        dx = np.diff(d.curve_x[a:b])
+        slope = np.abs(np.diff(d.curve_y[a:b])[dx > 0] / dx[dx > 0])
+        return slope.max() if len(slope) else 0.0
+
+    for e in np.flatnonzero((d.kind == CURVE) | (d.kind == INELASTIC) | (d.kind == GENERAL)):
+        s = steepest(d.curve_start[e], d.curve_stop[e])
+        if d.kind[e] == GENERAL and d.ucurve_stop is not None:
+            s = max(s, steepest(d.ucurve_start[e], d.ucurve_stop[e]))
+        k[e] = abs(d.scale[e]) * max(s, abs(d.k[e]) if d.kind[e] == INELASTIC else 0.0)
     return k
 
 

@@ -8,7 +8,7 @@ does not depend on the number of threads.
 import numpy as np
 from numba import njit, prange
 
-LINEAR, DAMPER, CURVE, INELASTIC = 0, 1, 2, 3
+LINEAR, DAMPER, CURVE, INELASTIC, GENERAL = 0, 1, 2, 3, 4
 
 
 @njit(cache=True, inline="always")
@@ -35,9 +35,51 @@ def curve_value(xs, ys, start, stop, x):
     return ys[i] + t * (ys[i + 1] - ys[i])
 
 
+@njit(cache=True, inline="always")
+def curve_inverse(xs, ys, start, stop, y):
+    """x where a rising piecewise-linear curve reaches y (linear beyond its ends)."""
+    if stop - start == 1:
+        return xs[start]
+    i = start
+    while i < stop - 2 and ys[i + 1] < y:
+        i += 1
+    dy = ys[i + 1] - ys[i]
+    t = (y - ys[i]) / dy if dy != 0.0 else 0.0
+    return xs[i] + t * (xs[i + 1] - xs[i])
+
+
+@njit(cache=True, inline="always")
+def _general(xs, ys, ls, le, us, ue, yt, yc, delta, h):
+    """*MAT_S06 force: along the loading curve; once loaded past the yield
+    force of a side (TYI > 0, CYI < 0), unloading and reloading on that side
+    follow the unloading curve shifted through the point of the largest
+    deflection (tension and compression independent, BETA = 0). h (4,):
+    largest tensile deflection, its shift, largest compressive deflection,
+    its shift."""
+    f = curve_value(xs, ys, ls, le, delta)
+    if ue <= us:  # no unloading curve: nonlinear elastic
+        return f
+    if h[0] > 0.0 and delta < h[0]:
+        fu = curve_value(xs, ys, us, ue, delta - h[1])
+        if fu < f:
+            f = fu
+    elif delta > 0.0 and f >= yt:
+        h[0] = delta
+        h[1] = delta - curve_inverse(xs, ys, us, ue, f)
+    if h[2] < 0.0 and delta > h[2]:
+        fu = curve_value(xs, ys, us, ue, delta - h[3])
+        if fu > f:
+            f = fu
+    elif delta < 0.0 and f <= yc:
+        h[2] = delta
+        h[3] = delta - curve_inverse(xs, ys, us, ue, f)
+    return f
+
+
 @njit(cache=True, parallel=True)
 def discrete_forces(x, v, n1, n2, kind, k, scale, offset, length0, direction, curve_start, curve_stop,
-                    curve_x, curve_y, ground, ctf, plastic, fe, force, elong):
+                    curve_x, curve_y, ground, ctf, ucurve_start, ucurve_stop, yield_t, yield_c, plastic, hist,
+                    fe, force, elong):
     """Axial force of each element (tension positive) and its force vector on n1.
 
     x, v (n_nodes, 3); n1, n2 (n,) node indices (n2 = -1: tied to ground at
@@ -46,7 +88,10 @@ def discrete_forces(x, v, n1, n2, kind, k, scale, offset, length0, direction, cu
     the curve, δp the plastic deflection kept in ``plastic``; ``ctf`` 1 keeps
     compression only, -1 tension only); scale S; offset; length0 initial
     length; direction (n, 3): unit vector, or zeros to follow the element
-    axis. Outputs: fe (n, 3) force on n1 (n2 gets -fe), force (n,), elong δ.
+    axis. GENERAL (*MAT_S06, see ``_general``): loading curve as CURVE,
+    unloading curve [ucurve_start, ucurve_stop), yield forces yield_t > 0,
+    yield_c < 0, history ``hist`` (n, 4). Outputs: fe (n, 3) force on n1
+    (n2 gets -fe), force (n,), elong δ.
     """
     for e in prange(n1.shape[0]):
         a = n1[e]
@@ -76,6 +121,9 @@ def discrete_forces(x, v, n1, n2, kind, k, scale, offset, length0, direction, cu
             f = k[e] * rate
         elif kind[e] == CURVE:
             f = curve_value(curve_x, curve_y, curve_start[e], curve_stop[e], delta)
+        elif kind[e] == GENERAL:
+            f = _general(curve_x, curve_y, curve_start[e], curve_stop[e], ucurve_start[e], ucurve_stop[e],
+                         yield_t[e], yield_c[e], delta, hist[e])
         else:
             f = k[e] * (delta - plastic[e])
             env = curve_value(curve_x, curve_y, curve_start[e], curve_stop[e], delta)
