@@ -14,6 +14,7 @@ from typing import Callable
 import numpy as np
 
 from ..model.model import Model
+from .frames import project_out
 from .groups import BeamGroup, DiscreteGroup
 from .kernels.beam import update_rotations
 from .kernels.integrate import update_position, update_velocity
@@ -60,6 +61,8 @@ def _state(s: Setup) -> State:
     w[fixed_rot] = 0.0
     v = s.v0.copy()
     v[s.fixed] = 0.0
+    project_out(v, s.skew_nodes, s.skew_held)
+    project_out(w, s.skew_nodes, s.skew_held_rot)
     inv_mass = np.where(s.mass > 0, 1.0 / np.where(s.mass > 0, s.mass, 1.0), 0.0)
     return State(s.x0.copy(), v, np.zeros((n, 3)), np.tile(np.eye(3), (n, 1, 1)), w, np.zeros((n, 3)),
                  s.mass, inv_mass, rot_inertia, inv_j, s.fixed, fixed_rot)
@@ -81,7 +84,10 @@ class _Recorder:
         self.rows: dict[str, list] = {}
         self.discrete = groups[0]
         # nodes with a constrained DOF: their reactions are written (spcforc)
-        self.spc_nodes = np.flatnonzero(s.fixed.any(axis=1))
+        held = s.fixed.any(axis=1)
+        held[s.skew_nodes] = True
+        self.spc_nodes = np.flatnonzero(held)
+        self._skew_rows = np.searchsorted(self.spc_nodes, s.skew_nodes)
 
     def add(self, **values):
         for k, v in values.items():
@@ -92,6 +98,10 @@ class _Recorder:
         the step, taken before the velocity update."""
         sn, st = self.spc_nodes, self.st
         self._spc = np.where(self.s.fixed[sn], -st.f[sn], 0.0)
+        if len(self.s.skew_nodes):  # supports in local systems: minus the force along the held axes
+            held = self.s.skew_held
+            f = st.f[self.s.skew_nodes]
+            self._spc[self._skew_rows] -= np.einsum("kd,kdj->kj", np.einsum("kj,kdj->kd", f, held), held)
         self._sec = section_forces(self.s.sections, self.groups, st.x)
 
     def __call__(self, t, v_mid, acc, ke, work, ew):
@@ -162,8 +172,10 @@ def integrate(s: Setup, output_dt: float | None = None,
 
     def kick(dt_v):
         update_velocity(v, f, st.inv_mass, s.fixed, dt_v)
+        project_out(v, s.skew_nodes, s.skew_held)
         if nb:
             update_rotations(st.rot, st.w, st.moment, st.inv_j, st.fixed_rot, dt_v, 0.0)
+            project_out(st.w, s.skew_nodes, s.skew_held_rot)
         for b in s.bodies:
             b.kick(f, x, dt_v, st.moment if nb else None)
             place(b)

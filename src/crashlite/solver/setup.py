@@ -110,6 +110,9 @@ class Setup:
     dt_min: float = 0.0  # *CONTROL_TERMINATION DTMIN: stop below this factor of the first step
     end_energy: float = 0.0  # *CONTROL_TERMINATION ENDENG: stop when the energy ratio moves this %
     groups: list = field(default_factory=list)  # further element groups (groups.ElementGroup)
+    skew_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (k,) SPC in local systems
+    skew_held: np.ndarray = field(default_factory=lambda: np.zeros((0, 3, 3)))  # (k, 3, 3) held directions
+    skew_held_rot: np.ndarray = field(default_factory=lambda: np.zeros((0, 3, 3)))  # (k, 3, 3) held axes
 
 
 class SetupError(DeckError):
@@ -278,25 +281,39 @@ def _initial_rotation(model: Model, n: int) -> np.ndarray:
     return w
 
 
-def _constraints(model: Model, problems: list) -> tuple[np.ndarray, np.ndarray]:
+def _constraints(model: Model, problems: list) -> tuple[np.ndarray, np.ndarray, dict]:
     """(n, 3) held translations and (n, 3) held rotations: node TC/RC codes
-    and *BOUNDARY_SPC_NODE/SET."""
+    and *BOUNDARY_SPC_NODE/SET; and the constraints in local systems:
+    node index -> ((3, 3) held translation directions, (3, 3) held
+    rotation axes), zero rows for free directions."""
+    from .frames import axes
+
     fixed = np.array([_TC.get(int(t), (0, 0, 0)) for t in model.nodes.tc], dtype=bool).reshape(-1, 3)
     fixed_rot = np.array([_TC.get(int(r), (0, 0, 0)) for r in model.nodes.rc], dtype=bool).reshape(-1, 3)
+    skew: dict[int, tuple[np.ndarray, np.ndarray]] = {}
     for rec in model.keywords:
         name = getattr(rec, "keyword", "")
         if name not in ("BOUNDARY_SPC_NODE", "BOUNDARY_SPC_SET"):
             continue
         rows = rec.rows
         for i in range(len(rows["cid"])):
-            if rows["cid"][i]:
-                problems.append(_problem(rec, "cid", "constraints in a local system are not supported yet"))
-                continue
             nodes = (model.node_index([rows["nid"][i]]) if name.endswith("NODE")
                      else _node_set(model, int(rows["nsid"][i])))
-            fixed[nodes] |= np.array([rows["dofx"][i], rows["dofy"][i], rows["dofz"][i]], bool)
-            fixed_rot[nodes] |= np.array([rows["dofrx"][i], rows["dofry"][i], rows["dofrz"][i]], bool)
-    return fixed, fixed_rot
+            held = np.array([rows["dofx"][i], rows["dofy"][i], rows["dofz"][i]], bool)
+            held_rot = np.array([rows["dofrx"][i], rows["dofry"][i], rows["dofrz"][i]], bool)
+            if rows["cid"][i]:
+                try:
+                    r = axes(model, int(rows["cid"][i]))
+                except (KeyError, ValueError) as e:
+                    problems.append(_problem(rec, "cid", str(e)))
+                    continue
+                for nd in nodes.tolist():
+                    t, w = skew.get(nd, (np.zeros((3, 3)), np.zeros((3, 3))))
+                    skew[nd] = (np.where(held[:, None], r, t), np.where(held_rot[:, None], r, w))
+                continue
+            fixed[nodes] |= held
+            fixed_rot[nodes] |= held_rot
+    return fixed, fixed_rot, skew
 
 
 def _walls(model: Model, problems: list) -> list[Wall]:
@@ -469,7 +486,7 @@ def build(model: Model) -> Setup:
         mass += beam_mass
     v0 = np.zeros((n, 3))
     _initial_velocity(model, v0, problems)
-    fixed, fixed_rot = _constraints(model, problems)
+    fixed, fixed_rot, skew = _constraints(model, problems)
     walls = _walls(model, problems)
     motions = _motions(model, problems)
     used = np.zeros(n, bool)
@@ -502,7 +519,8 @@ def build(model: Model) -> Setup:
     for w in walls:  # rigid-body nodes: the wall pushes their body (walls.Walls)
         w.watch = w.nodes[in_body[w.nodes]]
         w.nodes = w.nodes[~in_body[w.nodes]]
-    if (fixed & in_body[:, None]).any():
+    skew_nodes = np.array(sorted(skew), np.int64)
+    if (fixed & in_body[:, None]).any() or in_body[skew_nodes].any():
         problems.append(Problem(model.source or "", 0, "BOUNDARY_SPC", None,
                                 "constraints on nodal rigid body nodes are not supported yet"))
     massless = np.flatnonzero(used & (mass <= 0) & ~fixed.all(axis=1) & ~driven)
@@ -554,4 +572,6 @@ def build(model: Model) -> Setup:
         state_dt=float(model.find("DATABASE_BINARY_D3PLOT")[0].get("dt", 0.0) or 0.0)
         if model.find("DATABASE_BINARY_D3PLOT") else 0.0,
         dt_min=float(term[0].get("dtmin", 0.0) or 0.0) if term else 0.0,
-        end_energy=float(term[0].get("endeng", 0.0) or 0.0) if term else 0.0)
+        end_energy=float(term[0].get("endeng", 0.0) or 0.0) if term else 0.0,
+        skew_nodes=skew_nodes, skew_held=np.array([skew[i][0] for i in skew_nodes]).reshape(-1, 3, 3),
+        skew_held_rot=np.array([skew[i][1] for i in skew_nodes]).reshape(-1, 3, 3))
