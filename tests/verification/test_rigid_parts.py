@@ -79,3 +79,26 @@ def test_prescribed_motion_of_a_rigid_part(tmp_path):
     ux = r.node_displacement[:, 0, 0]
     np.testing.assert_allclose(ux, -500.0 * r.time, rtol=1e-6, atol=1e-6)
     np.testing.assert_allclose(r.discrete_force[:, 0], -50.0 * 500.0 * r.time, rtol=1e-6, atol=1e-3)
+
+
+@pytest.mark.parametrize("card2,extra,turns", [
+    ("0.0,0.0,0.0", [], True),  # free: the off-centre spring turns the plate about z
+    ("1.0,0.0,3.0", [], False),  # CON2 = 3: z rotation held
+    ("-1.0,5.0,1.0", ["*DEFINE_COORDINATE_VECTOR", "5,1,1,0,-1,1,0"], False),  # local z (= global z) held
+])
+def test_rotation_constraints(tmp_path, card2, extra, turns):
+    """A second spring pushes the plate 40 mm off its centre: without constraint
+    the plate turns about z; with the z rotation held (global CON2 or a
+    local SPC code with CMO = -1) it only translates, and the energy stays
+    balanced (the reaction torque does no work)."""
+    push = ["*NODE", "6,0,90,50", "*ELEMENT_DISCRETE", "11,2,100,6", "*CONSTRAINED_EXTRA_NODES_NODE", "1,6"]
+    m = _plate_deck(tmp_path, [*push, *extra], mat="1,7.85e-9,210000.0,0.3\n" + card2)
+    r = run(m, output_dt=1e-4)
+    spread = np.abs(r.node_displacement[:, 1, 0] - r.node_displacement[:, 0, 0]).max()
+    if turns:
+        assert spread > 1.0
+    else:
+        assert spread < 1e-9
+        w = r.info["bodies"][1]
+        assert abs(w["momentum"][2]) < 1e-9 * max(1.0, np.abs(w["momentum"]).max())
+    assert np.max(np.abs(r.energy_ratio - 1.0)) < 2e-3

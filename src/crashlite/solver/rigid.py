@@ -38,8 +38,8 @@ class RigidBody:
     velocity: np.ndarray  # (3,) CoG velocity (half step)
     momentum: np.ndarray  # (3,) angular momentum about the CoG, world frame (half step)
     rot: np.ndarray  # (3, 3) body-to-world rotation
-    fix_v: np.ndarray | None = None  # (3,) bool: translations held (MAT_RIGID CON1)
-    fix_w: bool = False  # all rotations held (MAT_RIGID CON2 = 7)
+    held_v: np.ndarray | None = None  # (3, 3) rows: held translation directions, zero rows free (MAT_RIGID)
+    held_w: np.ndarray | None = None  # (3, 3) rows: held rotation axes, zero rows free
     prev: tuple | None = None  # (velocity, momentum) before the last kick
 
     def omega(self, rot: np.ndarray | None = None) -> np.ndarray:
@@ -69,10 +69,26 @@ class RigidBody:
         self.momentum += dt_v * np.cross(arm, fn).sum(axis=0)
         if moment is not None:
             self.momentum += dt_v * moment[self.nodes].sum(axis=0)
-        if self.fix_v is not None:
-            self.velocity[self.fix_v] = 0.0
-        if self.fix_w:
+        self.constrain()
+
+    def constrain(self) -> None:
+        """Zero the velocity along held directions and the angular velocity
+        about held axes; the reaction torque acts about the held axes only,
+        so the momentum about the free ones is kept."""
+        if self.held_v is not None:
+            self.velocity -= self.held_v.T @ (self.held_v @ self.velocity)
+        if self.held_w is None or not self.held_w.any():
+            return
+        held = self.held_w[np.any(self.held_w != 0, axis=1)]
+        if len(held) >= 3:
             self.momentum[:] = 0.0
+            return
+        # free axes: the orthonormal complement of the held ones
+        q = np.linalg.qr(np.vstack([held, np.eye(3)]).T)[0].T
+        free = q[len(held):3]
+        inertia = self.rot @ self.inertia_body @ self.rot.T
+        a = np.linalg.solve(free @ inertia @ free.T, free @ self.momentum)
+        self.momentum[:] = inertia @ (free.T @ a)
 
     def drift(self, dt: float) -> None:
         """Move and turn the body over dt."""

@@ -88,19 +88,26 @@ def part_bodies(model: Model, x: np.ndarray, v: np.ndarray, mass: np.ndarray,
             given["w"] = [lead_part.get(k, 0.0) for k in ("vrx", "vry", "vrz")]
         body = build_body(pid_lead, nodes, x, v, mass, given)
         cmo = int(mat.get("cmo", 0) or 0)
+        con1, con2 = int(mat.get("con1", 0) or 0), int(mat.get("con2", 0) or 0)
         if cmo == 1:
-            con1, con2 = int(mat.get("con1", 0) or 0), int(mat.get("con2", 0) or 0)
-            if con1 not in _CON or con2 not in (0, 7):
-                problems.append(Problem(*mat.where("con2"), mat.name, "CON2",
-                                        "rotation constraints other than none (0) or all (7) are "
-                                        "not supported yet"))
-            body.fix_v = np.array(_CON.get(con1, (0, 0, 0)), bool)
-            body.fix_w = con2 == 7
-            body.velocity[body.fix_v] = 0.0
-            if body.fix_w:
-                body.momentum[:] = 0.0
+            if con1 not in _CON or con2 not in _CON:
+                problems.append(Problem(*mat.where("con1"), mat.name, "CON1",
+                                        f"constraint codes CON1 = {con1}, CON2 = {con2}: 0 to 7 expected"))
+            body.held_v = np.diag(np.array(_CON.get(con1, (0, 0, 0)), float))
+            body.held_w = np.diag(np.array(_CON.get(con2, (0, 0, 0)), float))
+        elif cmo == -1:  # CON1: local system, CON2: SPC code "xyzXYZ" as digits (100000: x held)
+            from .frames import axes
+
+            try:
+                r = axes(model, con1) if con1 else np.eye(3)
+            except (KeyError, ValueError) as e:
+                problems.append(Problem(*mat.where("con1"), mat.name, "CON1", str(e)))
+                continue
+            digits = [int(c) for c in f"{con2:06d}"[-6:]]
+            body.held_v = np.array(digits[:3], float)[:, None] * r
+            body.held_w = np.array(digits[3:], float)[:, None] * r
         elif cmo != 0:
-            problems.append(Problem(*mat.where("cmo"), mat.name, "CMO",
-                                    "rigid-body constraints in a local system (CMO = -1) are not supported yet"))
+            problems.append(Problem(*mat.where("cmo"), mat.name, "CMO", f"CMO = {cmo}: -1, 0 or 1 expected"))
+        body.constrain()
         bodies.append(body)
     return bodies
