@@ -1,11 +1,18 @@
-"""Time histories of a run (glstat, deforc, rwforc, nodout) and the final state."""
+"""Time histories of a run (glstat, matsum, nodout, rwforc, deforc,
+secforc, spcforc) and the final state; saved as results.npz (full
+precision) and as LS-DYNA-style ASCII files."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 
 import numpy as np
+
+
+def _empty(*trailing: int):
+    """default_factory of an optional history: no states."""
+    return field(default_factory=lambda: np.zeros((0,) + trailing))
 
 
 @dataclass
@@ -34,43 +41,79 @@ class Results:
     states_x: np.ndarray  # (n_fields, n_nodes, 3) coordinates at those times
     final_x: np.ndarray  # (n_nodes, 3)
     final_v: np.ndarray  # (n_nodes, 3)
+    # optional histories (empty: not recorded; writers then omit or derive them)
+    part_kinetic: np.ndarray = _empty(0)  # (n_states, n_parts) kinetic energy per part [energy]
+    part_momentum: np.ndarray = _empty(0, 3)  # (n_states, n_parts, 3) momentum per part [mass*length/time]
+    part_rigid_velocity: np.ndarray = _empty(0, 3)  # (n_states, n_parts, 3) CoG velocity of rigid parts, NaN for deformable ones [length/time]
+    part_hourglass: np.ndarray = _empty(0)  # (n_states, n_parts) hourglass energy per part [energy]
+    section_moment: np.ndarray = _empty(0, 3)  # (n_states, n_sections, 3) moment through each section [force*length]
+    node_acceleration: np.ndarray = _empty(0, 3)  # (n_states, n_hist, 3) of the history nodes [length/time^2]
+    node_coordinates: np.ndarray = _empty(0, 3)  # (n_states, n_hist, 3) current coordinates of the history nodes [length]
+    hourglass: np.ndarray = _empty()  # (n_states,) global hourglass energy [energy]
+    sliding: np.ndarray = _empty()  # (n_states,) global sliding interface (contact) energy [energy]
+    time_step: np.ndarray = _empty()  # (n_states,) time step at each state [time]
+    cycle_number: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (n_states,) int64 cycle of each state
+    discrete_force_vector: np.ndarray = _empty(0, 3)  # (n_states, n_discrete, 3) force of each discrete element in global axes [force]
+    wall_normal_force: np.ndarray = _empty(0)  # (n_states, n_walls) force along each wall's normal [force]
     cycles: int = 0
     dt: float = 0.0
     wall_time: float = 0.0
     info: dict = field(default_factory=dict)
 
+    def recorded(self, name: str) -> bool:
+        """True when the optional history ``name`` holds every state."""
+        a = getattr(self, name)
+        return a.ndim >= 1 and a.shape[0] == len(self.time) and a.size > 0
+
+    def _or_zero(self, name: str) -> np.ndarray:
+        return getattr(self, name) if self.recorded(name) else np.zeros(len(self.time))
+
     @property
     def total(self) -> np.ndarray:
-        return self.kinetic + self.internal
+        """(n_states,) total energy as LS-DYNA's glstat counts it: kinetic
+        + internal + rigid-wall + hourglass + sliding [energy]."""
+        return self.kinetic + self.internal + self.wall + self._or_zero("hourglass") + self._or_zero("sliding")
 
     @property
     def energy_ratio(self) -> np.ndarray:
-        """(kinetic + internal + wall) / (initial total + external work): 1
-        when energy is conserved."""
+        """(n_states,) total / (initial total + external work): 1 when
+        energy is conserved."""
+        if len(self.time) == 0:
+            return np.zeros(0)
         supplied = self.total[0] + self.external
-        return (self.kinetic + self.internal + self.wall) / np.where(supplied != 0, supplied, 1.0)
+        return self.total / np.where(supplied != 0, supplied, 1.0)
 
-    def save(self, directory) -> Path:
+    def save(self, directory, title: str | None = None) -> Path:
+        """results.npz (every array, full precision) and the LS-DYNA ASCII
+        files that have data (glstat always; matsum, nodout, rwforc,
+        deforc, secforc, spcforc when the run has their entities)."""
         directory = Path(directory)
         directory.mkdir(parents=True, exist_ok=True)
         path = directory / "results.npz"
         arrays = {k: v for k, v in self.__dict__.items() if isinstance(v, np.ndarray)}
-        np.savez_compressed(path, cycles=self.cycles, dt=self.dt, wall_time=self.wall_time, **arrays)
-        from ..results.ascii import write_glstat
+        added = self.info.get("added_mass") or {}
+        np.savez_compressed(path, cycles=self.cycles, dt=self.dt, wall_time=self.wall_time,
+                            info_added_mass_parts=np.array(list(added), np.int64),
+                            info_added_mass=np.array(list(added.values()), float),
+                            info_title=np.array(str(self.info.get("title", ""))), **arrays)
+        from ..results.history import categories
+        from ..results.lsdyna_ascii import write_all
 
-        added = sum(self.info.get("added_mass", {}).values()) if self.info else 0.0
-        write_glstat(directory / "glstat", {
-            "time": self.time, "time_step": np.full(len(self.time), self.dt),
-            "kinetic_energy": self.kinetic, "internal_energy": self.internal,
-            "spring_and_damper_energy": self.internal, "external_work": self.external,
-            "total_energy": self.kinetic + self.internal, "energy_ratio": self.energy_ratio,
-            "added_mass": np.full(len(self.time), added)})
+        write_all(directory, categories(self), title if title is not None else self.info.get("title", ""))
         return path
 
     @classmethod
     def load(cls, path) -> "Results":
+        """A results.npz (or the folder holding it); histories the file
+        lacks (written by an older crashlite) come back empty."""
         with np.load(Path(path) / "results.npz" if Path(path).is_dir() else path) as z:
             data = {k: z[k] for k in z.files}
+        info = {}
+        if "info_added_mass_parts" in data:
+            info["added_mass"] = dict(zip(data["info_added_mass_parts"].tolist(), data["info_added_mass"].tolist()))
+        if "info_title" in data and str(data["info_title"]):
+            info["title"] = str(data["info_title"])
         scalars = {"cycles": int(data.pop("cycles")), "dt": float(data.pop("dt")),
                    "wall_time": float(data.pop("wall_time"))}
-        return cls(**data, **scalars)
+        known = {f.name for f in fields(cls)}
+        return cls(**{k: v for k, v in data.items() if k in known}, **scalars, info=info)
