@@ -70,7 +70,6 @@ class DiscreteGroup(ElementGroup):
         self._s06 = tuple(a if a is not None else z for a, z in
                           ((d.ucurve_start, zi), (d.ucurve_stop, zi), (d.yield_t, zf), (d.yield_c, zf)))
         self.energy = np.zeros(ne)
-        self._scratch = np.zeros((n_nodes, 3))
         self._ptr, self._elem, self._sign = incidence(n_nodes, d.n1, d.n2)
 
     def forces(self, st) -> None:
@@ -80,8 +79,7 @@ class DiscreteGroup(ElementGroup):
         discrete_forces(st.x, st.v, d.n1, d.n2, d.kind, d.k, d.scale, d.offset, d.length0, d.direction,
                         d.curve_start, d.curve_stop, d.curve_x, d.curve_y, d.ground, d.ctf, *self._s06,
                         self.plastic, self.hist, self.fe, self.force, self.elong)
-        gather(self._ptr, self._elem, self._sign, self.fe, self._scratch)
-        st.f += self._scratch
+        gather(self._ptr, self._elem, self._sign, self.fe, st.f)
 
     def start(self) -> None:
         """Values at t = 0 are the reference of the energy account."""

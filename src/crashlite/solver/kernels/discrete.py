@@ -142,7 +142,7 @@ def discrete_forces(x, v, n1, n2, kind, k, scale, offset, length0, direction, cu
 
 @njit(cache=True, parallel=True)
 def gather(node_ptr, elem_of, sign_of, fe, out):
-    """out[i] = Σ sign · fe[e] over the elements of node i, in a fixed order.
+    """out[i] += Σ sign · fe[e] over the elements of node i, in a fixed order.
 
     The node-to-element incidence (CSR: node_ptr, elem_of, sign_of) is built
     once; every node sums its own terms, so threads never write the same
@@ -158,9 +158,9 @@ def gather(node_ptr, elem_of, sign_of, fe, out):
             a0 += s * fe[e, 0]
             a1 += s * fe[e, 1]
             a2 += s * fe[e, 2]
-        out[i, 0] = a0
-        out[i, 1] = a1
-        out[i, 2] = a2
+        out[i, 0] += a0
+        out[i, 1] += a1
+        out[i, 2] += a2
 
 
 @njit(cache=True, parallel=True)
