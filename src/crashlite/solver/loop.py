@@ -252,7 +252,8 @@ def integrate(s: Setup, output_dt: float | None = None,
             if output:
                 if not np.all(np.isfinite(v)):
                     bad = int(np.argwhere(~np.isfinite(v))[0, 0])
-                    raise FloatingPointError(f"non-finite velocity at node index {bad}, t = {t:.6g} "
+                    name = f"node {int(s.node_ids[bad])}" if s.node_ids is not None else f"node index {bad}"
+                    raise FloatingPointError(f"non-finite velocity at {name}, t = {t:.6g} "
                                              f"(cycle {cycle}): the run diverged")
                 v_mid = 0.5 * (v_prev + v)
                 ke = kinetic(v_mid, 0.5 * (w_prev + st.w))

@@ -110,6 +110,7 @@ class Setup:
     dt_min: float = 0.0  # *CONTROL_TERMINATION DTMIN: stop below this factor of the first step
     end_energy: float = 0.0  # *CONTROL_TERMINATION ENDENG: stop when the energy ratio moves this %
     groups: list = field(default_factory=list)  # further element groups (groups.ElementGroup)
+    node_ids: np.ndarray | None = None  # (n,) deck node IDs, for messages (None: indices)
     skew_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (k,) SPC in local systems
     skew_held: np.ndarray = field(default_factory=lambda: np.zeros((0, 3, 3)))  # (k, 3, 3) held directions
     skew_held_rot: np.ndarray = field(default_factory=lambda: np.zeros((0, 3, 3)))  # (k, 3, 3) held axes
@@ -573,5 +574,6 @@ def build(model: Model) -> Setup:
         if model.find("DATABASE_BINARY_D3PLOT") else 0.0,
         dt_min=float(term[0].get("dtmin", 0.0) or 0.0) if term else 0.0,
         end_energy=float(term[0].get("endeng", 0.0) or 0.0) if term else 0.0,
+        node_ids=model.nodes.ids.astype(np.int64),
         skew_nodes=skew_nodes, skew_held=np.array([skew[i][0] for i in skew_nodes]).reshape(-1, 3, 3),
         skew_held_rot=np.array([skew[i][1] for i in skew_nodes]).reshape(-1, 3, 3))
