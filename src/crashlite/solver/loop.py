@@ -34,7 +34,8 @@ class State:
     x, v, f (n, 3): coordinates, half-step velocities, nodal forces;
     rot (n, 3, 3), w (n, 3), moment (n, 3): nodal rotations, angular
     velocities and moments (nodes with rotational inertia); mass, inv_mass,
-    rot_inertia, inv_j (n,); fixed, fixed_rot (n, 3) held DOFs.
+    rot_inertia, inv_j (n,); fixed, fixed_rot (n, 3) held DOFs; t the time
+    and dt the step just taken (0 at the first force evaluation).
     """
 
     x: np.ndarray
@@ -49,6 +50,8 @@ class State:
     inv_j: np.ndarray
     fixed: np.ndarray
     fixed_rot: np.ndarray
+    t: float = 0.0
+    dt: float = 0.0
 
 
 def _state(s: Setup) -> State:
@@ -82,6 +85,7 @@ class _Recorder:
     def __init__(self, s: Setup, st: State, groups, parts: PartAccount, walls: Walls):
         self.s, self.st, self.groups, self.parts, self.walls = s, st, groups, parts, walls
         self.rows: dict[str, list] = {}
+        self.cycle = 0
         self.discrete = groups[0]
         # nodes with a constrained DOF: their reactions are written (spcforc)
         held = s.fixed.any(axis=1)
@@ -106,16 +110,18 @@ class _Recorder:
 
     def __call__(self, t, v_mid, acc, ke, work, ew):
         st, h, d = self.st, self.s.history_nodes, self.discrete
-        ie = float(sum(g.energy.sum() for g in self.groups))
+        ie = float(sum(g.energy.sum() for g in self.groups if g.kind != "contact"))
+        se = float(sum(g.energy.sum() for g in self.groups if g.kind == "contact"))
         hg = float(sum(g.hourglass.sum() for g in self.groups if g.hourglass is not None))
-        self.add(time=t, kinetic=ke, internal=ie, hourglass=hg, wall=ew, external=work,
+        self.add(time=t, kinetic=ke, internal=ie, hourglass=hg, sliding=se, wall=ew, external=work,
+                 time_step=st.dt, cycle=self.cycle,
                  force=d.force.copy(), elong=d.elong.copy(), wall_force=self.walls.force[:, :3].copy(),
                  wall_velocity=self.walls.velocity.copy(), disp=st.x[h] - self.s.x0[h], vel=v_mid[h].copy(),
                  acc=acc[h].copy(), coord=st.x[h].copy(), spc=self._spc.copy(), sec=self._sec[0].copy(),
                  sec_m=self._sec[1].copy(), part_ie=self.parts.internal(), part_hg=self.parts.hourglass(),
                  part_ke=self.parts.kinetic(st.mass, v_mid), part_p=self.parts.momentum(st.mass, v_mid),
                  part_rbv=self.parts.rigid_velocity())
-        return ie
+        return ie + se + hg
 
     def array(self, key, shape):
         ns = len(self.rows["time"])
@@ -131,7 +137,7 @@ def integrate(s: Setup, output_dt: float | None = None,
     added_mass = scale_masses(s, s.discrete_pid if len(s.discrete_pid) == len(s.discrete.ids) else None)
     st = _state(s)
     n = len(s.mass)
-    nb = s.beams is not None and len(s.beams.ids) > 0
+    nb = bool((st.rot_inertia > 0).any())  # nodes with rotational DOFs (beams, shells)
     x, v, f = st.x, st.v, st.f
     groups = groups_of(s, n)
     walls = Walls(s.walls, s.bodies, n)
@@ -162,6 +168,8 @@ def integrate(s: Setup, output_dt: float | None = None,
             g.forces(st)
         if s.body_loads:
             f[:] += body_force(t)
+        for c in s.constraints:  # tied contacts, spot welds: slave forces to the masters
+            c.forces(st)
 
     def kinetic(v_mid, w_mid):
         ke = 0.5 * float(np.einsum("i,ij,ij->", free_mass, v_mid, v_mid))
@@ -179,13 +187,20 @@ def integrate(s: Setup, output_dt: float | None = None,
         for b in s.bodies:
             b.kick(f, x, dt_v, st.moment if nb else None)
             place(b)
+        for c in s.constraints:
+            c.velocities(st)
 
-    dt_stable = stable_dt(s)
+    dt_static = stable_dt(s)  # discrete elements and beams: fixed for the run
+    updated = [g for g in groups if hasattr(g, "critical_dt")]  # shells, solids: from the current shape
 
     def step_size(t):
-        if s.dt_max is None:
-            return dt_stable
-        return min(dt_stable, float(np.interp(t, *s.dt_max)))
+        dt_el = min((g.critical_dt(st) for g in updated), default=np.inf) * s.tssfac
+        dt_s = min(dt_static, dt_el)
+        if not np.isfinite(dt_s):
+            dt_s = s.end_time / 1000.0  # nothing to resolve: masses, walls and motions only
+        if s.dt_max is not None:
+            dt_s = min(dt_s, float(np.interp(t, *s.dt_max)))
+        return dt_s
 
     # t = 0: forces, half-step velocity
     internal_forces(0.0)
@@ -225,6 +240,7 @@ def integrate(s: Setup, output_dt: float | None = None,
             walls.move(dt_step)
             t += dt_step
             cycle += 1
+            st.t, st.dt = t, dt_step
             internal_forces(t)
             for g in groups:
                 g.account()
@@ -258,9 +274,11 @@ def integrate(s: Setup, output_dt: float | None = None,
                 v_mid = 0.5 * (v_prev + v)
                 ke = kinetic(v_mid, 0.5 * (w_prev + st.w))
                 # the last work increment belongs to the half step after t: count half of it
+                rec.cycle = cycle
                 ie = rec(t, v_mid, (v - v_prev) / dt_v, ke, w_ext - 0.5 * dw, ew_total)
                 next_out += output_dt
-                supplied = rec.rows["kinetic"][0] + rec.rows["internal"][0] + w_ext - 0.5 * dw
+                supplied = sum(rec.rows[k][0] for k in ("kinetic", "internal", "sliding", "hourglass")) \
+                    + w_ext - 0.5 * dw
                 ratio = (ke + ie + ew_total) / max(supplied, 1e-300)
                 if progress is not None:
                     progress(t, cycle, dt, ratio)
@@ -283,7 +301,8 @@ def _results(s, rec, groups, parts, walls, st, locals_) -> Results:
     extra = dict(part_kinetic=a("part_ke", (npart,)), part_momentum=a("part_p", (npart, 3)),
                  part_rigid_velocity=a("part_rbv", (npart, 3)), part_hourglass=a("part_hg", (npart,)),
                  section_moment=a("sec_m", (nsec, 3)), node_acceleration=a("acc", (nh, 3)),
-                 node_coordinates=a("coord", (nh, 3)), hourglass=a("hourglass", ()))
+                 node_coordinates=a("coord", (nh, 3)), hourglass=a("hourglass", ()), sliding=a("sliding", ()),
+                 time_step=a("time_step", ()), cycle_number=a("cycle", ()).astype(np.int64))
     known = {f.name for f in fields(Results)}
     n = len(st.x)
     return Results(

@@ -110,6 +110,7 @@ class Setup:
     dt_min: float = 0.0  # *CONTROL_TERMINATION DTMIN: stop below this factor of the first step
     end_energy: float = 0.0  # *CONTROL_TERMINATION ENDENG: stop when the energy ratio moves this %
     groups: list = field(default_factory=list)  # further element groups (groups.ElementGroup)
+    constraints: list = field(default_factory=list)  # tied contacts, spot welds: forces(st), velocities(st)
     node_ids: np.ndarray | None = None  # (n,) deck node IDs, for messages (None: indices)
     skew_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (k,) SPC in local systems
     skew_held: np.ndarray = field(default_factory=lambda: np.zeros((0, 3, 3)))  # (k, 3, 3) held directions
