@@ -466,7 +466,9 @@ def build(model: Model) -> Setup:
     from .rigid_parts import part_bodies, rigid_part_ids
     from .sections import build_sections
 
-    problems: list[Problem] = []
+    from .support import unsupported_cards
+
+    problems: list[Problem] = unsupported_cards(model)
     rigid = np.array(sorted(rigid_part_ids(model)), np.int64)
     for t in _UNSUPPORTED_TABLES:
         deformable = ~np.isin(getattr(model, t).pid, rigid)
