@@ -163,7 +163,8 @@ def integrate(s: Setup, output_dt: float | None = None,
     def internal_forces(t):
         """f (and moment): the force the elements and body loads exert on the nodes."""
         f[:] = 0.0
-        st.moment[:] = 0.0
+        if nb:
+            st.moment[:] = 0.0
         for g in groups:
             g.forces(st)
         if s.body_loads:
