@@ -33,6 +33,7 @@ def defined_ids(model: Model) -> dict[str, set]:
         "part": set(model.parts), "sec": set(model.sections), "mat": set(model.materials),
         "hg": set(model.hourglasses), "curve": set(model.curves), "vector": set(model.vectors),
         "coord": set(model.coordinate_systems), "eos": set(),
+        "sdo": {int(r["vid"]) for r in model.find("DEFINE_SD_ORIENTATION")},
     }
     for kind, sid in model.sets:
         d.setdefault("set_" + kind.lower(), set()).add(sid)
@@ -53,7 +54,7 @@ def defined_ids(model: Model) -> dict[str, set]:
 
 
 _WHAT = {"part": "part", "sec": "section", "mat": "material", "hg": "hourglass control",
-         "curve": "curve", "vector": "vector", "coord": "coordinate system",
+         "curve": "curve", "vector": "vector", "coord": "coordinate system", "sdo": "SD orientation",
          "set_node": "node set", "set_part": "part set", "set_shell": "shell set",
          "set_solid": "solid set", "set_beam": "beam set", "set_discrete": "discrete set",
          "set_segment": "segment set"}

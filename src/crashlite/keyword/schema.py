@@ -25,7 +25,7 @@ INT, FLOAT, STR = "i", "f", "s"
 REF_KINDS = (
     "node", "elem", "part", "sec", "mat", "eos", "hg", "curve", "vector",
     "coord", "set_node", "set_part", "set_shell", "set_solid", "set_beam",
-    "set_discrete", "set_segment", "set_any", "rigidwall", "contact", "sect",
+    "set_discrete", "set_segment", "set_any", "rigidwall", "contact", "sect", "sdo",
 )
 
 

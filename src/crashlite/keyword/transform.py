@@ -22,7 +22,7 @@ _KINDS = {
     "IDSOFF": ("set_node", "set_part", "set_shell", "set_solid", "set_beam", "set_discrete",
                "set_segment", "set_any"),
     "IDFOFF": ("curve",),
-    "IDDOFF": ("vector", "coord"),
+    "IDDOFF": ("vector", "coord", "sdo"),
     "IDROFF": ("rigidwall", "contact", "sect"),
 }
 

@@ -217,6 +217,7 @@ def integrate(s: Setup, output_dt: float | None = None,
     f_body_prev = np.zeros_like(x)
     rec.reactions_and_sections()
     rec(t, v, np.zeros_like(v), kinetic(v, st.w), 0.0, ew_total)
+    walls.snapshot(v)
     kick(0.5 * dt)
     w_ext = motions.apply(st, 0.0, 0.5 * dt, dt, place)
     dw = 0.0
@@ -261,6 +262,7 @@ def integrate(s: Setup, output_dt: float | None = None,
             if s.body_loads:  # work of the body loads over the last step (positions t-dt .. t)
                 w_ext += float(np.einsum("ij,ij->", f_body_prev, x - x_prev))
             dt_v = 0.5 * (dt_step + dt_new)
+            walls.snapshot(v)
             kick(dt_v)
             dw = motions.apply(st, t, dt_v, dt_new, place)
             w_ext += dw

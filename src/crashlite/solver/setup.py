@@ -203,15 +203,21 @@ def _discrete(model: Model, problems: list) -> Discrete:
     n1 = d.nodes[:, 0].astype(np.int64)
     n2 = d.nodes[:, 1].astype(np.int64)
     direction = np.zeros((n, 3))
-    for i, vid in enumerate(d.vid):
-        if vid:
-            vec = model.vectors.get(int(vid))
-            if vec is None:
-                problems.append(Problem(model.source or "", 0, "ELEMENT_DISCRETE", "VID",
-                                        f"element {int(d.ids[i])}: vector {int(vid)} is not defined"))
-                continue
-            u = np.array([vec["xh"] - vec["xt"], vec["yh"] - vec["yt"], vec["zh"] - vec["zt"]], float)
-            direction[i] = u / np.linalg.norm(u)
+    orient = {int(r["vid"]): r for r in model.find("DEFINE_SD_ORIENTATION")}
+    for vid in np.unique(d.vid[d.vid > 0]):
+        rec = orient.get(int(vid))
+        if rec is None:
+            problems.append(Problem(model.source or "", 0, "ELEMENT_DISCRETE", "VID",
+                                    f"*DEFINE_SD_ORIENTATION {int(vid)} is not defined"))
+            continue
+        if int(rec.get("iop", 0)) != 0:
+            problems.append(_problem(rec, "iop", "only IOP = 0 (a fixed vector) is supported yet"))
+            continue
+        u = np.array([rec.get("xt", 0.0), rec.get("yt", 0.0), rec.get("zt", 0.0)], float)
+        if not np.linalg.norm(u):
+            problems.append(_problem(rec, "xt", "the orientation vector has zero length"))
+            continue
+        direction[d.vid == vid] = u / np.linalg.norm(u)
     ground = x[n1].copy()
     other = np.where(n2[:, None] >= 0, x[np.maximum(n2, 0)], ground)
     rel = other - x[n1]

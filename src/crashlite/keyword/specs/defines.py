@@ -8,6 +8,9 @@ register(Spec("DEFINE_CURVE", fixed(
     doc="Curve: abscissa A1, ordinate O1, scaled by SFA/SFO and offset by OFFA/OFFO."))
 register(Spec("DEFINE_VECTOR", fixed(card("vid:i@vector xt:f=0 yt:f=0 zt:f=0 xh:f=0 yh:f=0 zh:f=0 cid:i=0@coord")),
               group="vectors", id_field="vid", doc="Vector from tail (XT..) to head (XH..)."))
+register(Spec("DEFINE_SD_ORIENTATION", fixed(card("vid:i@sdo iop:i=0 xt:f=0 yt:f=0 zt:f=0 nid1:i=0@node nid2:i=0@node")),
+              id_field="vid", doc="Orientation of discrete elements (VID of *ELEMENT_DISCRETE): IOP 0 a "
+                                  "fixed vector XT, YT, ZT; 2 the vector from NID1 to NID2."))
 register(Spec("DEFINE_COORDINATE_NODES",
               fixed(card("cid:i@coord n1:i@node n2:i@node n3:i@node flag:i=0 dir:s=X")),
               group="coordinate_systems", id_field="cid",

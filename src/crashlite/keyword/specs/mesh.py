@@ -79,7 +79,7 @@ register(Spec("ELEMENT_BEAM", _beam_layout,
               doc="Beams; n3 is the orientation node (0: none)."))
 
 register(Spec("ELEMENT_DISCRETE",
-              fixed(row=[card("eid:i8@elem pid:i8@part n1:i8@node n2:i8=0@node vid:i8=0@vector "
+              fixed(row=[card("eid:i8@elem pid:i8@part n1:i8@node n2:i8=0@node vid:i8=0@sdo "
                               "s:f16=1 pf:i8=0 offset:f16=0")]),
               group="discretes", bulk=True, title_option=False,
               doc="Springs/dampers between two nodes (n2=0: grounded); VID orientation, "

@@ -1,0 +1,152 @@
+"""The offset deformable barrier (ODB) as data.
+
+Dimensions and crush strengths of ECE R94 Annex 9 / EEVC (main block and
+bumper of aluminium honeycomb, clad with aluminium sheet), and the
+force–deflection characteristics of the paper's simplified barrier (bumper:
+≈ 1000 kN peak then ≈ 500 kN to compaction; main block: ≈ 230 kN plateau to
+compaction). All values in mm–t–s–N–MPa; ``scaled`` converts to a deck's
+system. Every value is a parameter.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from ..units import UnitSystem
+
+
+@dataclass(frozen=True)
+class BlockCurve:
+    """Force–crush characteristic of a whole honeycomb block (crush positive).
+
+    The force rises to ``peak`` over ``rise`` (elastic honeycomb), falls to
+    ``plateau`` by ``drop_end`` (the peak of unconditioned honeycomb; equal
+    to the plateau for none), stays there to the compaction onset
+    ``compaction`` (fraction of the depth) and stiffens to
+    ``full_factor × plateau`` at ``full`` (fraction of the depth): the
+    densified honeycomb.
+    """
+
+    plateau: float  # [N]
+    peak: float  # [N]
+    rise: float = 3.0  # [mm]
+    drop_end: float = 12.0  # [mm]
+    compaction: float = 0.80  # [-] of depth
+    full: float = 0.92  # [-] of depth
+    full_factor: float = 8.0  # [-]
+
+    def points(self, depth: float) -> tuple[np.ndarray, np.ndarray]:
+        """(crush [mm], force [N]) defining points, crush increasing from 0."""
+        c_on, c_full = self.compaction * depth, self.full * depth
+        xs = [0.0, self.rise]
+        fs = [0.0, self.peak]
+        if self.peak != self.plateau:
+            xs.append(max(self.drop_end, self.rise * 1.5))
+            fs.append(self.plateau)
+        xs += [c_on, c_full]
+        fs += [self.plateau, self.full_factor * self.plateau]
+        x = np.array(xs)
+        if np.any(np.diff(x) <= 0):
+            raise ValueError(f"curve points not increasing in crush: {xs} (depth {depth} mm)")
+        return x, np.array(fs)
+
+
+@dataclass(frozen=True)
+class Block:
+    """A honeycomb block of the barrier, in barrier axes: width along y,
+    height along z (above ground), depth along the impact direction."""
+
+    name: str
+    width: float  # [mm]
+    height: float  # [mm]
+    depth: float  # [mm]
+    z_low: float  # lower edge above ground [mm]
+    strength: float  # crush strength of the honeycomb [MPa]
+    density: float  # honeycomb density [t/mm³]
+    curve: BlockCurve
+
+    @property
+    def z_high(self) -> float:
+        return self.z_low + self.height
+
+    @property
+    def area(self) -> float:
+        return self.width * self.height
+
+    @property
+    def mass(self) -> float:
+        return self.density * self.area * self.depth
+
+
+@dataclass(frozen=True)
+class Cladding:
+    """Cladding sheets: a contact surface that allows local intrusion and
+    adds no strength (soft elastic sheet, so its time step stays above the
+    beams')."""
+
+    thickness_front: float = 0.81  # bumper front sheet [mm]
+    thickness_middle: float = 0.5  # sheet between bumper and main block [mm]
+    density: float = 2.7e-9  # aluminium [t/mm³]
+    modulus: float = 70.0  # [MPa]: 1/1000 of aluminium, by design (paper section 2.1)
+    poisson: float = 0.3
+
+
+def _main_block() -> Block:
+    return Block("main block", 1000.0, 650.0, 450.0, 200.0, 0.342, 2.86e-11,
+                 BlockCurve(plateau=230e3, peak=230e3))
+
+
+def _bumper() -> Block:
+    return Block("bumper", 1000.0, 330.0, 90.0, 280.0, 1.711, 8.26e-11,
+                 BlockCurve(plateau=500e3, peak=1000e3, rise=3.0, drop_end=12.0))
+
+
+@dataclass(frozen=True)
+class ODBSpec:
+    """The whole barrier: main block, bumper in front of it, cladding.
+
+    Honeycomb densities are typical of the 0.342 and 1.711 MPa aluminium
+    honeycombs (≈ 29 and 83 kg/m³); the curves default to the paper's.
+    """
+
+    main: Block = field(default_factory=_main_block)
+    bumper: Block = field(default_factory=_bumper)
+    cladding: Cladding = field(default_factory=Cladding)
+
+    def with_strength_curves(self) -> "ODBSpec":
+        """The spec with plateaus from the crush strengths × face areas
+        (R94: 222 kN and 565 kN) instead of the paper's curves."""
+        m, b = self.main, self.bumper
+        return replace(self, main=replace(m, curve=replace(m.curve, plateau=m.strength * m.area,
+                                                           peak=m.strength * m.area)),
+                       bumper=replace(b, curve=replace(b.curve, plateau=b.strength * b.area,
+                                                       peak=b.curve.peak / b.curve.plateau * b.strength * b.area)))
+
+    @property
+    def depth(self) -> float:
+        return self.main.depth + self.bumper.depth
+
+    @property
+    def mass(self) -> float:
+        """Honeycomb and cladding mass [t]."""
+        c = self.cladding
+        sheets = c.density * (self.bumper.area * c.thickness_front + self.main.area * c.thickness_middle)
+        return self.main.mass + self.bumper.mass + sheets
+
+    def check(self) -> None:
+        for b in (self.main, self.bumper):
+            for name in ("width", "height", "depth", "strength", "density"):
+                if not getattr(b, name) > 0:
+                    raise ValueError(f"{b.name}: {name} must be > 0 (got {getattr(b, name)})")
+        if not (self.main.z_low <= self.bumper.z_low and self.bumper.z_high <= self.main.z_high):
+            raise ValueError("the bumper must lie within the height of the main block")
+        if self.bumper.width != self.main.width:
+            raise ValueError("bumper and main block must have the same width")
+
+
+def scaled(value: float, kind: str, units: UnitSystem) -> float:
+    """A mm–t–s value of the given kind (length, mass, force, stress,
+    density, velocity) in ``units``."""
+    return value * getattr(units, kind)
