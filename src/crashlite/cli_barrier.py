@@ -1,0 +1,68 @@
+"""``crashlite barrier ...``: the offset deformable barrier from the command line."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+
+def _simplified(args) -> int:
+    from .barrier import Placement, offset_placement, simplified_barrier
+    from .units import system
+
+    if args.vehicle_width:
+        pl = offset_placement(args.vehicle_width, args.overlap / 100.0, args.side, args.y_centre, args.x_face,
+                              args.direction, args.ground)
+    else:
+        pl = Placement(args.x_face, args.direction, args.y_min, args.ground)
+    b = simplified_barrier(placement=pl, n_width=args.columns, n_main=args.rows_main, n_bumper=args.rows_bumper,
+                           id_offset=args.id_offset, units=system(args.units))
+    path = b.write(args.output)
+    print(f"wrote {path}: {b.beams} discrete beams, {b.shells} cladding shells, {b.mass:.6g} mass units; "
+          f"front node set {b.set_ids['front']}, barrier part set {b.set_ids['parts']}")
+    return 0
+
+
+def _impactor(args) -> int:
+    from .barrier import Placement, simplified_barrier
+    from .barrier.loadcases import Impactor, write_impactor_case
+    from .units import kmh
+
+    pl = Placement()
+    b = simplified_barrier(placement=pl, cladding=not args.no_cladding)
+    main = write_impactor_case(args.output, b, pl, Impactor(args.mass / 1000.0, kmh(args.speed), args.overlap / 100.0),
+                               end_time=args.end_time / 1000.0)
+    print(f"wrote {main} (and barrier.k): run it with `crashlite run {main} -o OUT`")
+    return 0
+
+
+def add_commands(sub) -> None:
+    """Register ``barrier`` and its subcommands on the top-level parser."""
+    bar = sub.add_parser("barrier", help="the offset deformable barrier (ODB)")
+    bsub = bar.add_subparsers(dest="barrier_command", required=True)
+    s = bsub.add_parser("simplified", help="write the paper's simplified barrier of discrete beams "
+                                           "as an include deck", formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    s.add_argument("-o", "--output", type=Path, required=True)
+    s.add_argument("--vehicle-width", type=float, default=0.0, help="vehicle width [mm]: place for an offset test")
+    s.add_argument("--overlap", type=float, default=40.0, help="overlap [%% of vehicle width]")
+    s.add_argument("--side", choices=("left", "right"), default="left", help="driver side")
+    s.add_argument("--y-centre", type=float, default=0.0, help="vehicle centre line y [mm]")
+    s.add_argument("--y-min", type=float, default=-500.0, help="barrier edge y without --vehicle-width [mm]")
+    s.add_argument("--x-face", type=float, default=0.0, help="barrier front face x [mm]")
+    s.add_argument("--direction", type=int, choices=(1, -1), default=1, help="travel direction of the vehicle (x)")
+    s.add_argument("--ground", type=float, default=0.0, help="ground z [mm]")
+    s.add_argument("--columns", type=int, default=36, help="beam columns across the width")
+    s.add_argument("--rows-main", type=int, default=20, help="beam rows of the main block")
+    s.add_argument("--rows-bumper", type=int, default=10, help="beam rows of the bumper")
+    s.add_argument("--id-offset", type=int, default=0, help="added to every ID")
+    s.add_argument("--units", default="mm-t-s", help="unit system of the deck (mm-t-s, mm-kg-ms, mm-g-ms, m-kg-s)")
+    s.set_defaults(func=_simplified)
+    i = bsub.add_parser("impactor", help="the rigid impactor load case on the simplified barrier",
+                        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    i.add_argument("-o", "--output", type=Path, required=True, help="folder for main.k and barrier.k")
+    i.add_argument("--mass", type=float, default=5000.0, help="impactor mass [kg]")
+    i.add_argument("--speed", type=float, default=64.0, help="impact speed [km/h]")
+    i.add_argument("--overlap", type=float, default=100.0, help="overlap [%% of the barrier width]")
+    i.add_argument("--end-time", type=float, default=100.0, help="end time [ms]")
+    i.add_argument("--no-cladding", action="store_true", help="beams only")
+    i.set_defaults(func=_impactor)
