@@ -463,7 +463,18 @@ def _bodies(model: Model, x, v, mass, problems: list) -> list:
     return bodies
 
 
-_UNSUPPORTED_TABLES = ("shells", "solids")
+_UNSUPPORTED_TABLES = ("shells",)
+
+
+def _element_groups(model: Model, rigid: np.ndarray, n: int, problems: list) -> list:
+    """Element families beyond discretes and beams (solids, ...) as groups."""
+    from .solids import SolidGroup, build_solids
+
+    groups = []
+    solids = build_solids(model, rigid, problems)
+    if solids is not None and len(solids):
+        groups.append(SolidGroup(solids, n))
+    return groups
 
 
 def build(model: Model) -> Setup:
@@ -494,6 +505,11 @@ def build(model: Model) -> Setup:
     if beams is not None:
         beam_mass, rot_inertia = lumped(beams, n)
         mass += beam_mass
+    groups = _element_groups(model, rigid, n, problems)
+    for g in groups:
+        m_g, j_g = g.lumped(n)
+        mass += m_g
+        rot_inertia += j_g
     v0 = np.zeros((n, 3))
     _initial_velocity(model, v0, problems)
     fixed, fixed_rot, skew = _constraints(model, problems)
@@ -504,6 +520,8 @@ def build(model: Model) -> Setup:
         used[beams.n1] = used[beams.n2] = True
     used[disc.n1] = True
     used[disc.n2[disc.n2 >= 0]] = True
+    for g in groups:
+        used[g.conn[g.conn >= 0]] = True
     bodies = _bodies(model, model.nodes.xyz, v0, mass, problems)
     bodies += part_bodies(model, model.nodes.xyz, v0, mass, problems)
     body_of = {b.body_id: b for b in bodies}
@@ -585,4 +603,4 @@ def build(model: Model) -> Setup:
         end_energy=float(term[0].get("endeng", 0.0) or 0.0) if term else 0.0,
         node_ids=model.nodes.ids.astype(np.int64),
         skew_nodes=skew_nodes, skew_held=np.array([skew[i][0] for i in skew_nodes]).reshape(-1, 3, 3),
-        skew_held_rot=np.array([skew[i][1] for i in skew_nodes]).reshape(-1, 3, 3))
+        skew_held_rot=np.array([skew[i][1] for i in skew_nodes]).reshape(-1, 3, 3), groups=groups)

@@ -1,0 +1,470 @@
+"""Solid elements from the Model: 8-node hexahedra (LS-DYNA ELFORM 1).
+
+Builds the struct-of-arrays set the kernels in ``kernels.solid`` run:
+element connectivity, material tables and curves, hourglass and bulk
+viscosity settings per element, initial volumes and material axes; plus
+lumped masses, the element time step and the state arrays.
+
+Section formulations: ELFORM 1 runs as is; 0, 2, -1 and -2 (one-point
+corotational and fully integrated variants) run as ELFORM 1 with a
+warning; any other ELFORM is refused. Hourglass types IHQ 1–5 run; IHQ 6
+runs as 5 with a warning; others are refused.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..keyword.errors import Problem
+from ..keyword.schema import RawKeyword
+from ..model.model import Model
+from .groups import ElementGroup
+from .kernels import solid_materials as sm
+from .kernels.solid import (N_CHUNKS, N_WORK, corner_incidence, gather_corners, solid_forces, solid_timestep,
+                            solid_volumes)
+
+_AS_ONE_POINT = (0, 2, -1, -2)
+
+
+@dataclass
+class SolidSet:
+    """Solid elements (n) and their materials (n_mat), see kernels.solid."""
+
+    ids: np.ndarray  # (n,) int64 element IDs
+    pid: np.ndarray  # (n,) int64 part IDs
+    conn: np.ndarray  # (n, 8) int64 node indices (LS-DYNA order, tetrahedra as n1 n2 n3 n3 n4 n4 n4 n4)
+    mat_of: np.ndarray  # (n,) int64 row of the material tables
+    mat_ids: np.ndarray  # (n_mat,) int64 deck material IDs
+    mtype: np.ndarray  # (n_mat,) int64 material kind (solid_materials.ELASTIC ...)
+    props: np.ndarray  # (n_mat, N_PROPS) float64 material parameters (solid_materials P_*)
+    mcurve: np.ndarray  # (n_mat, N_CURVES) int64 curve slots (-1: none)
+    curve_start: np.ndarray  # (n_curves,) int64
+    curve_stop: np.ndarray  # (n_curves,) int64
+    curve_x: np.ndarray  # (m,) float64 abscissae (strain) [-]
+    curve_y: np.ndarray  # (m,) float64 ordinates [stress]
+    rho0: np.ndarray  # (n,) float64 initial density [mass/length³]
+    vol0: np.ndarray  # (n,) float64 initial volume [length³]
+    axes0: np.ndarray  # (n, 3, 3) float64 initial material axes a, b, c (columns)
+    hg_type: np.ndarray  # (n,) int64 IHQ
+    hg_qm: np.ndarray  # (n,) float64 QM
+    q1: np.ndarray  # (n,) float64 quadratic bulk viscosity coefficient
+    q2: np.ndarray  # (n,) float64 linear bulk viscosity coefficient
+    warnings: list = field(default_factory=list)  # Problem: options run in an approximated way
+
+    def __len__(self) -> int:
+        return len(self.ids)
+
+
+@dataclass
+class SolidState:
+    """Per-element state of the solids (kernels.solid documents each)."""
+
+    sig: np.ndarray  # (n, 6) float64 stress [stress]
+    sv: np.ndarray  # (n, 6) float64 viscous stress [stress]
+    epsp: np.ndarray  # (n,) float64 effective plastic strain
+    hist: np.ndarray  # (n, N_HIST) float64
+    axes: np.ndarray  # (n, 3, 3) float64 material axes
+    hgq: np.ndarray  # (n, 3, 4) float64 hourglass generalized forces [force]
+    alive: np.ndarray  # (n,) int8 1 active, 0 eroded, -1 inverted
+    vol: np.ndarray  # (n,) float64 [length³]
+    rate: np.ndarray  # (n,) float64 volumetric strain rate [1/time]
+    cmod: np.ndarray  # (n,) float64 wave modulus [stress]
+    energy: np.ndarray  # (n,) float64 internal energy [energy]
+    hg_energy: np.ndarray  # (n,) float64 hourglass energy [energy]
+    fe: np.ndarray  # (n, 8, 3) float64 corner forces ON the nodes [force]
+    work: np.ndarray  # (N_CHUNKS, N_WORK) float64 scratch
+    node_ptr: np.ndarray  # (n_nodes + 1,) int64 CSR node -> corners
+    corner_of: np.ndarray  # (8n,) int64
+
+
+def new_state(s: SolidSet, n_nodes: int) -> SolidState:
+    n = len(s)
+    ptr, corner_of = corner_incidence(n_nodes, s.conn)
+    return SolidState(np.zeros((n, 6)), np.zeros((n, 6)), np.zeros(n), np.zeros((n, sm.N_HIST)), s.axes0.copy(),
+                      np.zeros((n, 3, 4)), np.ones(n, np.int8), s.vol0.copy(), np.zeros(n),
+                      s.props[s.mat_of, sm.P_WAVE].copy(), np.zeros(n), np.zeros(n), np.zeros((n, 8, 3)),
+                      np.zeros((N_CHUNKS, N_WORK)), ptr, corner_of)
+
+
+def compute_forces(s: SolidSet, st: SolidState, x: np.ndarray, v: np.ndarray, dt: float) -> None:
+    """Advance the solids' state to t(n+1) and fill st.fe (see kernels.solid)."""
+    solid_forces(x, v, float(dt), s.conn, s.mat_of, s.mtype, s.props, s.mcurve, s.curve_start, s.curve_stop,
+                 s.curve_x, s.curve_y, s.rho0, s.vol0, s.hg_type, s.hg_qm, s.q1, s.q2, st.sig, st.sv, st.epsp,
+                 st.hist, st.axes, st.hgq, st.alive, st.vol, st.rate, st.cmod, st.energy, st.hg_energy, st.work,
+                 st.fe)
+
+
+def lumped_mass(s: SolidSet, n_nodes: int) -> np.ndarray:
+    """(n_nodes,) nodal masses: ρ·V0/8 per element corner [mass]."""
+    mass = np.zeros(n_nodes)
+    np.add.at(mass, s.conn.ravel(), np.repeat(s.rho0 * s.vol0 / 8.0, 8))
+    return mass
+
+
+def element_dt(s: SolidSet, x: np.ndarray, st: SolidState | None = None) -> np.ndarray:
+    """(n,) critical time step of each solid [time] (LS-DYNA rule, before
+    TSSFAC): at the initial state without ``st``, else at the current one."""
+    out = np.empty(len(s))
+    if st is None:
+        vol = np.empty(len(s))
+        solid_volumes(x, s.conn, np.zeros((N_CHUNKS, N_WORK)), vol)
+        solid_timestep(x, s.conn, np.ones(len(s), np.int8), vol, s.rho0, s.vol0, s.props[s.mat_of, sm.P_WAVE],
+                       np.zeros(len(s)), s.q1, s.q2, out)
+    else:
+        solid_timestep(x, s.conn, st.alive, st.vol, s.rho0, s.vol0, np.maximum(st.cmod, 0.0), st.rate, s.q1,
+                       s.q2, out)
+    return out
+
+
+# --- from the Model -------------------------------------------------------------------------------
+
+
+def _where(rec, fld):
+    return rec.where(fld) if rec is not None and hasattr(rec, "where") else ("", 0)
+
+
+def _problem(rec, fld, msg) -> Problem:
+    f, line = _where(rec, fld)
+    return Problem(f, line, getattr(rec, "name", ""), fld.upper() if fld else None, msg)
+
+
+class _Curves:
+    """Curve store (CSR) filled on demand, each *DEFINE_CURVE once."""
+
+    def __init__(self, model: Model):
+        self.model = model
+        self.slot: dict[int, int] = {}
+        self.xs: list[np.ndarray] = []
+        self.ys: list[np.ndarray] = []
+
+    def get(self, lcid: int) -> int:
+        if lcid not in self.slot:
+            c = self.model.curves[lcid]
+            a = np.asarray(c.rows["a1"], float) * float(c.get("sfa", 1.0) or 1.0) + float(c.get("offa", 0.0))
+            o = np.asarray(c.rows["o1"], float) * float(c.get("sfo", 1.0) or 1.0) + float(c.get("offo", 0.0))
+            self.add(a, o, lcid)
+        return self.slot[lcid]
+
+    def add(self, a, o, key) -> int:
+        self.slot[key] = len(self.xs)
+        self.xs.append(np.asarray(a, float))
+        self.ys.append(np.asarray(o, float))
+        return self.slot[key]
+
+    def arrays(self):
+        sizes = np.array([len(a) for a in self.xs], np.int64)
+        stop = np.cumsum(sizes)
+        cat = (lambda xs: np.concatenate(xs) if xs else np.zeros(0))
+        return stop - sizes, stop, cat(self.xs), cat(self.ys)
+
+
+def _elastic_constants(mat, row, problems) -> bool:
+    e, nu, ro = float(mat.get("e", 0.0)), float(mat.get("pr", 0.0)), float(mat.get("ro", 0.0))
+    if e <= 0 or ro <= 0 or not -1.0 < nu < 0.5:
+        problems.append(_problem(mat, "e", f"material {mat.get('mid')}: RO > 0, E > 0 and -1 < PR < 0.5 "
+                                            "are needed for solids"))
+        return False
+    k, g = e / (3.0 * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu))
+    row[sm.P_RO], row[sm.P_E], row[sm.P_PR], row[sm.P_K], row[sm.P_G] = ro, e, nu, k, g
+    row[sm.P_WAVE] = k + 4.0 * g / 3.0
+    row[sm.P_BULKQ] = 1.0
+    return True
+
+
+def _curve_ok(model, mat, fld, problems, required=True) -> bool:
+    lc = int(mat.get(fld, 0) or 0)
+    if lc == 0 and not required:
+        return True
+    if lc not in model.curves:
+        problems.append(_problem(mat, fld, f"curve {lc} is not defined (a *DEFINE_CURVE is needed)"))
+        return False
+    return True
+
+
+def _material(model: Model, mat, curves: _Curves, problems: list):
+    """(kind, props row, curve slots) of one material, or None if refused."""
+    row = np.zeros(sm.N_PROPS)
+    mc = np.full(sm.N_CURVES, -1, np.int64)
+    kw = mat.keyword
+    if kw not in ("MAT_ELASTIC", "MAT_PIECEWISE_LINEAR_PLASTICITY", "MAT_HONEYCOMB", "MAT_CRUSHABLE_FOAM"):
+        problems.append(_problem(mat, None, f"*{kw} is not supported for solids (supported: MAT_001, MAT_024, "
+                                            "MAT_026, MAT_063)"))
+        return None
+    if not _elastic_constants(mat, row, problems):
+        return None
+    if kw == "MAT_ELASTIC":
+        if float(mat.get("da", 0.0) or 0.0) or float(mat.get("db", 0.0) or 0.0):
+            problems.append(_problem(mat, "da", "axial/bending damping DA, DB apply to beams only"))
+        return sm.ELASTIC, row, mc
+    if kw == "MAT_PIECEWISE_LINEAR_PLASTICITY":
+        ok = True
+        for fld, what in (("lcsr", "strain-rate curve LCSR"), ("lcf", "LCF"), ("tdel", "TDEL")):
+            if float(mat.get(fld, 0) or 0) != 0:
+                problems.append(_problem(mat, fld, f"{what} is not supported for solids yet"))
+                ok = False
+        if float(mat.get("vp", 0.0) or 0.0) != 0.0:
+            problems.append(_problem(mat, "vp", "VP = 1 (viscoplastic rate formulation) is not supported yet"))
+            ok = False
+        fail = float(mat.get("fail", 1e21) or 1e21)
+        if fail < 0:
+            problems.append(_problem(mat, "fail", "FAIL < 0 (user failure subroutine) is not supported"))
+            ok = False
+        e, etan = row[sm.P_E], float(mat.get("etan", 0.0) or 0.0)
+        row[sm.P_SIGY] = float(mat.get("sigy", 0.0) or 0.0)
+        row[sm.P_HARD] = e * etan / (e - etan) if etan < e else 0.0
+        row[sm.P_FAIL] = fail if fail > 0 else 1e21
+        row[sm.P_CS_C], row[sm.P_CS_P] = float(mat.get("c", 0.0) or 0.0), float(mat.get("p", 0.0) or 0.0)
+        lcss = int(mat.get("lcss", 0) or 0)
+        eps = np.array([float(mat.get(f"eps{i}", 0.0) or 0.0) for i in range(1, 9)])
+        es = np.array([float(mat.get(f"es{i}", 0.0) or 0.0) for i in range(1, 9)])
+        if lcss:
+            if _curve_ok(model, mat, "lcss", problems):
+                mc[sm.C_LCSS] = curves.get(lcss)
+            else:
+                ok = False
+        elif np.any(es > 0):
+            n = int(np.flatnonzero(es > 0)[-1]) + 1
+            if n < 2:
+                problems.append(_problem(mat, "es1", "EPS/ES need at least two points"))
+                ok = False
+            else:
+                mc[sm.C_LCSS] = curves.add(eps[:n], es[:n], ("mat", mat.get("mid")))
+        elif row[sm.P_SIGY] <= 0:
+            problems.append(_problem(mat, "sigy", "SIGY > 0 (or a curve LCSS / EPS-ES points) is needed"))
+            ok = False
+        return (sm.PLASTIC, row, mc) if ok else None
+    if kw == "MAT_CRUSHABLE_FOAM":
+        if not _curve_ok(model, mat, "lcid", problems):
+            return None
+        mc[sm.C_FOAM] = curves.get(int(mat["lcid"]))
+        row[sm.P_TSC] = max(float(mat.get("tsc", 0.0) or 0.0), 0.0)
+        row[sm.P_DAMP] = float(mat.get("damp", 0.1) or 0.0)
+        return sm.FOAM, row, mc
+    return _honeycomb(model, mat, curves, row, mc, problems)
+
+
+def _honeycomb(model, mat, curves, row, mc, problems):
+    ok = True
+    vf = float(mat.get("vf", 0.0) or 0.0)
+    if not 0.0 < vf < 1.0:
+        problems.append(_problem(mat, "vf", "VF (relative volume at full compaction) must lie in (0, 1)"))
+        ok = False
+    if float(mat.get("lcsr", 0) or 0):
+        problems.append(_problem(mat, "lcsr", "strain-rate scaling LCSR is not supported yet"))
+        ok = False
+    if int(mat.get("macf", 1) or 1) != 1:
+        problems.append(_problem(mat, "macf", "MACF other than 1 (material axes change) is not supported"))
+        ok = False
+    if float(mat.get("aopt", 0.0) or 0.0) not in (0.0, 2.0):
+        problems.append(_problem(mat, "aopt", "AOPT 0 (element nodes 1, 2, 4) and 2 (vectors A, D) are "
+                                              "supported"))
+        ok = False
+    if not _curve_ok(model, mat, "lca", problems):
+        return None
+    lc = {"lca": int(mat["lca"])}
+    for fld, default in (("lcb", "lca"), ("lcc", "lca"), ("lcs", "lca"), ("lcab", "lcs"), ("lcbc", "lcs"),
+                         ("lcca", "lcs")):
+        v = int(mat.get(fld, 0) or 0)
+        if v and not _curve_ok(model, mat, fld, problems):
+            ok = False
+        lc[fld] = v or lc[default]
+    if not ok:
+        return None
+    for slot, fld in ((sm.C_A, "lca"), (sm.C_B, "lcb"), (sm.C_C, "lcc"), (sm.C_AB, "lcab"), (sm.C_BC, "lcbc"),
+                      (sm.C_CA, "lcca")):
+        mc[slot] = curves.get(lc[fld])
+    row[sm.P_SIGY], row[sm.P_VF] = float(mat.get("sigy", 0.0) or 0.0), vf
+    row[sm.P_DAMP] = float(mat.get("mu", 0.05) or 0.0)
+    row[sm.P_BULKQ] = 1.0 if float(mat.get("bulk", 0.0) or 0.0) else 0.0
+    for i, fld in enumerate(("eaau", "ebbu", "eccu", "gabu", "gbcu", "gcau")):
+        row[sm.P_EAAU + i] = float(mat.get(fld, 0.0) or 0.0)
+    row[sm.P_TSEF] = float(mat.get("tsef", 0.0) or 0.0)
+    row[sm.P_SSEF] = float(mat.get("ssef", 0.0) or 0.0)
+    # the time step follows the stiffest state (compacted, or a stiffer uncompacted modulus)
+    row[sm.P_WAVE] = max(row[sm.P_WAVE], *row[sm.P_EAAU:sm.P_EAAU + 6])
+    return sm.HONEYCOMB, row, mc
+
+
+def _bulk_viscosity(model: Model) -> tuple[float, float]:
+    """Q1, Q2 of *CONTROL_BULK_VISCOSITY (LS-DYNA defaults 1.5, 0.06)."""
+    for rec in model.keywords:
+        if isinstance(rec, RawKeyword) and rec.keyword == "CONTROL_BULK_VISCOSITY":
+            lines = [ln for ln in rec.lines if ln.strip() and not ln.lstrip().startswith("$")]
+            if not lines:
+                break
+            ln = lines[0]
+            fields = ln.split(",") if "," in ln else [ln[i:i + 10] for i in range(0, 30, 10)]
+            vals = [float(f) if f.strip() else None for f in fields[:2]] + [None, None]
+            return (vals[0] if vals[0] is not None else 1.5), (vals[1] if vals[1] is not None else 0.06)
+        if getattr(rec, "keyword", "") == "CONTROL_BULK_VISCOSITY" and hasattr(rec, "get"):
+            return float(rec.get("q1", 1.5)), float(rec.get("q2", 0.06))
+    return 1.5, 0.06
+
+
+def _axes(x, conn, aopt, a_vec, d_vec):
+    """(n, 3, 3) material axes: AOPT 0 from element nodes 1, 2, 4; AOPT 2
+    from vectors A and D (c = a × d, b = c × a)."""
+    if aopt == 2.0:
+        a = np.broadcast_to(a_vec, (len(conn), 3)).astype(float)
+        d = np.broadcast_to(d_vec, (len(conn), 3)).astype(float)
+    else:
+        a = x[conn[:, 1]] - x[conn[:, 0]]
+        d = x[conn[:, 3]] - x[conn[:, 0]]
+    c = np.cross(a, d)
+    b = np.cross(c, a)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        q = np.stack([u / np.linalg.norm(u, axis=1)[:, None] for u in (a, b, c)], axis=2)
+    return q
+
+
+def build_solids(model: Model, rigid_pids, problems: list, warnings: list | None = None) -> SolidSet | None:
+    """Solids of the deformable parts, or None if there are none. Problems
+    (unsupported options, missing data) are appended to ``problems``;
+    options run in an approximated way are reported in ``warnings`` (and
+    the set's ``warnings``)."""
+    so = model.solids
+    sel = ~np.isin(so.pid, np.asarray(rigid_pids, np.int64))
+    warns: list[Problem] = []
+    if not sel.any():
+        return None
+    ids, pid = so.ids[sel].astype(np.int64), so.pid[sel].astype(np.int64)
+    conn = so.nodes[sel].astype(np.int64)
+    n = len(ids)
+    src = model.source or ""
+    # 4-node input (n5..n8 blank) and LS-DYNA's tetrahedron n1 n2 n3 n4 n4 n4 n4 n4 -> n1 n2 n3 n3 n4 n4 n4 n4
+    blank = conn[:, 4:] < 0
+    conn[:, 4:] = np.where(blank, conn[:, 3:4], conn[:, 4:])
+    tet = np.all(conn[:, 4:] == conn[:, 3:4], axis=1) & (conn[:, 2] != conn[:, 3])
+    conn[tet] = conn[tet][:, [0, 1, 2, 2, 3, 3, 3, 3]]
+    if np.any(conn < 0):
+        problems.append(Problem(src, 0, "ELEMENT_SOLID", None, "solid elements need their nodes N1-N4 defined"))
+        return None
+    x = model.nodes.xyz
+    ctrl = model.find("CONTROL_HOURGLASS")
+    ihq0 = int(ctrl[0].get("ihq", 1) or 1) if ctrl else 1
+    qh0 = float(ctrl[0].get("qh", 0.1)) if ctrl else 0.1
+    bq1, bq2 = _bulk_viscosity(model)
+    curves = _Curves(model)
+    mat_rows: dict[int, int] = {}
+    mtypes, props, mcurves, mat_ids = [], [], [], []
+    mat_of = np.zeros(n, np.int64)
+    rho0 = np.zeros(n)
+    hg_type, hg_qm = np.zeros(n, np.int64), np.zeros(n)
+    q1, q2 = np.full(n, bq1), np.full(n, bq2)
+    axes = np.zeros((n, 3, 3))
+    axes[:] = np.eye(3)
+    for p in np.unique(pid):
+        m = pid == p
+        part = model.parts.get(int(p))
+        sec = model.sections.get(part.get("secid")) if part is not None else None
+        mat = model.materials.get(part.get("mid")) if part is not None else None
+        if part is None or sec is None or sec.keyword != "SECTION_SOLID" or mat is None:
+            problems.append(Problem(src, 0, "ELEMENT_SOLID", "PID",
+                                    f"solids of part {int(p)} need a *PART with a *SECTION_SOLID and a material"))
+            continue
+        elform = int(sec.get("elform", 1) if sec.get("elform") is not None else 1)
+        if elform in _AS_ONE_POINT:
+            warns.append(_problem(sec, "elform", f"ELFORM {elform} of part {int(p)} runs as ELFORM 1 (one-point "
+                                                 "integration with hourglass control)"))
+        elif elform != 1:
+            problems.append(_problem(sec, "elform", f"solid formulation {elform} is not supported (1; 0, 2, -1, "
+                                                    "-2 run as 1)"))
+            continue
+        mid = int(mat.get("mid"))
+        if mid not in mat_rows:
+            got = _material(model, mat, curves, problems)
+            if got is None:
+                continue
+            mat_rows[mid] = len(mtypes)
+            mtypes.append(got[0])
+            props.append(got[1])
+            mcurves.append(got[2])
+            mat_ids.append(mid)
+        row = mat_rows[mid]
+        mat_of[m] = row
+        rho0[m] = props[row][sm.P_RO]
+        if mtypes[row] == sm.HONEYCOMB:
+            a_vec = np.array([float(mat.get(k, 0.0) or 0.0) for k in ("a1", "a2", "a3")])
+            d_vec = np.array([float(mat.get(k, 0.0) or 0.0) for k in ("d1", "d2", "d3")])
+            aopt = float(mat.get("aopt", 0.0) or 0.0)
+            if aopt == 2.0 and np.linalg.norm(np.cross(a_vec, d_vec)) == 0.0:
+                problems.append(_problem(mat, "a1", "AOPT 2 needs vectors A and D that are not parallel"))
+                continue
+            q = _axes(x, conn[m], aopt, a_vec, d_vec)
+            if not np.all(np.isfinite(q)):
+                problems.append(_problem(mat, "aopt", f"part {int(p)}: material axes from element nodes 1, 2, 4 "
+                                                      "are undefined for a collapsed element"))
+                continue
+            axes[m] = q
+        hgid = int(part.get("hgid", 0) or 0)
+        hg = model.hourglasses.get(hgid) if hgid else None
+        if hgid and hg is None:
+            problems.append(_problem(part, "hgid", f"*HOURGLASS {hgid} is not defined"))
+            continue
+        ihq = int(hg.get("ihq", 0) or 0) if hg is not None else 0
+        ihq = ihq or ihq0
+        qm = float(hg.get("qm", 0.1)) if hg is not None else qh0
+        if ihq == 6:
+            warns.append(_problem(hg if hg is not None else part, "ihq",
+                                  f"IHQ 6 of part {int(p)} runs as IHQ 5 (Flanagan-Belytschko stiffness)"))
+            ihq = 5
+        elif not 1 <= ihq <= 5:
+            problems.append(_problem(hg if hg is not None else part, "ihq",
+                                     f"hourglass type {ihq} is not supported for solids (1-5, 6 as 5)"))
+            continue
+        hg_type[m], hg_qm[m] = ihq, qm
+        if hg is not None:
+            q1[m], q2[m] = float(hg.get("q1", 1.5)), float(hg.get("q2", 0.06))
+    if not mtypes:
+        return None
+    vol0 = np.empty(n)
+    solid_volumes(x, conn, np.zeros((N_CHUNKS, N_WORK)), vol0)
+    bad = np.flatnonzero(vol0 <= 0)
+    for i in bad[:10]:
+        problems.append(Problem(src, 0, "ELEMENT_SOLID", None,
+                                f"solid {int(ids[i])} has volume {vol0[i]:.4g} <= 0 (inverted node order?)"))
+    cs, ce, cx, cy = curves.arrays()
+    if warnings is not None:
+        warnings.extend(warns)
+    return SolidSet(ids, pid, conn, mat_of, np.array(mat_ids, np.int64), np.array(mtypes, np.int64),
+                    np.array(props), np.array(mcurves, np.int64).reshape(-1, sm.N_CURVES), cs, ce, cx, cy, rho0,
+                    vol0, axes, hg_type, hg_qm, q1, q2, warns)
+
+
+# --- in the time loop ----------------------------------------------------------------------------
+
+
+class SolidGroup(ElementGroup):
+    """The solids as an element group of the time loop (groups.ElementGroup)."""
+
+    kind = "solid"
+
+    def __init__(self, s: SolidSet, n_nodes: int):
+        self.s = s
+        self.st = new_state(s, n_nodes)
+        self.ids, self.pid, self.conn = s.ids, s.pid, s.conn
+        self.energy = self.st.energy  # internal energy, viscous work included [energy]
+        self.hourglass = self.st.hg_energy
+        self._rows = self.st.fe.reshape(-1, 3)
+        self._dt = np.empty(len(s))
+
+    def forces(self, st) -> None:
+        compute_forces(self.s, self.st, st.x, st.v, st.dt)
+        gather_corners(self.st.node_ptr, self.st.corner_of, self._rows, st.f)
+
+    def corner_forces(self) -> np.ndarray:
+        return self.st.fe
+
+    def lumped(self, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
+        return lumped_mass(self.s, n_nodes), np.zeros(n_nodes)
+
+    def critical_dt(self, st) -> float:
+        s, g = self.s, self.st
+        solid_timestep(st.x, s.conn, g.alive, g.vol, s.rho0, s.vol0, g.cmod, g.rate, s.q1, s.q2, self._dt)
+        return float(self._dt.min()) if len(self._dt) else np.inf
+
+    @property
+    def eroded(self) -> int:
+        return int(np.count_nonzero(self.st.alive != 1))
