@@ -57,7 +57,8 @@ def offset_placement(vehicle_width: float, overlap: float = 0.4, side: str = "le
 
 @dataclass
 class SimplifiedBarrier:
-    """The generated barrier: deck text and what load cases need of it."""
+    """A generated barrier (simplified or detailed): deck text and what
+    load cases need of it."""
 
     deck: str  # free-format keyword text
     node_ids: dict = field(default_factory=dict)  # plane -> (n,) deck node IDs
@@ -66,6 +67,7 @@ class SimplifiedBarrier:
     beams: int = 0
     shells: int = 0
     mass: float = 0.0  # in the deck's units
+    solids: int = 0
 
     def write(self, path, fmt: str = "fixed") -> Path:
         """Write as an LS-DYNA include deck (re-read, then written by the
@@ -230,9 +232,9 @@ def simplified_barrier(spec: ODBSpec | None = None, placement: Placement | None 
 
     # node sets and constraints: cladding planes move axially only, the back is held
     sid = {"front": o + 1, "axial": o + 2, "back": o + 3, "parts": o + 4}
-    front = planes["bumper_front"] if bmp is not None else planes["block_front"]
     axial = np.concatenate([planes[k].ravel() for k in planes if k != "back"])
-    for key, nodes in (("front", front.ravel()), ("axial", axial), ("back", planes["back"].ravel())):
+    # an impactor meets the bumper face first, the block face above and below the bumper later
+    for key, nodes in (("front", axial), ("axial", axial), ("back", planes["back"].ravel())):
         dk.kw("SET_NODE_LIST", [sid[key]], *[nodes[i:i + 8] for i in range(0, len(nodes), 8)])
     used_parts = [pid[b.name] for b in blocks] + ([pid["cladding middle"]] if cladding else []) \
         + ([pid["cladding front"]] if cladding and bmp is not None else [])
