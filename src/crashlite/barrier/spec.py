@@ -26,7 +26,8 @@ class BlockCurve:
     to the plateau for none), stays there to the compaction onset
     ``compaction`` (fraction of the depth) and stiffens to
     ``full_factor × plateau`` at ``full`` (fraction of the depth): the
-    densified honeycomb.
+    densified honeycomb; then to ``solid_factor × plateau`` at
+    ``solid`` of the depth, so the block cannot be crushed through.
     """
 
     plateau: float  # [N]
@@ -36,6 +37,8 @@ class BlockCurve:
     compaction: float = 0.80  # [-] of depth
     full: float = 0.92  # [-] of depth
     full_factor: float = 8.0  # [-]
+    solid: float = 0.97  # [-] of depth
+    solid_factor: float = 40.0  # [-]
 
     def points(self, depth: float) -> tuple[np.ndarray, np.ndarray]:
         """(crush [mm], force [N]) defining points, crush increasing from 0."""
@@ -45,8 +48,8 @@ class BlockCurve:
         if self.peak != self.plateau:
             xs.append(max(self.drop_end, self.rise * 1.5))
             fs.append(self.plateau)
-        xs += [c_on, c_full]
-        fs += [self.plateau, self.full_factor * self.plateau]
+        xs += [c_on, c_full, self.solid * depth]
+        fs += [self.plateau, self.full_factor * self.plateau, self.solid_factor * self.plateau]
         x = np.array(xs)
         if np.any(np.diff(x) <= 0):
             raise ValueError(f"curve points not increasing in crush: {xs} (depth {depth} mm)")
