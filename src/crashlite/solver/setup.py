@@ -480,6 +480,13 @@ def _element_groups(model: Model, rigid: np.ndarray, n: int, problems: list) -> 
 def build(model: Model) -> Setup:
     """Arrays for the time loop; raises SetupError listing everything the
     solver cannot run yet."""
+    try:
+        return _build(model)
+    except KeyError as e:  # an undefined set or ID met while building
+        raise SetupError([Problem(model.source or "", 0, "", None, str(e).strip("'\""))]) from None
+
+
+def _build(model: Model) -> Setup:
     from .rigid_parts import part_bodies, rigid_part_ids
     from .sections import build_sections
 
@@ -584,6 +591,9 @@ def build(model: Model) -> Setup:
             axis = np.eye(3)["XYZ".index(name[-1])]
             loads.append((axis, _curve(model, int(rec["lcid"])), float(rec.get("sf", 1.0))))
     sections = build_sections(model, beams.ids if beams is not None else np.zeros(0, np.int64), problems)
+    if ts and float(ts[0].get("dt2ms", 0.0) or 0.0) != 0.0 and groups:
+        problems.append(_problem(ts[0], "dt2ms", "mass scaling (DT2MS) of "
+                                 + ", ".join(sorted({g.kind + "s" for g in groups})) + " is not supported yet"))
     if problems:
         raise SetupError(problems)
     return Setup(

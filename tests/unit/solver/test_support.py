@@ -45,3 +45,39 @@ def test_output_requests_are_accepted(tmp_path):
     p = tmp_path / "d.k"
     p.write_text(DECK.format(extra=""))
     assert build(read_deck(p)).end_time == 0.01
+
+
+def test_mass_scaling_of_solids_is_refused_not_ignored(tmp_path):
+    solid = """*NODE
+11,0,0,0
+12,1,0,0
+13,1,1,0
+14,0,1,0
+15,0,0,1
+16,1,0,1
+17,1,1,1
+18,0,1,1
+*ELEMENT_SOLID
+5,2,11,12,13,14,15,16,17,18
+*PART
+block
+2,2,2
+*SECTION_SOLID
+2,1
+*MAT_ELASTIC
+2,7.85e-9,210000.0,0.3
+*CONTROL_TIMESTEP
+0.0,0.9,0,0.0,-1e-6
+"""
+    p = tmp_path / "d.k"
+    p.write_text(DECK.format(extra=solid))
+    with pytest.raises(SetupError) as e:
+        build(read_deck(p))
+    assert [pr.field for pr in e.value.problems] == ["DT2MS"]
+
+
+def test_a_set_the_solver_cannot_resolve_is_a_setup_error(tmp_path):
+    p = tmp_path / "d.k"
+    p.write_text(DECK.format(extra="*SET_NODE_GENERAL\n77\nALL\n*INITIAL_VELOCITY\n77\n1.0,0,0\n"))
+    with pytest.raises(SetupError, match="77"):
+        build(read_deck(p))
