@@ -1,0 +1,218 @@
+"""Plane-stress J2 plasticity at a shell integration point.
+
+Materials: MAT_001 (elastic), MAT_003 (PLASTIC_KINEMATIC: bilinear with
+mixed kinematic/isotropic hardening BETA, Cowper–Symonds SRC/SRP, failure
+strain FS) and MAT_024 (PIECEWISE_LINEAR_PLASTICITY: SIGY + ETAN or a curve
+LCSS of yield stress vs effective plastic strain, Cowper–Symonds C/P or a
+rate-scaling curve LCSR, failure strain FAIL).
+
+The return mapping is the Simo–Taylor projected algorithm: with the
+elastic plane-stress trial state σ* and ξ = σ − β (β the back stress in its
+plane-stress form β = α − α_zz I, so that dev(σ − β) = s − α exactly) the
+update is ξ = (I + Δγ(C·P + ⅔H_k I))⁻¹ ξ*, diagonal in the basis
+(ξx + ξy, ξy − ξx, shears). The plastic multiplier Δγ solves
+ξ_eq(Δγ) = R·σ_y(ε̄p + ⅔Δγ ξ_eq(Δγ)) by a Newton iteration kept inside its
+bracket, to round-off: the plane-stress condition σ_zz = 0 is exact and
+the normal strain increment Δε_zz (elastic + plastic) is returned for the
+thickness update.
+
+Components (the shell's local frame, Voigt): σx, σy, τxy, τyz, τzx;
+strain increments with engineering shears Δγ = 2Δε. The transverse shears
+are updated elastically with G and take part in the yield function (3D J2
+with σ_zz = 0).
+
+Material parameters are rows of ``props`` (n_mat, N_PROPS) float64 laid out
+by the P_* indices; curves by per-material slots ``mcurve`` (n_mat,
+N_CURVES) int64 into the CSR curve store (curve_start, curve_stop,
+curve_x, curve_y), -1 for none. Units: stresses and moduli [stress],
+density [mass/length³], strain rates [1/time].
+"""
+
+import math
+
+from numba import njit, prange
+
+from .discrete import curve_value
+
+# material kinds (LS-DYNA numbers)
+ELASTIC, KINEMATIC, PIECEWISE = 1, 3, 24
+
+N_PROPS = 12
+P_RO, P_E, P_PR, P_G, P_C1 = 0, 1, 2, 3, 4  # P_C1 = E/(1 − ν²), plane-stress modulus
+P_SIGY = 5  # initial yield stress
+P_EP = 6  # plastic hardening modulus E·Et/(E − Et)
+P_BETA = 7  # share of isotropic hardening (MAT_003 BETA; 1 for MAT_024)
+P_CS_C, P_CS_P = 8, 9  # Cowper–Symonds C [1/time] and P (0: no rate effect)
+P_FAIL = 10  # effective plastic strain at failure (1e21: none)
+P_WAVE = 11  # plate wave speed² E/(ρ(1 − ν²)) [length²/time²]
+
+N_CURVES = 2
+C_LCSS, C_LCSR = 0, 1  # yield stress vs ε̄p; yield scale factor vs strain rate
+
+_TOL = 1e-13  # relative tolerance of the consistency condition
+
+
+@njit(cache=True)
+def curve_slope(xs, ys, start, stop, x):
+    """Slope of the piecewise-linear segment used at x (end segments extend)."""
+    if stop - start < 2:
+        return 0.0
+    i = start
+    while i < stop - 2 and xs[i + 1] <= x:
+        i += 1
+    dx = xs[i + 1] - xs[i]
+    return (ys[i + 1] - ys[i]) / dx if dx != 0.0 else 0.0
+
+
+@njit(cache=True)
+def _yield(p, mc, cs, ce, cx, cy, ep):
+    """Static yield stress and its isotropic hardening slope at ε̄p."""
+    c = mc[C_LCSS]
+    if c >= 0:
+        return curve_value(cx, cy, cs[c], ce[c], ep), curve_slope(cx, cy, cs[c], ce[c], ep)
+    h = p[P_BETA] * p[P_EP]
+    return p[P_SIGY] + h * ep, h
+
+
+@njit(cache=True)
+def effective_rate(d0, d1, d2, d3, d4, dt):
+    """Von Mises strain rate sqrt(⅔ ė':ė') [1/time] of the increment, with
+    ε̇zz = −(ε̇x + ε̇y) (incompressible flow), so uniaxial plastic flow gives
+    its axial rate."""
+    if dt <= 0.0:
+        return 0.0
+    dz = -(d0 + d1)
+    dd = d0 * d0 + d1 * d1 + dz * dz + 0.5 * (d2 * d2 + d3 * d3 + d4 * d4)
+    return math.sqrt(2.0 / 3.0 * dd) / dt
+
+
+@njit(cache=True)
+def rate_factor(p, mc, cs, ce, cx, cy, rate):
+    """Scale factor of the yield stress at the strain rate: the curve LCSR
+    if given, else Cowper–Symonds 1 + (ε̇/C)^(1/P), else 1."""
+    c = mc[C_LCSR]
+    if c >= 0:
+        return curve_value(cx, cy, cs[c], ce[c], rate)
+    if p[P_CS_C] > 0.0 and p[P_CS_P] > 0.0 and rate > 0.0:
+        return 1.0 + (rate / p[P_CS_C]) ** (1.0 / p[P_CS_P])
+    return 1.0
+
+
+@njit(cache=True)
+def update_point(mtype, p, mc, cs, ce, cx, cy, s, b, ep, d0, d1, d2, d3, d4, dt):
+    """Stress update of one integration point.
+
+    s (5,) stress, b (5,) plane-stress back stress, updated in place
+    [stress]; ep effective plastic strain before the step; d0..d4 strain
+    increments Δεx, Δεy, Δγxy, Δγyz, Δγzx; dt the step [time] (rates).
+
+    Returns (ε̄p after the step, Δε_zz, failed): failed when ε̄p reached
+    the failure strain (the stresses are then zero).
+    """
+    e = p[P_E]
+    nu = p[P_PR]
+    g = p[P_G]
+    c1 = p[P_C1]
+    o0, o1 = s[0], s[1]
+    t0 = o0 + c1 * (d0 + nu * d1)
+    t1 = o1 + c1 * (d1 + nu * d0)
+    t2 = s[2] + g * d2
+    t3 = s[3] + g * d3
+    t4 = s[4] + g * d4
+    if mtype == ELASTIC:
+        s[0], s[1], s[2], s[3], s[4] = t0, t1, t2, t3, t4
+        return ep, -nu / e * (t0 - o0 + t1 - o1), False
+    x0, x1, x2, x3, x4 = t0 - b[0], t1 - b[1], t2 - b[2], t3 - b[3], t4 - b[4]
+    q_tr = math.sqrt(max(x0 * x0 - x0 * x1 + x1 * x1 + 3.0 * (x2 * x2 + x3 * x3 + x4 * x4), 0.0))
+    rf = 1.0
+    if mc[C_LCSR] >= 0 or (p[P_CS_C] > 0.0 and p[P_CS_P] > 0.0):
+        rf = rate_factor(p, mc, cs, ce, cx, cy, effective_rate(d0, d1, d2, d3, d4, dt))
+    y0, _ = _yield(p, mc, cs, ce, cx, cy, ep)
+    if q_tr <= rf * y0 or q_tr == 0.0:
+        s[0], s[1], s[2], s[3], s[4] = t0, t1, t2, t3, t4
+        return ep, -nu / e * (t0 - o0 + t1 - o1), False
+    hk = (1.0 - p[P_BETA]) * p[P_EP] if mtype == KINEMATIC else 0.0
+    k1 = e / (3.0 * (1.0 - nu)) + 2.0 / 3.0 * hk  # eigenvalue of C·P + ⅔H_k on ξx + ξy
+    k2 = 2.0 * g + 2.0 / 3.0 * hk  # on ξy − ξx and on the shears
+    a1 = x0 + x1
+    a2 = x1 - x0
+    sh = x2 * x2 + x3 * x3 + x4 * x4
+    # bracket [lo, hi]: ξ_eq(Δγ) ≤ q*/(1 + Δγ·k1) (k1 ≤ k2) falls below R·σy(ε̄p) at the first
+    # guess of hi; it is only trusted once F(hi) < 0 was seen (softening curves)
+    lo = 0.0
+    hi = 1.01 * (q_tr / (rf * y0) - 1.0) / k1 if y0 > 0.0 else 1.0 / k1
+    sure = False
+    dg = 0.0
+    q = q_tr
+    dep = 0.0
+    for it in range(200):
+        r1 = 1.0 / (1.0 + dg * k1)
+        r2 = 1.0 / (1.0 + dg * k2)
+        aa1 = a1 * r1
+        aa2 = a2 * r2
+        q = math.sqrt(0.25 * aa1 * aa1 + 0.75 * aa2 * aa2 + 3.0 * sh * r2 * r2)
+        dep = 2.0 / 3.0 * dg * q
+        y, h = _yield(p, mc, cs, ce, cx, cy, ep + dep)
+        f = q - rf * y
+        if abs(f) <= _TOL * rf * max(y, y0):
+            break
+        if f > 0.0:
+            lo = dg
+        else:
+            hi = dg
+            sure = True
+        if sure and hi - lo <= 1e-15 * hi:
+            break
+        dq2 = -2.0 * (0.25 * aa1 * aa1 * k1 * r1 + (0.75 * aa2 * aa2 + 3.0 * sh * r2 * r2) * k2 * r2)
+        dq = dq2 / (2.0 * q) if q > 0.0 else 0.0
+        slope = dq - rf * h * 2.0 / 3.0 * (q + dg * dq)
+        nxt = dg - f / slope if slope < 0.0 else -1.0
+        if nxt <= lo or (sure and nxt >= hi):
+            if sure:
+                nxt = 0.5 * (lo + hi)
+            else:  # no root seen yet on the right: widen
+                nxt = max(hi, 2.0 * lo)
+                hi = 2.0 * nxt
+        dg = nxt
+    r1 = 1.0 / (1.0 + dg * k1)
+    r2 = 1.0 / (1.0 + dg * k2)
+    aa1 = a1 * r1
+    aa2 = a2 * r2
+    n0 = 0.5 * (aa1 - aa2)
+    n1 = 0.5 * (aa1 + aa2)
+    n2, n3, n4 = x2 * r2, x3 * r2, x4 * r2
+    fb = 2.0 / 3.0 * hk * dg  # back stress moves along ξ
+    b[0] += fb * n0
+    b[1] += fb * n1
+    b[2] += fb * n2
+    b[3] += fb * n3
+    b[4] += fb * n4
+    s[0], s[1], s[2], s[3], s[4] = b[0] + n0, b[1] + n1, b[2] + n2, b[3] + n3, b[4] + n4
+    ep_new = ep + dep
+    # Δε_zz: elastic −ν/E (Δσx + Δσy), plastic −(Δεp_x + Δεp_y) = −Δγ (ξx + ξy)/3
+    dez = -nu / e * (s[0] - o0 + s[1] - o1) - dg * (n0 + n1) / 3.0
+    if ep_new >= p[P_FAIL]:
+        for i in range(5):
+            s[i] = 0.0
+            b[i] = 0.0
+        return ep_new, dez, True
+    return ep_new, dez, False
+
+
+@njit(cache=True, parallel=True)
+def update_points(mtype, props, mcurve, curve_start, curve_stop, curve_x, curve_y, mat_of, sig, back, epsp,
+                  deps, dt, dez, failed):
+    """Batch update of independent points (tests, material drivers).
+
+    mat_of (n,) int64 material row; sig, back (n, 5) [stress] and epsp (n,)
+    updated in place; deps (n, 5) strain increments (engineering shears);
+    dt [time]; outputs dez (n,) Δε_zz and failed (n,) int8.
+    """
+    for i in prange(sig.shape[0]):
+        m = mat_of[i]
+        ep, dz, fl = update_point(mtype[m], props[m], mcurve[m], curve_start, curve_stop, curve_x, curve_y,
+                                  sig[i], back[i], epsp[i], deps[i, 0], deps[i, 1], deps[i, 2], deps[i, 3],
+                                  deps[i, 4], dt)
+        epsp[i] = ep
+        dez[i] = dz
+        failed[i] = 1 if fl else 0

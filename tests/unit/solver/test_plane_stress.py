@@ -1,0 +1,241 @@
+"""Plane-stress J2 return mapping (kernels.plane_stress): elastic law,
+MAT_024 curve and MAT_003 bilinear hardening in uniaxial tension, mixed
+kinematic/isotropic reverse yield, exactness against a 3D radial return
+with the returned thickness strain, strain-rate scaling, failure."""
+
+import numpy as np
+import pytest
+
+from crashlite.solver.kernels import plane_stress as ps
+
+E, NU, RHO = 210000.0, 0.3, 7.85e-9
+G = E / (2 * (1 + NU))
+CURVE_EP = np.array([0.0, 0.02, 0.05, 0.1, 0.3])
+CURVE_SY = np.array([250.0, 300.0, 340.0, 370.0, 420.0])
+
+
+def _row(kind=ps.PIECEWISE, sigy=250.0, etan=0.0, beta=1.0, c=0.0, p=0.0, fail=1e21):
+    r = np.zeros(ps.N_PROPS)
+    r[ps.P_RO], r[ps.P_E], r[ps.P_PR], r[ps.P_G], r[ps.P_C1] = RHO, E, NU, G, E / (1 - NU**2)
+    r[ps.P_SIGY], r[ps.P_EP] = sigy, E * etan / (E - etan)
+    r[ps.P_BETA], r[ps.P_CS_C], r[ps.P_CS_P], r[ps.P_FAIL] = beta, c, p, fail
+    r[ps.P_WAVE] = E / (RHO * (1 - NU**2))
+    return r
+
+
+class Point:
+    """One integration point driven through kernels.plane_stress.update_points."""
+
+    def __init__(self, kind, row, curves=(), slots=(-1, -1)):
+        self.mtype = np.array([kind], np.int64)
+        self.props = row[None, :].copy()
+        self.mcurve = np.array([slots], np.int64)
+        xs = [np.asarray(c[0], float) for c in curves] or [np.zeros(0)]
+        ys = [np.asarray(c[1], float) for c in curves] or [np.zeros(0)]
+        sizes = np.array([len(a) for a in xs], np.int64)
+        self.cs, self.ce = np.cumsum(sizes) - sizes, np.cumsum(sizes)
+        self.cx, self.cy = np.concatenate(xs), np.concatenate(ys)
+        self.sig, self.back, self.ep = np.zeros((1, 5)), np.zeros((1, 5)), np.zeros(1)
+        self.dez, self.failed = np.zeros(1), np.zeros(1, np.int8)
+
+    def state(self):
+        return self.sig.copy(), self.back.copy(), self.ep.copy()
+
+    def set_state(self, st):
+        self.sig[:], self.back[:], self.ep[:] = st
+
+    def step(self, de, dt=1.0):
+        ps.update_points(self.mtype, self.props, self.mcurve, self.cs, self.ce, self.cx, self.cy,
+                         np.zeros(1, np.int64), self.sig, self.back, self.ep, np.asarray(de, float)[None, :],
+                         dt, self.dez, self.failed)
+        return self.dez[0]
+
+    def uniaxial(self, dex, dt=1.0):
+        """Step Δεx with the lateral strain that keeps σy = 0 (secant)."""
+        st = self.state()
+
+        def sy(dey):
+            self.set_state(st)
+            self.step([dex, dey, 0, 0, 0], dt)
+            return self.sig[0, 1]
+
+        a, b = -NU * dex, -0.5 * dex
+        fa, fb = sy(a), sy(b)
+        for _ in range(50):
+            if fb == fa or abs(fb) < 1e-11 * max(abs(self.sig[0, 0]), 1.0):
+                break
+            a, b, fa = b, b - fb * (b - a) / (fb - fa), fb
+            fb = sy(b)
+        return b
+
+
+def test_elastic_plane_stress_law_and_thickness_strain():
+    pt = Point(ps.ELASTIC, _row(ps.ELASTIC))
+    de = np.array([1e-4, -3e-5, 2e-5, 4e-5, -1e-5])
+    dez = pt.step(de)
+    c1 = E / (1 - NU**2)
+    expect = [c1 * (de[0] + NU * de[1]), c1 * (de[1] + NU * de[0]), G * de[2], G * de[3], G * de[4]]
+    np.testing.assert_allclose(pt.sig[0], expect, rtol=1e-14)
+    assert dez == pytest.approx(-NU / (1 - NU) * (de[0] + de[1]), rel=1e-12)
+
+
+def test_mat024_uniaxial_follows_the_curve():
+    """σx = σy(ε̄p) on the curve and εx = σx/E + ε̄p (uniaxial flow) at every
+    step, far inside the 1 % asked of the element."""
+    pt = Point(ps.PIECEWISE, _row(), [(CURVE_EP, CURVE_SY)], (0, -1))
+    ex = 0.0
+    for _ in range(250):
+        pt.uniaxial(1e-3)
+        ex += 1e-3
+        sx, ep = pt.sig[0, 0], pt.ep[0]
+        if ep > 0:
+            assert sx == pytest.approx(np.interp(ep, CURVE_EP, CURVE_SY), rel=1e-9)
+            assert ex == pytest.approx(sx / E + ep, rel=1e-9)
+        else:
+            assert sx == pytest.approx(E * ex, rel=1e-9)
+    assert pt.ep[0] > 0.2  # the path crossed several curve segments
+
+
+@pytest.mark.parametrize("beta", [0.0, 0.5, 1.0])
+def test_mat003_bilinear_hardening_and_reverse_yield(beta):
+    """Monotonic: σ = σ0 + Et (ε − σ0/E). Reversal: yield again at
+    α − R, α = (1−β)Ep ε̄p the back stress, R = σ0 + βEp ε̄p the radius
+    (β = 0 kinematic: Bauschinger σmax − 2σ0; β = 1 isotropic: −σmax)."""
+    s0, et = 250.0, 2000.0
+    ep_mod = E * et / (E - et)
+    pt = Point(ps.KINEMATIC, _row(ps.KINEMATIC, s0, et, beta))
+    ex = 0.0
+    for _ in range(100):
+        pt.uniaxial(5e-4)
+        ex += 5e-4
+    expect = s0 + et * (ex - s0 / E)
+    assert pt.sig[0, 0] == pytest.approx(expect, rel=1e-9)
+    epbar = pt.ep[0]
+    alpha, radius = (1 - beta) * ep_mod * epbar, s0 + beta * ep_mod * epbar
+    assert pt.sig[0, 0] == pytest.approx(alpha + radius, rel=1e-9)
+    # unload and reload in compression in small steps: the first plastic step sits on α − R
+    first = None
+    for _ in range(4000):
+        before = pt.ep[0]
+        pt.uniaxial(-2e-5)
+        if pt.ep[0] > before + 1e-12:
+            first = pt.sig[0, 0]
+            break
+    assert first is not None
+    assert first == pytest.approx(alpha - radius, abs=2e-3 * radius + 2e-5 * et)
+
+
+def _radial_return_3d(sig, alpha, ep, deps, sy_fun, h_iso, h_kin):
+    """Reference 3D J2 return (combined linear kinematic, any isotropic
+    law), full tensors; deps (3, 3) tensor strain increment."""
+    lam, mu = E * NU / ((1 + NU) * (1 - 2 * NU)), G
+    tr = sig + lam * np.trace(deps) * np.eye(3) + 2 * mu * deps
+    xi = tr - np.trace(tr) / 3 * np.eye(3) - alpha
+    q = np.sqrt(1.5 * np.sum(xi * xi))
+    if q <= sy_fun(ep):
+        return tr, alpha, ep
+    dl = 0.0
+    for _ in range(100):  # q − (3G + H_k) Δλ = σy(ε̄p + Δλ)
+        f = q - (3 * mu + h_kin) * dl - sy_fun(ep + dl)
+        dl += f / (3 * mu + h_kin + h_iso(ep + dl))
+        if abs(f) < 1e-12 * q:
+            break
+    n = xi / q * 1.5
+    return tr - 2 * mu * dl * n, alpha + 2.0 / 3.0 * h_kin * dl * n, ep + dl
+
+
+def _tensor(v, zz=0.0, shear_scale=1.0):
+    x, y, xy, yz, zx = v
+    return np.array([[x, shear_scale * xy, shear_scale * zx], [shear_scale * xy, y, shear_scale * yz],
+                     [shear_scale * zx, shear_scale * yz, zz]])
+
+
+@pytest.mark.parametrize("case", ["mat024_curve", "mat003_kinematic"])
+def test_exact_plane_stress_against_3d_return_with_the_thickness_strain(case):
+    """Random multiaxial increments (transverse shears included): the 3D
+    radial return fed with (Δεx, Δεy, Δε_zz returned, shears) from the same
+    3D state gives σzz = 0 to 1e-8 of the stress and the same in-plane
+    stresses, back stress and ε̄p."""
+    rng = np.random.default_rng(4)
+    if case == "mat024_curve":
+        pt = Point(ps.PIECEWISE, _row(), [(CURVE_EP, CURVE_SY)], (0, -1))
+        sy_fun = (lambda e: np.interp(e, CURVE_EP, CURVE_SY) if e <= CURVE_EP[-1]
+                  else CURVE_SY[-1] + (e - CURVE_EP[-1]) * 250.0)
+        slopes = np.diff(CURVE_SY) / np.diff(CURVE_EP)
+        h_iso = (lambda e: slopes[min(max(np.searchsorted(CURVE_EP, e, side="right") - 1, 0), len(slopes) - 1)])
+        h_kin = 0.0
+    else:
+        et, beta = 5000.0, 0.3
+        hp = E * et / (E - et)
+        pt = Point(ps.KINEMATIC, _row(ps.KINEMATIC, 250.0, et, beta))
+        sy_fun, h_iso, h_kin = (lambda e: 250.0 + beta * hp * e), (lambda e: beta * hp), (1 - beta) * hp
+    sig3, alpha3, ep3 = np.zeros((3, 3)), np.zeros((3, 3)), 0.0
+    plastic_steps = 0
+    for k in range(60):
+        de = rng.normal(size=5) * 8e-4
+        de[:2] += 6e-4 * np.array([np.cos(k / 9), np.sin(k / 7)])
+        before = pt.ep[0]
+        dez = pt.step(de)
+        plastic_steps += pt.ep[0] > before
+        deps = _tensor([de[0], de[1], 0.5 * de[2], 0.5 * de[3], 0.5 * de[4]], zz=dez)
+        sig3, alpha3, ep3 = _radial_return_3d(sig3, alpha3, ep3, deps, sy_fun, h_iso, h_kin)
+        scale = np.abs(sig3).max()
+        assert abs(sig3[2, 2]) < 1e-8 * scale
+        got = _tensor(pt.sig[0], zz=0.0)
+        np.testing.assert_allclose(got, sig3, atol=1e-8 * scale)
+        beta_ps = _tensor(pt.back[0])
+        alpha_ps = beta_ps - np.trace(beta_ps) / 3 * np.eye(3)  # deviatoric back stress of the plane form
+        np.testing.assert_allclose(alpha_ps, alpha3, atol=1e-8 * scale)
+        assert pt.ep[0] == pytest.approx(ep3, rel=1e-8, abs=1e-14)
+    assert plastic_steps > 20
+
+
+@pytest.mark.parametrize("kind", [ps.PIECEWISE, ps.KINEMATIC])
+def test_cowper_symonds_scales_the_yield_stress(kind):
+    """At an axial strain rate ε̇ the flow stress at a given ε̄p is the
+    static one times 1 + (ε̇/C)^(1/P) (within 1 %)."""
+    c, p = 40.0, 5.0
+    s0, et = 250.0, 1000.0
+    static = Point(kind, _row(kind, s0, et, 1.0))
+    dynamic = Point(kind, _row(kind, s0, et, 1.0, c=c, p=p))
+    rate, dex = 200.0, 2e-4
+    dt = dex / rate
+    for _ in range(200):
+        static.uniaxial(dex, dt)
+        dynamic.uniaxial(dex, dt)
+    factor = 1.0 + (rate / c) ** (1.0 / p)
+    sy_static_at = s0 + et * E / (E - et) * dynamic.ep[0]
+    assert dynamic.sig[0, 0] == pytest.approx(factor * sy_static_at, rel=0.01)
+    assert dynamic.sig[0, 0] / static.sig[0, 0] > 1.5  # the rate effect is large here, not a rounding
+
+
+def test_lcsr_curve_scales_the_yield_stress():
+    rows = _row(ps.PIECEWISE, 250.0, 0.0)
+    pt = Point(ps.PIECEWISE, rows, [([0.0, 100.0, 1000.0], [1.0, 1.4, 2.0])], (-1, 0))
+    rate, dex = 550.0, 2e-4
+    for _ in range(50):
+        pt.uniaxial(dex, dex / rate)
+    assert pt.sig[0, 0] == pytest.approx(250.0 * np.interp(rate, [0, 100, 1000], [1.0, 1.4, 2.0]), rel=0.01)
+
+
+def test_failure_strain_zeroes_the_stress():
+    pt = Point(ps.PIECEWISE, _row(ps.PIECEWISE, 250.0, 1000.0, fail=0.05))
+    for k in range(200):
+        pt.uniaxial(1e-3)
+        if pt.failed[0]:
+            break
+    assert pt.failed[0] == 1
+    assert pt.ep[0] >= 0.05
+    assert np.all(pt.sig[0] == 0.0)
+    assert 0.05 < k * 1e-3 < 0.06
+
+
+def test_elastic_unloading_inside_the_surface():
+    pt = Point(ps.PIECEWISE, _row(ps.PIECEWISE, 250.0, 1000.0))
+    for _ in range(10):
+        pt.uniaxial(1e-3)
+    ep = pt.ep[0]
+    sx = pt.sig[0, 0]
+    pt.uniaxial(-1e-4)
+    assert pt.ep[0] == ep
+    assert pt.sig[0, 0] == pytest.approx(sx - E * 1e-4, rel=1e-9)
