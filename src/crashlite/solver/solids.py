@@ -97,9 +97,15 @@ def compute_forces(s: SolidSet, st: SolidState, x: np.ndarray, v: np.ndarray, dt
 
 
 def lumped_mass(s: SolidSet, n_nodes: int) -> np.ndarray:
-    """(n_nodes,) nodal masses: ρ·V0/8 per element corner [mass]."""
+    """(n_nodes,) nodal masses [mass]: ρ·V0 shared equally by the distinct
+    nodes of each element (1/8 for a hexahedron; 1/6 for a wedge and 1/4
+    for a tetrahedron given with repeated nodes, their row-sum lumping)."""
+    srt = np.sort(s.conn, axis=1)
+    first = np.ones(srt.shape, bool)
+    first[:, 1:] = srt[:, 1:] != srt[:, :-1]
+    share = s.rho0 * s.vol0 / first.sum(axis=1)
     mass = np.zeros(n_nodes)
-    np.add.at(mass, s.conn.ravel(), np.repeat(s.rho0 * s.vol0 / 8.0, 8))
+    np.add.at(mass, srt[first], np.repeat(share, first.sum(axis=1)))
     return mass
 
 
@@ -276,8 +282,10 @@ def _honeycomb(model, mat, curves, row, mc, problems):
                       (sm.C_CA, "lcca")):
         mc[slot] = curves.get(lc[fld])
     row[sm.P_SIGY], row[sm.P_VF] = float(mat.get("sigy", 0.0) or 0.0), vf
-    row[sm.P_DAMP] = float(mat.get("mu", 0.05) or 0.0)
-    row[sm.P_BULKQ] = 1.0 if float(mat.get("bulk", 0.0) or 0.0) else 0.0
+    # BULK = 1: artificial bulk viscosity instead of the material viscosity MU (LS-DYNA sets μ = 0)
+    bulk = float(mat.get("bulk", 0.0) or 0.0) != 0.0
+    row[sm.P_BULKQ] = 1.0 if bulk else 0.0
+    row[sm.P_DAMP] = 0.0 if bulk else float(mat.get("mu", 0.05) or 0.0)
     for i, fld in enumerate(("eaau", "ebbu", "eccu", "gabu", "gbcu", "gcau")):
         row[sm.P_EAAU + i] = float(mat.get(fld, 0.0) or 0.0)
     row[sm.P_TSEF] = float(mat.get("tsef", 0.0) or 0.0)
@@ -447,11 +455,17 @@ class SolidGroup(ElementGroup):
         self.ids, self.pid, self.conn = s.ids, s.pid, s.conn
         self.energy = self.st.energy  # internal energy, viscous work included [energy]
         self.hourglass = self.st.hg_energy
+        self.warnings = s.warnings  # Problem: options run in an approximated way (ELFORM, IHQ 6)
         self._rows = self.st.fe.reshape(-1, 3)
         self._dt = np.empty(len(s))
 
     def forces(self, st) -> None:
         compute_forces(self.s, self.st, st.x, st.v, st.dt)
+        if self.st.alive.min() < 0:  # LS-DYNA stops on a negative volume too
+            bad = np.flatnonzero(self.st.alive < 0)
+            more = f" ({len(bad)} elements)" if len(bad) > 1 else ""
+            raise FloatingPointError(f"solid element {int(self.ids[bad[0]])} turned inside out (negative volume) at "
+                                     f"t = {getattr(st, 't', 0.0):.6g}{more}: the run is stopped")
         gather_corners(self.st.node_ptr, self.st.corner_of, self._rows, st.f)
 
     def corner_forces(self) -> np.ndarray:
@@ -468,3 +482,9 @@ class SolidGroup(ElementGroup):
     @property
     def eroded(self) -> int:
         return int(np.count_nonzero(self.st.alive != 1))
+
+
+def build_solid_group(model: Model, rigid_pids, problems: list, warnings: list | None = None) -> SolidGroup | None:
+    """The solids of a Model as a time-loop group (see build_solids), or None."""
+    s = build_solids(model, rigid_pids, problems, warnings)
+    return SolidGroup(s, len(model.nodes.xyz)) if s is not None and len(s) else None

@@ -261,7 +261,9 @@ def _hourglass(e, w, vn, rho, c, wave, dt, ihq, qm, hgq, hg_energy, fe):
     """Hourglass resistance on the current geometry (w: coordinates, b and
     velocities). IHQ 1: LS-DYNA standard viscous on the base vectors Γ;
     2, 3: Flanagan–Belytschko viscous on γ = Γ − (Γ·x) b / V, orthogonal
-    to linear velocity fields; 4, 5: FB stiffness, incremental."""
+    to linear velocity fields; 4, 5: FB stiffness, incremental, the stored
+    generalized forces rotated with the element each step. 3 and 5 (exact
+    volume integration in LS-DYNA) run as 2 and 4."""
     if qm == 0.0 or ihq <= 0:
         return
     bb = 0.0
@@ -270,6 +272,11 @@ def _hourglass(e, w, vn, rho, c, wave, dt, ihq, qm, hgq, hg_energy, fe):
     visc = ihq <= 3
     a_visc = 0.25 * qm * rho * c * vn ** (2.0 / 3.0)
     kappa = qm * wave * bb / (3.0 * vn)
+    if not visc:  # stored stiffness forces turn with the element, as the stress does (objective)
+        for al in range(4):
+            g0, g1, g2 = hgq[e, 0, al], hgq[e, 1, al], hgq[e, 2, al]
+            for i in range(3):
+                hgq[e, i, al] = w[_R + 3 * i] * g0 + w[_R + 3 * i + 1] * g1 + w[_R + 3 * i + 2] * g2
     for al in range(4):
         h0 = h1 = h2 = 0.0
         for a in range(8):
