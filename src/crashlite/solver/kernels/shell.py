@@ -1,0 +1,459 @@
+"""Belytschko–Lin–Tsay shell (LS-DYNA ELFORM 2) and the C0 triangle.
+
+One in-plane integration point, a corotational frame per element and the
+stresses kept in that frame (the frame turns with the element, so rigid
+rotations leave them unchanged):
+  e3 along the cross product of the diagonals (quad) or sides (triangle),
+  e1 along side 1-2 projected on the plane, e2 = e3 × e1 (LS-DYNA's
+  default). Fibres are along e3; nodal rotations enter through the angular
+  velocities only (rate form), no drilling stiffness.
+Strain rates at the mid-step configuration x(n+½) = x(n+1) − ½Δt·v(n+½):
+  membrane ε̇ = B v̂, curvature κ̇x = B1·θ̂y, κ̇y = −B2·θ̂x,
+  2κ̇xy = B2·θ̂y − B1·θ̂x, transverse shear 2ε̇xz = B1·v̂z + N·Σθ̂y,
+  2ε̇yz = B2·v̂z − N·Σθ̂x (N = ¼ quad, ⅓ triangle), and at height z the
+  in-plane rate ε̇ + z κ̇. B is the one-point (centroid) gradient: exact
+  for linear fields on any quadrilateral (patch test); the triangle is the
+  constant-strain triangle with linear rotations (Belytschko–Stolarski–
+  Carpenter C0 element, n3 = n4 in the deck).
+Through the thickness NIP Gauss (or Lobatto) points carry plane-stress
+J2 stresses (kernels.plane_stress); the resultants N = ∫σ dz,
+M = ∫zσ dz, Q = SHRF·∫τ dz give the nodal forces and moments at
+x(n+1) as the exact transpose of the strain-rate operator (internal power
+A·(N·ε̇ + M·κ̇ + Q·γ̇)). Optional thickness change from the integrated
+normal strain (ISTUPD). Belytschko–Wong–Chiang warping correction
+(BWC = 1): curvature rates from the in-plane velocities of a warped
+element, B^c = 2 z_γ/A² [x13, x42, x31, x24] (and y), with the element's
+rigid spin about its normal projected out so rigid rotations stay strain
+free.
+
+Hourglass control (quads, Belytschko–Tsay modes with γ = h − (h·x̂)B1 −
+(h·ŷ)B2, h = (1, −1, 1, −1), orthogonal to linear fields): membrane
+q̇ = γ·v̂x − ¼(γ·ẑ)Σθ̂y, γ·v̂y + ¼(γ·ẑ)Σθ̂x (rigid rotations of warped
+elements excluded), out-of-plane γ·v̂z, bending γ·θ̂x, γ·θ̂y.
+Stiffness (IHQ 4, 5): Q̇ = r k q̇ with k = E t A B·B/8 (membrane),
+SHRF G t³ B·B/12 (out-of-plane), E t³ A B·B/192 (bending), as in the
+BT element; r = QM, QW, QB. Viscous (IHQ 1–3): Q = r c q̇ with c the
+critical damping 2·sqrt(k·m/|γ|²) of the mode at the element's lumped
+mass (rotary inertia m·A/8), so QM is the fraction of critical damping.
+
+Forces and moments ON the nodes go per element corner into fe, me
+(n, 4, 3); the fourth corner of a triangle stays zero. Nodes gather them
+in a fixed order (kernels.solid.gather_corners): results do not depend on
+the number of threads. Elements run in ``work.shape[0]`` fixed chunks,
+each with its own scratch row.
+
+Arrays (n elements; units of the model, e.g. mm, t, s, N, MPa):
+  x (n_nodes, 3) float64 coordinates at t(n+1) [length]
+  v (n_nodes, 3) float64 velocities at t(n+½) [length/time]
+  w (n_nodes, 3) float64 angular velocities at t(n+½) [1/time]
+  conn (n, 4) int64 node indices (triangles n1 n2 n3 n3); tri (n,) int8 1: triangle
+  mat_of (n,) int64 material row; mtype, props, mcurve: see kernels.plane_stress
+  curve_start, curve_stop (n_curves,) int64; curve_x, curve_y (m,) float64 curve store
+  nip (n,) int64 points through the thickness (1–10); rule (n,) int64 0 Gauss, 1 Lobatto
+  shrf (n,) float64 shear correction factor
+  hg_kind (n,) int64 0 none, 1 viscous, 2 stiffness; hg_qm, hg_qb, hg_qw (n,) float64 coefficients
+  rho (n,) float64 density incl. non-structural mass [mass/length³] (viscous hourglass)
+  istupd: 1 thickness change; bwc: 1 warping correction
+  state, updated in place:
+  sig, back (n, nip_max, 5) float64 stress and back stress σx σy τxy τyz τzx in the element frame [stress]
+  epsp (n, nip_max) float64 effective plastic strain; ipfail (n, nip_max) int8 1: failed point
+  thick (n,) float64 thickness [length]
+  alive (n,) int8 1 active, 0 eroded (all points failed), -1 collapsed (area ≤ 0)
+  hgq (n, 5) float64 hourglass generalized stresses (2 membrane [force], out-of-plane [force],
+      2 bending [force·length])
+  energy (n,) float64 internal energy [energy]; hg_energy (n,) float64 hourglass energy [energy]
+  work (n_chunks, N_WORK) float64 scratch
+  fe, me (n, 4, 3) float64 output corner forces [force] and moments [force·length]
+"""
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+from .plane_stress import P_E, P_G, P_WAVE, update_point
+
+
+def _rules():
+    """ZETA, WEIGHT (2, 11, 10): rule (0 Gauss, 1 Lobatto), NIP, point:
+    positions in [−1, 1] from bottom to top and weights summing to 1."""
+    zeta = np.zeros((2, 11, 10))
+    weight = np.zeros((2, 11, 10))
+    for n in range(1, 11):
+        g, gw = np.polynomial.legendre.leggauss(n)
+        zeta[0, n, :n], weight[0, n, :n] = g, gw / 2.0
+        if n >= 3:  # Lobatto: ends and the roots of P'_{n-1}, w = 2/(n(n-1)P_{n-1}²)
+            p = np.polynomial.legendre.Legendre.basis(n - 1)
+            inner = np.sort(p.deriv().roots().real)
+            pts = np.concatenate([[-1.0], inner, [1.0]])
+            zeta[1, n, :n], weight[1, n, :n] = pts, 2.0 / (n * (n - 1) * p(pts) ** 2) / 2.0
+        else:
+            zeta[1, n, :n], weight[1, n, :n] = g, gw / 2.0
+    return zeta, weight
+
+
+ZETA, WEIGHT = _rules()
+H = np.array([1.0, -1.0, 1.0, -1.0])
+
+# scratch layout of one work row
+_X, _Y, _Z = 0, 4, 8  # local coordinates about the centroid
+_B1, _B2, _G = 12, 16, 20  # one-point gradient, hourglass vector
+_VX, _VY, _VZ, _TX, _TY = 24, 28, 32, 36, 40  # local velocities, angular velocities
+_E = 44  # frame e1, e2, e3
+_P = 53  # nodal positions relative to node 1
+N_WORK = 65
+N_CHUNKS = 64  # fixed number of element chunks: thread-count independent results
+
+
+@njit(cache=True)
+def _geometry(x, v, conn, e, nn, shift, w):
+    """Frame, local coordinates, B (and γ for quads) of element e at the
+    positions x − shift·v into w; returns the area (≤ 0: degenerate)."""
+    a0 = conn[e, 0]
+    q = w[_P:_P + 12]
+    for a in range(nn):
+        nd = conn[e, a]
+        for i in range(3):
+            q[3 * a + i] = (x[nd, i] - shift * v[nd, i]) - (x[a0, i] - shift * v[a0, i])
+    if nn == 4:
+        u0, u1, u2 = q[6], q[7], q[8]  # diagonal 1-3
+        s0, s1, s2 = q[9] - q[3], q[10] - q[4], q[11] - q[5]  # diagonal 2-4
+    else:
+        u0, u1, u2 = q[3], q[4], q[5]
+        s0, s1, s2 = q[6], q[7], q[8]
+    n0 = u1 * s2 - u2 * s1
+    n1 = u2 * s0 - u0 * s2
+    n2 = u0 * s1 - u1 * s0
+    nl = math.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+    if nl == 0.0:
+        return 0.0
+    n0, n1, n2 = n0 / nl, n1 / nl, n2 / nl
+    d = q[3] * n0 + q[4] * n1 + q[5] * n2
+    t0, t1, t2 = q[3] - d * n0, q[4] - d * n1, q[5] - d * n2
+    tl = math.sqrt(t0 * t0 + t1 * t1 + t2 * t2)
+    if tl == 0.0:
+        return 0.0
+    t0, t1, t2 = t0 / tl, t1 / tl, t2 / tl
+    b0, b1, b2 = n1 * t2 - n2 * t1, n2 * t0 - n0 * t2, n0 * t1 - n1 * t0
+    w[_E], w[_E + 1], w[_E + 2] = t0, t1, t2
+    w[_E + 3], w[_E + 4], w[_E + 5] = b0, b1, b2
+    w[_E + 6], w[_E + 7], w[_E + 8] = n0, n1, n2
+    c0 = c1 = c2 = 0.0
+    for a in range(nn):
+        c0 += q[3 * a]
+        c1 += q[3 * a + 1]
+        c2 += q[3 * a + 2]
+    c0 /= nn
+    c1 /= nn
+    c2 /= nn
+    for a in range(nn):
+        r0, r1, r2 = q[3 * a] - c0, q[3 * a + 1] - c1, q[3 * a + 2] - c2
+        w[_X + a] = r0 * t0 + r1 * t1 + r2 * t2
+        w[_Y + a] = r0 * b0 + r1 * b1 + r2 * b2
+        w[_Z + a] = r0 * n0 + r1 * n1 + r2 * n2
+    X0, X1, X2 = w[_X], w[_X + 1], w[_X + 2]
+    Y0, Y1, Y2 = w[_Y], w[_Y + 1], w[_Y + 2]
+    if nn == 3:
+        area = 0.5 * ((X1 - X0) * (Y2 - Y0) - (X2 - X0) * (Y1 - Y0))
+        if area <= 0.0:
+            return area
+        f = 0.5 / area
+        w[_B1], w[_B1 + 1], w[_B1 + 2], w[_B1 + 3] = f * (Y1 - Y2), f * (Y2 - Y0), f * (Y0 - Y1), 0.0
+        w[_B2], w[_B2 + 1], w[_B2 + 2], w[_B2 + 3] = f * (X2 - X1), f * (X0 - X2), f * (X1 - X0), 0.0
+        return area
+    X3, Y3 = w[_X + 3], w[_Y + 3]
+    area = 0.5 * ((X2 - X0) * (Y3 - Y1) + (X1 - X3) * (Y2 - Y0))
+    if area <= 0.0:
+        return area
+    f = 0.5 / area
+    w[_B1], w[_B1 + 1], w[_B1 + 2], w[_B1 + 3] = f * (Y1 - Y3), f * (Y2 - Y0), f * (Y3 - Y1), f * (Y0 - Y2)
+    w[_B2], w[_B2 + 1], w[_B2 + 2], w[_B2 + 3] = f * (X3 - X1), f * (X0 - X2), f * (X1 - X3), f * (X2 - X0)
+    hx = X0 - X1 + X2 - X3
+    hy = Y0 - Y1 + Y2 - Y3
+    for a in range(4):
+        w[_G + a] = H[a] - hx * w[_B1 + a] - hy * w[_B2 + a]
+    return area
+
+
+@njit(cache=True)
+def _kill(e, fe, me):
+    for a in range(4):
+        for i in range(3):
+            fe[e, a, i] = 0.0
+            me[e, a, i] = 0.0
+
+
+@njit(cache=True)
+def _local_velocities(v, w_ang, conn, e, nn, w):
+    for a in range(nn):
+        nd = conn[e, a]
+        vx, vy, vz = v[nd, 0], v[nd, 1], v[nd, 2]
+        ox, oy, oz = w_ang[nd, 0], w_ang[nd, 1], w_ang[nd, 2]
+        w[_VX + a] = w[_E] * vx + w[_E + 1] * vy + w[_E + 2] * vz
+        w[_VY + a] = w[_E + 3] * vx + w[_E + 4] * vy + w[_E + 5] * vz
+        w[_VZ + a] = w[_E + 6] * vx + w[_E + 7] * vy + w[_E + 8] * vz
+        w[_TX + a] = w[_E] * ox + w[_E + 1] * oy + w[_E + 2] * oz
+        w[_TY + a] = w[_E + 3] * ox + w[_E + 4] * oy + w[_E + 5] * oz
+
+
+@njit(cache=True)
+def _warp_coef(w, area):
+    """2 z_γ / A² of the warping correction, z_γ = ¼ Σ γ_I ẑ_I."""
+    zg = 0.0
+    for a in range(4):
+        zg += w[_G + a] * w[_Z + a]
+    return 0.5 * zg / (area * area)
+
+
+@njit(cache=True)
+def _bc(w, a, c):
+    """B^c_1, B^c_2 of node a (c = 2 z_γ / A²): c·[x13, x42, x31, x24] (and y)."""
+    j = (a + 2) % 4
+    if a % 2 == 0:  # nodes 1, 3: x_a − x_{a+2}
+        return c * (w[_X + a] - w[_X + j]), c * (w[_Y + a] - w[_Y + j])
+    return c * (w[_X + j] - w[_X + a]), c * (w[_Y + j] - w[_Y + a])  # nodes 2, 4: x_{a+2} − x_a
+
+
+@njit(cache=True)
+def _element(e, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, cs, ce, cx, cy, nip, rule, shrf,
+             hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy,
+             hg_energy, w, fe, me):
+    if alive[e] != 1:
+        _kill(e, fe, me)
+        return
+    nn = 3 if tri[e] == 1 else 4
+    area = _geometry(x, v, conn, e, nn, 0.5 * dt, w)
+    if area <= 0.0:
+        alive[e] = -1
+        _kill(e, fe, me)
+        return
+    _local_velocities(v, w_ang, conn, e, nn, w)
+    dx = dy = gxy = kx = ky = kxy = wx = wy = sx = sy = 0.0
+    for a in range(nn):
+        b1, b2 = w[_B1 + a], w[_B2 + a]
+        dx += b1 * w[_VX + a]
+        dy += b2 * w[_VY + a]
+        gxy += b2 * w[_VX + a] + b1 * w[_VY + a]
+        kx += b1 * w[_TY + a]
+        ky -= b2 * w[_TX + a]
+        kxy += b2 * w[_TY + a] - b1 * w[_TX + a]
+        wx += b1 * w[_VZ + a]
+        wy += b2 * w[_VZ + a]
+        sx += w[_TX + a]
+        sy += w[_TY + a]
+    gxz = wx + sy / nn
+    gyz = wy - sx / nn
+    quad = nn == 4
+    if quad and bwc == 1:
+        c = _warp_coef(w, area)
+        om = 0.5 * (gxy - 2.0 * (w[_B2] * w[_VX] + w[_B2 + 1] * w[_VX + 1] + w[_B2 + 2] * w[_VX + 2]
+                                 + w[_B2 + 3] * w[_VX + 3]))  # ½(∂v̂y/∂x − ∂v̂x/∂y): in-plane spin
+        for a in range(4):
+            c1, c2 = _bc(w, a, c)
+            ux = w[_VX + a] + om * w[_Y + a]  # in-plane velocity less the rigid spin
+            uy = w[_VY + a] - om * w[_X + a]
+            kx += c1 * ux
+            ky += c2 * uy
+            kxy += c2 * ux + c1 * uy
+    # through the thickness
+    t = thick[e]
+    m = mat_of[e]
+    p = props[m]
+    kind = mtype[m]
+    ks = shrf[e]
+    nk = nip[e]
+    r = rule[e]
+    n0 = n1 = n2 = m0 = m1 = m2 = q0 = q1 = 0.0
+    work = 0.0
+    dezs = 0.0
+    nfail = 0
+    for k in range(nk):
+        if ipfail[e, k] != 0:
+            nfail += 1
+            continue
+        zeta = ZETA[r, nk, k]
+        wt = WEIGHT[r, nk, k]
+        z = 0.5 * zeta * t
+        d0 = (dx + z * kx) * dt
+        d1 = (dy + z * ky) * dt
+        d2 = (gxy + z * kxy) * dt
+        d3 = gyz * dt
+        d4 = gxz * dt
+        s = sig[e, k]
+        o0, o1, o2, o3, o4 = s[0], s[1], s[2], s[3], s[4]
+        ep, dez, failed = update_point(kind, p, mcurve[m], cs, ce, cx, cy, s, back[e, k], epsp[e, k],
+                                       d0, d1, d2, d3, d4, dt)
+        epsp[e, k] = ep
+        work += wt * 0.5 * ((o0 + s[0]) * d0 + (o1 + s[1]) * d1 + (o2 + s[2]) * d2
+                            + ks * ((o3 + s[3]) * d3 + (o4 + s[4]) * d4))
+        if failed:
+            ipfail[e, k] = 1
+            nfail += 1
+        dezs += wt * dez
+        n0 += wt * s[0]
+        n1 += wt * s[1]
+        n2 += wt * s[2]
+        m0 += wt * zeta * s[0]
+        m1 += wt * zeta * s[1]
+        m2 += wt * zeta * s[2]
+        q0 += wt * s[4]  # τzx
+        q1 += wt * s[3]  # τyz
+    energy[e] += area * t * work
+    if nfail == nk:
+        alive[e] = 0
+        for k in range(nk):
+            for i in range(5):
+                sig[e, k, i] = 0.0
+        _kill(e, fe, me)
+        return
+    if istupd == 1:
+        t = t * (1.0 + dezs)
+        thick[e] = t
+    # resultants per unit length: N = t Σwσ, M = t²/2 Σwζσ, Q = SHRF t Σwτ
+    n0, n1, n2 = t * n0, t * n1, t * n2
+    hm = 0.5 * t * t
+    m0, m1, m2 = hm * m0, hm * m1, hm * m2
+    qx, qy = ks * t * q0, ks * t * q1
+    # hourglass resistance at the mid-step geometry
+    h0 = h1 = h2 = h3 = h4 = 0.0
+    if quad and hg_kind[e] > 0:
+        h0, h1, h2, h3, h4 = _hourglass(e, w, area, t, dt, p[P_E], p[P_G], ks, rho[e], hg_kind[e], hg_qm[e],
+                                        hg_qb[e], hg_qw[e], sx, sy, hgq, hg_energy)
+    # forces at x(n+1)
+    area = _geometry(x, v, conn, e, nn, 0.0, w)
+    if area <= 0.0:
+        alive[e] = -1
+        _kill(e, fe, me)
+        return
+    zg4 = 0.0
+    if quad:
+        for a in range(4):
+            zg4 += w[_G + a] * w[_Z + a]
+        zg4 *= 0.25
+    inv = 1.0 / nn
+    sbwc = 0.0
+    c = 0.0
+    if quad and bwc == 1:
+        c = _warp_coef(w, area)
+        for a in range(4):
+            c1, c2 = _bc(w, a, c)
+            sbwc += area * ((m0 * c1 + m2 * c2) * w[_Y + a] - (m1 * c2 + m2 * c1) * w[_X + a])
+    for a in range(nn):
+        b1, b2 = w[_B1 + a], w[_B2 + a]
+        fx = area * (b1 * n0 + b2 * n2)
+        fy = area * (b2 * n1 + b1 * n2)
+        fz = area * (b1 * qx + b2 * qy)
+        mx = area * (-b2 * m1 - b1 * m2 - inv * qy)
+        my = area * (b1 * m0 + b2 * m2 + inv * qx)
+        if quad:
+            g = w[_G + a]
+            fx += g * h0
+            fy += g * h1
+            fz += g * h2
+            mx += g * h3 + zg4 * h1
+            my += g * h4 - zg4 * h0
+            if bwc == 1:
+                c1, c2 = _bc(w, a, c)
+                fx += area * (m0 * c1 + m2 * c2) - 0.5 * sbwc * b2
+                fy += area * (m1 * c2 + m2 * c1) + 0.5 * sbwc * b1
+        for i in range(3):
+            fe[e, a, i] = -(fx * w[_E + i] + fy * w[_E + 3 + i] + fz * w[_E + 6 + i])
+            me[e, a, i] = -(mx * w[_E + i] + my * w[_E + 3 + i])
+    if not quad:
+        for i in range(3):
+            fe[e, 3, i] = 0.0
+            me[e, 3, i] = 0.0
+
+
+@njit(cache=True)
+def _hourglass(e, w, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, sx, sy, hgq, hg_energy):
+    """Hourglass generalized stresses of the step (see the module docstring);
+    returns them (membrane x, y, out-of-plane, bending x, y)."""
+    bb = 0.0
+    gg = 0.0
+    zg = 0.0
+    r0 = r1 = r2 = r3 = r4 = 0.0
+    for a in range(4):
+        g = w[_G + a]
+        bb += w[_B1 + a] * w[_B1 + a] + w[_B2 + a] * w[_B2 + a]
+        gg += g * g
+        zg += g * w[_Z + a]
+        r0 += g * w[_VX + a]
+        r1 += g * w[_VY + a]
+        r2 += g * w[_VZ + a]
+        r3 += g * w[_TX + a]
+        r4 += g * w[_TY + a]
+    r0 -= 0.25 * zg * sy
+    r1 += 0.25 * zg * sx
+    km = young * t * area * bb / 8.0
+    kw = ks * shear * t * t * t * bb / 12.0
+    kb = young * t * t * t * area * bb / 192.0
+    if kind == 2:  # stiffness: incremental
+        c0, c2, c3 = qm * km * dt, qw * kw * dt, qb * kb * dt
+        n0, n1, n2 = hgq[e, 0] + c0 * r0, hgq[e, 1] + c0 * r1, hgq[e, 2] + c2 * r2
+        n3, n4 = hgq[e, 3] + c3 * r3, hgq[e, 4] + c3 * r4
+    else:  # viscous: QM × critical damping of the mode at the lumped mass
+        mass = 0.25 * rho * t * area
+        c0 = 2.0 * qm * math.sqrt(km * mass / gg)
+        c2 = 2.0 * qw * math.sqrt(kw * mass / gg)
+        c3 = 2.0 * qb * math.sqrt(kb * mass * area / 8.0 / gg)
+        n0, n1, n2, n3, n4 = c0 * r0, c0 * r1, c2 * r2, c3 * r3, c3 * r4
+    hg_energy[e] += 0.5 * dt * ((hgq[e, 0] + n0) * r0 + (hgq[e, 1] + n1) * r1 + (hgq[e, 2] + n2) * r2
+                                + (hgq[e, 3] + n3) * r3 + (hgq[e, 4] + n4) * r4)
+    hgq[e, 0], hgq[e, 1], hgq[e, 2], hgq[e, 3], hgq[e, 4] = n0, n1, n2, n3, n4
+    return n0, n1, n2, n3, n4
+
+
+@njit(cache=True, parallel=True)
+def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve_start, curve_stop, curve_x,
+                 curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail,
+                 thick, alive, hgq, energy, hg_energy, work, fe, me):
+    """One step of the shells (see the module docstring for the arrays):
+    stresses, thickness, energies and state to t(n+1); corner forces fe
+    and moments me ON the nodes."""
+    n = conn.shape[0]
+    nc = work.shape[0]
+    for ch in prange(nc):
+        w = work[ch]
+        for e in range(ch * n // nc, (ch + 1) * n // nc):
+            _element(e, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve_start, curve_stop, curve_x,
+                     curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp,
+                     ipfail, thick, alive, hgq, energy, hg_energy, w, fe, me)
+
+
+@njit(cache=True, parallel=True)
+def shell_timestep(x, conn, tri, alive, mat_of, props, dt_out):
+    """LS-DYNA critical step of each shell (before TSSFAC): Δt = L/c with
+    c = sqrt(E/(ρ(1 − ν²))) and L = A / longest side (quadrilateral) or
+    2A / longest side (triangle), A from the diagonals (sides) cross
+    product at the current positions. Inactive elements: +inf.
+    dt_out (n,) [time]."""
+    for e in prange(conn.shape[0]):
+        if alive[e] != 1:
+            dt_out[e] = np.inf
+            continue
+        i0, i1, i2, i3 = conn[e, 0], conn[e, 1], conn[e, 2], conn[e, 3]
+        if tri[e] == 1:
+            u0, u1, u2 = x[i1, 0] - x[i0, 0], x[i1, 1] - x[i0, 1], x[i1, 2] - x[i0, 2]
+            s0, s1, s2 = x[i2, 0] - x[i0, 0], x[i2, 1] - x[i0, 1], x[i2, 2] - x[i0, 2]
+            f = 1.0
+            lmax = max(u0 * u0 + u1 * u1 + u2 * u2, s0 * s0 + s1 * s1 + s2 * s2,
+                       (x[i2, 0] - x[i1, 0]) ** 2 + (x[i2, 1] - x[i1, 1]) ** 2 + (x[i2, 2] - x[i1, 2]) ** 2)
+        else:
+            u0, u1, u2 = x[i2, 0] - x[i0, 0], x[i2, 1] - x[i0, 1], x[i2, 2] - x[i0, 2]
+            s0, s1, s2 = x[i3, 0] - x[i1, 0], x[i3, 1] - x[i1, 1], x[i3, 2] - x[i1, 2]
+            f = 0.5
+            lmax = 0.0
+            for a in range(4):
+                ia, ib = conn[e, a], conn[e, (a + 1) % 4]
+                lmax = max(lmax, (x[ib, 0] - x[ia, 0]) ** 2 + (x[ib, 1] - x[ia, 1]) ** 2
+                           + (x[ib, 2] - x[ia, 2]) ** 2)
+        c0 = u1 * s2 - u2 * s1
+        c1 = u2 * s0 - u0 * s2
+        c2 = u0 * s1 - u1 * s0
+        area2 = math.sqrt(c0 * c0 + c1 * c1 + c2 * c2)  # 2A
+        if area2 <= 0.0 or lmax <= 0.0:
+            dt_out[e] = np.inf
+            continue
+        # quad: L = A/lmax = ½·2A/lmax; triangle: L = 2A/lmax
+        dt_out[e] = f * area2 / math.sqrt(lmax) / math.sqrt(props[mat_of[e], P_WAVE])

@@ -1,0 +1,488 @@
+"""Shell elements from the Model: Belytschko–Lin–Tsay quads and C0 triangles.
+
+Builds the struct-of-arrays set the kernels in ``kernels.shell`` run
+(connectivity, thickness, integration rule, material table and curves,
+hourglass settings), the lumped masses and rotary inertias, and the shell
+group the time loop drives.
+
+Section formulations: ELFORM 2 (and blank/0) runs as is; 1, 4, 6, 7, 8, 10,
+11, 16, -16, 17, 18, 20 (other one-point and fully integrated shells and
+triangles) run as ELFORM 2 with a warning; membranes (5, 9) and any other
+form are refused. Degenerate quadrilaterals (n3 = n4) are C0 triangles.
+NIP 0 means 2; 1–10 Gauss points (Lobatto for *CONTROL_SHELL INTGRD = 1,
+NIP ≥ 3). Hourglass IHQ 1–3 run viscous, 4–5 stiffness; 6 and 8 run as
+stiffness with a warning. *CONTROL_SHELL: ISTUPD (1, 3, 4: thickness
+change), BWC (1: Belytschko–Wong–Chiang warping correction; 2, LS-DYNA's
+default: none), INTGRD, ROTASCL.
+
+Masses: ρ·t·A (+ MAREA·A) shared equally by the element's nodes; rotary
+inertia m_node·A/8 (Kennedy–Belytschko–Lin scaling, large enough that the
+rotations never set the time step) times ROTASCL.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..keyword.errors import Problem
+from ..model.model import Model
+from .groups import ElementGroup
+from .kernels import plane_stress as ps
+from .kernels.shell import N_CHUNKS, N_WORK, shell_forces, shell_timestep
+from .kernels.solid import corner_incidence, gather_corners
+
+_AS_BT = (0, 1, 2, 4, 6, 7, 8, 10, 11, 16, -16, 17, 18, 20)
+VISCOUS, STIFFNESS = 1, 2
+
+
+@dataclass
+class ShellSet:
+    """Shell elements (n) and their materials (n_mat), see kernels.shell."""
+
+    ids: np.ndarray  # (n,) int64 element IDs
+    pid: np.ndarray  # (n,) int64 part IDs
+    conn: np.ndarray  # (n, 4) int64 node indices (triangles n1 n2 n3 n3)
+    tri: np.ndarray  # (n,) int8 1: triangle
+    mat_of: np.ndarray  # (n,) int64 row of the material tables
+    mat_ids: np.ndarray  # (n_mat,) int64 deck material IDs
+    mtype: np.ndarray  # (n_mat,) int64 plane_stress.ELASTIC, KINEMATIC, PIECEWISE
+    props: np.ndarray  # (n_mat, N_PROPS) float64 (plane_stress P_*)
+    mcurve: np.ndarray  # (n_mat, N_CURVES) int64 curve slots (-1: none)
+    curve_start: np.ndarray  # (n_curves,) int64
+    curve_stop: np.ndarray  # (n_curves,) int64
+    curve_x: np.ndarray  # (m,) float64 abscissae (plastic strain or strain rate)
+    curve_y: np.ndarray  # (m,) float64 ordinates (stress or scale factor)
+    thick0: np.ndarray  # (n,) float64 initial thickness, mean of the nodal ones [length]
+    area0: np.ndarray  # (n,) float64 initial area [length²]
+    nip: np.ndarray  # (n,) int64 integration points through the thickness
+    rule: np.ndarray  # (n,) int64 0 Gauss, 1 Lobatto
+    shrf: np.ndarray  # (n,) float64 transverse shear correction factor
+    hg_kind: np.ndarray  # (n,) int64 0 none, 1 viscous, 2 stiffness
+    hg_qm: np.ndarray  # (n,) float64 membrane hourglass coefficient QM
+    hg_qb: np.ndarray  # (n,) float64 bending coefficient QB
+    hg_qw: np.ndarray  # (n,) float64 out-of-plane (warping) coefficient QW
+    rho: np.ndarray  # (n,) float64 density incl. MAREA/t [mass/length³]
+    marea: np.ndarray  # (n,) float64 non-structural mass per area [mass/length²]
+    istupd: int = 0  # 1: thickness follows the normal strain
+    bwc: int = 2  # 1: warping correction
+    rotascl: float = 1.0  # rotary inertia scale factor
+    warnings: list = field(default_factory=list)  # Problem: options run in an approximated way
+
+    def __len__(self) -> int:
+        return len(self.ids)
+
+
+@dataclass
+class ShellState:
+    """Per-element state of the shells (kernels.shell documents each)."""
+
+    sig: np.ndarray  # (n, nip_max, 5) float64 stress in the element frame [stress]
+    back: np.ndarray  # (n, nip_max, 5) float64 back stress [stress]
+    epsp: np.ndarray  # (n, nip_max) float64 effective plastic strain
+    ipfail: np.ndarray  # (n, nip_max) int8 1: failed point
+    thick: np.ndarray  # (n,) float64 [length]
+    alive: np.ndarray  # (n,) int8 1 active, 0 eroded, -1 collapsed
+    hgq: np.ndarray  # (n, 5) float64 hourglass generalized stresses
+    energy: np.ndarray  # (n,) float64 internal energy [energy]
+    hg_energy: np.ndarray  # (n,) float64 hourglass energy [energy]
+    fe: np.ndarray  # (n, 4, 3) float64 corner forces ON the nodes [force]
+    me: np.ndarray  # (n, 4, 3) float64 corner moments ON the nodes [force·length]
+    work: np.ndarray  # (N_CHUNKS, N_WORK) float64 scratch
+    node_ptr: np.ndarray  # (n_nodes + 1,) int64 CSR node -> corners
+    corner_of: np.ndarray  # (4n,) int64
+
+
+def new_state(s: ShellSet, n_nodes: int) -> ShellState:
+    n = len(s)
+    k = int(s.nip.max()) if n else 1
+    ptr, corner_of = corner_incidence(n_nodes, s.conn)
+    return ShellState(np.zeros((n, k, 5)), np.zeros((n, k, 5)), np.zeros((n, k)), np.zeros((n, k), np.int8),
+                      s.thick0.copy(), np.ones(n, np.int8), np.zeros((n, 5)), np.zeros(n), np.zeros(n),
+                      np.zeros((n, 4, 3)), np.zeros((n, 4, 3)), np.zeros((N_CHUNKS, N_WORK)), ptr, corner_of)
+
+
+def compute_forces(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
+    """Advance the shells' state to t(n+1) and fill st.fe, st.me."""
+    shell_forces(x, v, w, float(dt), s.conn, s.tri, s.mat_of, s.mtype, s.props, s.mcurve, s.curve_start,
+                 s.curve_stop, s.curve_x, s.curve_y, s.nip, s.rule, s.shrf, s.hg_kind, s.hg_qm, s.hg_qb, s.hg_qw,
+                 s.rho, int(s.istupd == 1), int(s.bwc == 1), st.sig, st.back, st.epsp, st.ipfail, st.thick,
+                 st.alive, st.hgq, st.energy, st.hg_energy, st.work, st.fe, st.me)
+
+
+def element_areas(x: np.ndarray, conn: np.ndarray, tri: np.ndarray) -> np.ndarray:
+    """(n,) areas ½|d13 × d24| (quads) or ½|d12 × d13| (triangles) [length²]."""
+    quad = tri == 0
+    u = np.where(quad[:, None], x[conn[:, 2]] - x[conn[:, 0]], x[conn[:, 1]] - x[conn[:, 0]])
+    s = np.where(quad[:, None], x[conn[:, 3]] - x[conn[:, 1]], x[conn[:, 2]] - x[conn[:, 0]])
+    return 0.5 * np.linalg.norm(np.cross(u, s), axis=1)
+
+
+def lumped(s: ShellSet, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
+    """(mass (n_nodes,) [mass], rotary inertia (n_nodes,) [mass·length²]):
+    each element's ρ·t·A + MAREA·A shared equally by its distinct nodes,
+    with m_node·A/8·ROTASCL of rotary inertia."""
+    nn = np.where(s.tri == 1, 3, 4)
+    m_node = (s.rho * s.thick0 * s.area0) / nn
+    j_node = m_node * s.area0 / 8.0 * s.rotascl
+    mass = np.zeros(n_nodes)
+    inertia = np.zeros(n_nodes)
+    for a in range(4):
+        sel = (a < 3) | (s.tri == 0)
+        np.add.at(mass, s.conn[sel, a], m_node[sel])
+        np.add.at(inertia, s.conn[sel, a], j_node[sel])
+    return mass, inertia
+
+
+def element_dt(s: ShellSet, x: np.ndarray, alive: np.ndarray | None = None) -> np.ndarray:
+    """(n,) critical step of each shell at positions x (LS-DYNA rule, before TSSFAC)."""
+    out = np.empty(len(s))
+    shell_timestep(x, s.conn, s.tri, np.ones(len(s), np.int8) if alive is None else alive, s.mat_of, s.props,
+                   out)
+    return out
+
+
+# --- from the Model -------------------------------------------------------------------------------
+
+
+def _problem(rec, fld, msg) -> Problem:
+    f, line = rec.where(fld) if rec is not None and hasattr(rec, "where") else ("", 0)
+    return Problem(f, line, getattr(rec, "name", ""), fld.upper() if fld else None, msg)
+
+
+class _Curves:
+    """Curve store (CSR), each *DEFINE_CURVE once."""
+
+    def __init__(self, model: Model):
+        self.model = model
+        self.slot: dict = {}
+        self.xs: list[np.ndarray] = []
+        self.ys: list[np.ndarray] = []
+
+    def get(self, lcid: int) -> int:
+        if lcid not in self.slot:
+            c = self.model.curves[lcid]
+            a = np.asarray(c.rows["a1"], float) * float(c.get("sfa", 1.0) or 1.0) + float(c.get("offa", 0.0))
+            o = np.asarray(c.rows["o1"], float) * float(c.get("sfo", 1.0) or 1.0) + float(c.get("offo", 0.0))
+            self.add(a, o, lcid)
+        return self.slot[lcid]
+
+    def add(self, a, o, key) -> int:
+        self.slot[key] = len(self.xs)
+        self.xs.append(np.asarray(a, float))
+        self.ys.append(np.asarray(o, float))
+        return self.slot[key]
+
+    def arrays(self):
+        sizes = np.array([len(a) for a in self.xs], np.int64)
+        stop = np.cumsum(sizes)
+        cat = (lambda xs: np.concatenate(xs) if xs else np.zeros(0))
+        return stop - sizes, stop, cat(self.xs), cat(self.ys)
+
+
+def _num(rec, fld, default=0.0) -> float:
+    v = rec.get(fld)
+    return default if v is None else float(v)
+
+
+def _curve(model, mat, fld, curves, problems):
+    """Curve slot of field ``fld`` (-1: none), None if refused."""
+    lc = int(_num(mat, fld))
+    if lc == 0:
+        return -1
+    if lc not in model.curves:
+        problems.append(_problem(mat, fld, f"curve {lc} is not defined (a *DEFINE_CURVE is needed; tables are "
+                                           "not supported for shells)"))
+        return None
+    return curves.get(lc)
+
+
+def _material(model: Model, mat, curves: _Curves, problems: list):
+    """(kind, props row, curve slots) of one material, or None if refused."""
+    kw = mat.keyword
+    if kw not in ("MAT_ELASTIC", "MAT_PLASTIC_KINEMATIC", "MAT_PIECEWISE_LINEAR_PLASTICITY"):
+        problems.append(_problem(mat, None, f"*{kw} is not supported for shells (supported: MAT_001, MAT_003, "
+                                            "MAT_024, MAT_020 rigid)"))
+        return None
+    e, nu, ro = _num(mat, "e"), _num(mat, "pr"), _num(mat, "ro")
+    if e <= 0 or ro <= 0 or not 0.0 <= nu < 0.5:
+        problems.append(_problem(mat, "e", f"material {mat.get('mid')}: RO > 0, E > 0 and 0 <= PR < 0.5 are "
+                                           "needed for shells"))
+        return None
+    row = np.zeros(ps.N_PROPS)
+    mc = np.full(ps.N_CURVES, -1, np.int64)
+    row[ps.P_RO], row[ps.P_E], row[ps.P_PR] = ro, e, nu
+    row[ps.P_G], row[ps.P_C1] = e / (2.0 * (1.0 + nu)), e / (1.0 - nu * nu)
+    row[ps.P_WAVE] = e / (ro * (1.0 - nu * nu))
+    row[ps.P_FAIL] = 1e21
+    row[ps.P_BETA] = 1.0
+    if kw == "MAT_ELASTIC":
+        return ps.ELASTIC, row, mc
+    ok = True
+    etan = _num(mat, "etan")
+    if not 0.0 <= etan < e:
+        problems.append(_problem(mat, "etan", "ETAN must lie in [0, E)"))
+        ok = False
+    row[ps.P_SIGY] = _num(mat, "sigy")
+    row[ps.P_EP] = e * etan / (e - etan) if 0.0 <= etan < e else 0.0
+    if _num(mat, "vp") != 0.0:
+        problems.append(_problem(mat, "vp", "VP = 1 (viscoplastic rate formulation) is not supported yet"))
+        ok = False
+    if kw == "MAT_PLASTIC_KINEMATIC":
+        beta = _num(mat, "beta")
+        if not 0.0 <= beta <= 1.0:
+            problems.append(_problem(mat, "beta", "BETA must lie in [0, 1]"))
+            ok = False
+        row[ps.P_BETA] = beta
+        row[ps.P_CS_C], row[ps.P_CS_P] = _num(mat, "src"), _num(mat, "srp")
+        fs = _num(mat, "fs", 1e20)
+        row[ps.P_FAIL] = fs if fs > 0 else 1e21
+        if row[ps.P_SIGY] <= 0:
+            problems.append(_problem(mat, "sigy", "SIGY > 0 is needed"))
+            ok = False
+        return (ps.KINEMATIC, row, mc) if ok else None
+    # MAT_024
+    for fld, what in (("lcf", "LCF"), ("tdel", "TDEL (deletion by time step)")):
+        if _num(mat, fld) != 0:
+            problems.append(_problem(mat, fld, f"{what} is not supported for shells yet"))
+            ok = False
+    fail = _num(mat, "fail", 1e21)
+    if fail < 0:
+        problems.append(_problem(mat, "fail", "FAIL < 0 (user failure subroutine) is not supported"))
+        ok = False
+    row[ps.P_FAIL] = fail if fail > 0 else 1e21
+    row[ps.P_CS_C], row[ps.P_CS_P] = _num(mat, "c"), _num(mat, "p")
+    lcsr = _curve(model, mat, "lcsr", curves, problems)
+    lcss = _curve(model, mat, "lcss", curves, problems)
+    if lcsr is None or lcss is None:
+        return None
+    mc[ps.C_LCSR] = lcsr
+    if lcss >= 0:
+        mc[ps.C_LCSS] = lcss
+    else:
+        es = np.array([_num(mat, f"es{i}") for i in range(1, 9)])
+        eps = np.array([_num(mat, f"eps{i}") for i in range(1, 9)])
+        if np.any(es > 0):
+            n = int(np.flatnonzero(es > 0)[-1]) + 1
+            if n < 2 or np.any(np.diff(eps[:n]) <= 0):
+                problems.append(_problem(mat, "eps1", "EPS1-EPS8 / ES1-ES8 need at least two points with "
+                                                      "rising strains"))
+                ok = False
+            else:
+                mc[ps.C_LCSS] = curves.add(eps[:n], es[:n], ("mat", mat.get("mid")))
+        elif row[ps.P_SIGY] <= 0:
+            problems.append(_problem(mat, "sigy", "SIGY > 0 (or a curve LCSS / EPS-ES points) is needed"))
+            ok = False
+    return (ps.PIECEWISE, row, mc) if ok else None
+
+
+def _control_shell(model: Model, problems: list, warns: list) -> tuple[int, int, int, float]:
+    """(ISTUPD as 0/1, BWC, INTGRD, ROTASCL) of *CONTROL_SHELL."""
+    recs = model.find("CONTROL_SHELL")
+    if not recs:
+        return 0, 2, 0, 1.0
+    r = recs[0]
+    istupd = int(_num(r, "istupd"))
+    if istupd in (2,):
+        istupd = 0  # thick shells only
+    elif istupd == 4:
+        warns.append(_problem(r, "istupd", "ISTUPD 4 runs as 1 (elastic strains also change the thickness)"))
+        istupd = 1
+    elif istupd in (1, 3):
+        istupd = 1
+    elif istupd != 0:
+        problems.append(_problem(r, "istupd", f"ISTUPD {istupd} is not supported (0-4)"))
+    bwc = int(_num(r, "bwc", 2))
+    intgrd = int(_num(r, "intgrd"))
+    if intgrd not in (0, 1):
+        problems.append(_problem(r, "intgrd", "INTGRD must be 0 (Gauss) or 1 (Lobatto)"))
+    return istupd, (1 if bwc == 1 else 2), intgrd, _num(r, "rotascl", 1.0) or 1.0
+
+
+def _section(sec, part, p, intgrd, problems, warns):
+    """(nip, rule, shrf, (t1..t4), marea) of a *SECTION_SHELL, or None."""
+    ok = True
+    elform = int(sec.get("elform") if sec.get("elform") is not None else 2)
+    if elform in _AS_BT:
+        if elform not in (0, 2):
+            warns.append(_problem(sec, "elform", f"ELFORM {elform} of part {p} runs as ELFORM 2 (Belytschko-Lin-"
+                                                 "Tsay, one point, hourglass control)"))
+    else:
+        problems.append(_problem(sec, "elform", f"shell formulation {elform} is not supported (2; 0, 1, 4, 6-8, "
+                                                "10, 11, 16-18, 20 run as 2)"))
+        ok = False
+    nip = int(_num(sec, "nip", 2)) or 2
+    if not 1 <= nip <= 10:
+        problems.append(_problem(sec, "nip", f"NIP {nip}: 1 to 10 points through the thickness are supported"))
+        ok = False
+    for fld, what in (("qr", "QR/IRID (user integration rule)"), ("icomp", "ICOMP = 1 (composite layers)"),
+                      ("nloc", "NLOC (reference surface offset)"), ("idof", "IDOF"), ("edgset", "EDGSET")):
+        if _num(sec, fld) != 0:
+            problems.append(_problem(sec, fld, f"{what} is not supported for shells"))
+            ok = False
+    t = [_num(sec, f"t{i}") for i in range(1, 5)]
+    t = [ti if ti > 0 else t[0] for ti in t]
+    shrf = _num(sec, "shrf", 1.0) or 1.0
+    rule = 1 if intgrd == 1 and nip >= 3 else 0
+    return (nip, rule, shrf, np.array(t), _num(sec, "marea")) if ok else None
+
+
+def _hourglass(model, part, p, ihq0, qh0, problems, warns):
+    """(kind, QM, QB, QW) of a part, or None."""
+    hgid = int(part.get("hgid", 0) or 0)
+    hg = model.hourglasses.get(hgid) if hgid else None
+    if hgid and hg is None:
+        problems.append(_problem(part, "hgid", f"*HOURGLASS {hgid} is not defined"))
+        return None
+    ihq = (int(hg.get("ihq", 0) or 0) if hg is not None else 0) or ihq0
+    qm = _num(hg, "qm", 0.1) if hg is not None else qh0
+    qb = _num(hg, "qb", 0.0) if hg is not None else 0.0
+    qw = _num(hg, "qw", 0.0) if hg is not None else 0.0
+    if ihq in (6, 8):
+        warns.append(_problem(hg if hg is not None else part, "ihq",
+                              f"IHQ {ihq} of part {p} runs as IHQ 4 (Belytschko-Tsay stiffness form)"))
+        ihq = 4
+    if not 1 <= ihq <= 5:
+        problems.append(_problem(hg if hg is not None else part, "ihq",
+                                 f"hourglass type {ihq} is not supported for shells (1-5; 6, 8 as 4)"))
+        return None
+    return (VISCOUS if ihq <= 3 else STIFFNESS), qm, (qb or qm), (qw or qm)
+
+
+def build_shell_set(model: Model, rigid_pids, problems: list, warnings: list | None = None) -> ShellSet | None:
+    """Shells of the deformable parts, or None if there are none. Problems
+    (unsupported options, missing data) go to ``problems``; options run in
+    an approximated way to ``warnings`` (and the set's ``warnings``)."""
+    sh = model.shells
+    sel = ~np.isin(sh.pid, np.asarray(rigid_pids, np.int64))
+    if not sel.any():
+        return None
+    warns: list[Problem] = []
+    src = model.source or ""
+    ids, pid = sh.ids[sel].astype(np.int64), sh.pid[sel].astype(np.int64)
+    conn = sh.nodes[sel].astype(np.int64)
+    n = len(ids)
+    conn[:, 3] = np.where(conn[:, 3] < 0, conn[:, 2], conn[:, 3])  # 3-node input
+    if np.any(conn < 0):
+        problems.append(Problem(src, 0, "ELEMENT_SHELL", None, "shell elements need their nodes N1-N3 defined"))
+        return None
+    tri = (conn[:, 2] == conn[:, 3]).astype(np.int8)
+    if np.any((conn[:, 0] == conn[:, 1]) | (conn[:, 1] == conn[:, 2]) | (conn[:, 0] == conn[:, 2])
+              | ((tri == 0) & ((conn[:, 3] == conn[:, 0]) | (conn[:, 3] == conn[:, 1])))):
+        problems.append(Problem(src, 0, "ELEMENT_SHELL", None, "degenerate shells must repeat node 3 as node 4 "
+                                                               "(n1 n2 n3 n3)"))
+        return None
+    offset = sh.offset[sel]
+    if np.any(np.nan_to_num(offset) != 0.0):
+        problems.append(Problem(src, 0, "ELEMENT_SHELL_OFFSET", "OFFSET", "shell offsets are not supported yet"))
+    ctrl = model.find("CONTROL_HOURGLASS")
+    ihq0 = int(ctrl[0].get("ihq", 1) or 1) if ctrl else 1
+    qh0 = _num(ctrl[0], "qh", 0.1) if ctrl else 0.1
+    istupd, bwc, intgrd, rotascl = _control_shell(model, problems, warns)
+    curves = _Curves(model)
+    mat_rows: dict[int, int] = {}
+    mtypes, props, mcurves, mat_ids = [], [], [], []
+    mat_of = np.zeros(n, np.int64)
+    nip, rule, shrf = np.full(n, 2, np.int64), np.zeros(n, np.int64), np.ones(n)
+    tnode = np.zeros((n, 4))
+    marea = np.zeros(n)
+    hg_kind, hg_qm, hg_qb, hg_qw = np.zeros(n, np.int64), np.zeros(n), np.zeros(n), np.zeros(n)
+    for p in np.unique(pid):
+        m = pid == p
+        part = model.parts.get(int(p))
+        sec = model.sections.get(part.get("secid")) if part is not None else None
+        mat = model.materials.get(part.get("mid")) if part is not None else None
+        if part is None or sec is None or sec.keyword != "SECTION_SHELL" or mat is None:
+            problems.append(Problem(src, 0, "ELEMENT_SHELL", "PID",
+                                    f"shells of part {int(p)} need a *PART with a *SECTION_SHELL and a material"))
+            continue
+        got = _section(sec, part, int(p), intgrd, problems, warns)
+        hg = _hourglass(model, part, int(p), ihq0, qh0, problems, warns)
+        mid = int(mat.get("mid"))
+        if mid not in mat_rows:
+            mm = _material(model, mat, curves, problems)
+            if mm is None:
+                continue
+            mat_rows[mid] = len(mtypes)
+            mtypes.append(mm[0])
+            props.append(mm[1])
+            mcurves.append(mm[2])
+            mat_ids.append(mid)
+        if got is None or hg is None:
+            continue
+        mat_of[m] = mat_rows[mid]
+        nip[m], rule[m], shrf[m], tnode[m], marea[m] = got
+        hg_kind[m], hg_qm[m], hg_qb[m], hg_qw[m] = hg
+    if not mtypes:
+        return None
+    given = sh.thickness[sel]
+    tn = np.where(np.isfinite(given) & (given > 0), given, tnode)
+    thick0 = np.where(tri == 1, tn[:, :3].mean(axis=1), tn.mean(axis=1))
+    for i in np.flatnonzero(thick0 <= 0)[:10]:
+        problems.append(Problem(src, 0, "SECTION_SHELL", "T1", f"shell {int(ids[i])} has thickness <= 0"))
+    x = model.nodes.xyz
+    area0 = element_areas(x, conn, tri)
+    for i in np.flatnonzero(area0 <= 0)[:10]:
+        problems.append(Problem(src, 0, "ELEMENT_SHELL", None, f"shell {int(ids[i])} has zero area"))
+    props_a = np.array(props)
+    rho = props_a[mat_of, ps.P_RO] + np.where(thick0 > 0, marea / np.where(thick0 > 0, thick0, 1.0), 0.0)
+    cs, ce, cx, cy = curves.arrays()
+    s = ShellSet(ids, pid, conn, tri, mat_of, np.array(mat_ids, np.int64), np.array(mtypes, np.int64), props_a,
+                 np.array(mcurves, np.int64).reshape(-1, ps.N_CURVES), cs, ce, cx, cy, thick0, area0, nip, rule,
+                 shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, marea, istupd, bwc, rotascl, warns)
+    if warnings is not None:
+        warnings.extend(warns)
+    return s
+
+
+# --- in the time loop ----------------------------------------------------------------------------
+
+
+class ShellGroup(ElementGroup):
+    """The shells as an element group of the time loop (groups.ElementGroup)."""
+
+    kind = "shell"
+
+    def __init__(self, s: ShellSet, n_nodes: int):
+        self.s = s
+        self.st = new_state(s, n_nodes)
+        self.ids, self.pid, self.conn = s.ids, s.pid, s.conn
+        self.energy = self.st.energy  # internal energy [energy]
+        self.hourglass = self.st.hg_energy
+        self.warnings = s.warnings
+        self._frows = self.st.fe.reshape(-1, 3)
+        self._mrows = self.st.me.reshape(-1, 3)
+        self._dt = np.empty(len(s))
+
+    def forces(self, st) -> None:
+        compute_forces(self.s, self.st, st.x, st.v, st.w, st.dt)
+        gather_corners(self.st.node_ptr, self.st.corner_of, self._frows, st.f)
+        gather_corners(self.st.node_ptr, self.st.corner_of, self._mrows, st.moment)
+
+    def corner_forces(self) -> np.ndarray:
+        return self.st.fe
+
+    def corner_moments(self) -> np.ndarray:
+        return self.st.me
+
+    def lumped(self, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
+        return lumped(self.s, n_nodes)
+
+    def critical_dt(self, st) -> float:
+        s = self.s
+        shell_timestep(st.x, s.conn, s.tri, self.st.alive, s.mat_of, s.props, self._dt)
+        return float(self._dt.min()) if len(self._dt) else np.inf
+
+    @property
+    def eroded(self) -> int:
+        return int(np.count_nonzero(self.st.alive != 1))
+
+
+def build_shells(model: Model, rigid_pids, problems: list, warnings: list | None = None) -> ShellGroup | None:
+    """The shell group of a Model (None without deformable shells); see
+    ``build_shell_set`` for ``problems`` and ``warnings``."""
+    s = build_shell_set(model, rigid_pids, problems, warnings)
+    if s is None:
+        return None
+    return ShellGroup(s, len(model.nodes))
