@@ -271,7 +271,9 @@ def _hourglass(e, w, vn, rho, c, wave, dt, ihq, qm, hgq, hg_energy, fe):
         bb += w[_B + k] * w[_B + k]
     visc = ihq <= 3
     a_visc = 0.25 * qm * rho * c * vn ** (2.0 / 3.0)
-    kappa = qm * wave * bb / (3.0 * vn)
+    # FB stiffness Q̇ = QM·(ρc²)·(b·b)/(3V)·q̇ with FB's shape vectors γ/8: q̇ = v·γ/8 and f = Q·γ/8,
+    # hence 1/64 on the unnormalized γ used here (a cube's mode then gets ≈ QM × its physical stiffness)
+    kappa = qm * wave * bb / (192.0 * vn)
     if not visc:  # stored stiffness forces turn with the element, as the stress does (objective)
         for al in range(4):
             g0, g1, g2 = hgq[e, 0, al], hgq[e, 1, al], hgq[e, 2, al]
