@@ -1,53 +1,24 @@
-"""Decks with shells through the solver's own set-up and time loop.
+"""Decks with shells through the solver's set-up and time loop.
 
-``shells_in_solver`` makes ``setup.build`` add the shell group the way the
-solver's element-group hook does for solids (and accept *CONTROL_SHELL),
-for as long as ``setup`` does not build shells itself; once it does, the
-context changes nothing. ``run_deck`` builds and integrates a deck and
-returns the Results together with the shell group (final element state).
-
-Deck helpers write flat rectangular meshes of shells.
+``run_deck`` builds and integrates a deck and returns the Results together
+with the shell group (final element state). Deck helpers write flat
+rectangular meshes of shells.
 """
 
 from __future__ import annotations
 
-from contextlib import contextmanager
-
 import numpy as np
 
 from crashlite import read_deck
-from crashlite.solver import setup, support
+from crashlite.solver import setup
 from crashlite.solver.loop import integrate
-from crashlite.solver.shells import ShellGroup, build_shells
-
-
-@contextmanager
-def shells_in_solver():
-    saved = (setup._UNSUPPORTED_TABLES, setup._element_groups, support.RUN)
-
-    def groups(model, rigid, n, problems):
-        out = saved[1](model, rigid, n, problems)
-        if not any(isinstance(g, ShellGroup) for g in out):
-            g = build_shells(model, rigid, problems)
-            if g is not None:
-                out.append(g)
-        return out
-
-    setup._UNSUPPORTED_TABLES = tuple(t for t in saved[0] if t != "shells")
-    setup._element_groups = groups
-    if "CONTROL_SHELL" not in saved[2]:
-        support.RUN = saved[2] + ("CONTROL_SHELL",)
-    try:
-        yield
-    finally:
-        setup._UNSUPPORTED_TABLES, setup._element_groups, support.RUN = saved
+from crashlite.solver.shells import ShellGroup
 
 
 def run_deck(path, output_dt=None):
     """(Results, ShellGroup, Setup) of a deck run to its end time."""
     model = read_deck(path)
-    with shells_in_solver():
-        s = setup.build(model)
+    s = setup.build(model)
     (g,) = [g for g in s.groups if isinstance(g, ShellGroup)]
     res = integrate(s, output_dt)
     return res, g, s, model

@@ -94,12 +94,12 @@ def test_mass_stops_on_rigid_wall_and_wall_takes_its_energy(tmp_path):
 def test_unsupported_content_is_refused_with_the_keyword(tmp_path):
     text = "\n".join(["*KEYWORD", "*NODE", "1,0,0,0", "2,1,0,0", "3,1,1,0",
                       "*ELEMENT_SHELL", "1,1,1,2,3", "*PART", "p", "1,1,1", "*SECTION_SHELL", "1,2", "1.0",
-                      "*MAT_ELASTIC", "1,1e-9,1.0,0.3", "*END"])
+                      "*MAT_ELASTIC", "1,1e-9,1.0,0.3", "*DAMPING_GLOBAL", "0,0.1", "*END"])
     p = tmp_path / "shell.k"
     p.write_text(text)
     with pytest.raises(SetupError) as e:
         run(p)
-    assert "ELEMENT_SHELL" in str(e.value) and "ENDTIM" in str(e.value)
+    assert "DAMPING_GLOBAL" in str(e.value) and "ENDTIM" in str(e.value)
 
 
 def test_results_identical_on_one_and_two_threads(tmp_path):

@@ -463,17 +463,21 @@ def _bodies(model: Model, x, v, mass, problems: list) -> list:
     return bodies
 
 
-_UNSUPPORTED_TABLES = ("shells",)
+_UNSUPPORTED_TABLES: tuple[str, ...] = ()
 
 
 def _element_groups(model: Model, rigid: np.ndarray, n: int, problems: list) -> list:
-    """Element families beyond discretes and beams (solids, ...) as groups."""
+    """Element families beyond discretes and beams (solids, shells) as groups."""
+    from .shells import build_shells
     from .solids import SolidGroup, build_solids
 
     groups = []
     solids = build_solids(model, rigid, problems)
     if solids is not None and len(solids):
         groups.append(SolidGroup(solids, n))
+    shells = build_shells(model, rigid, problems)
+    if shells is not None and len(shells.ids):
+        groups.append(shells)
     return groups
 
 
