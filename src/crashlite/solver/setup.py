@@ -478,7 +478,9 @@ def _element_groups(model: Model, rigid: np.ndarray, n: int, problems: list) -> 
     shells = build_shells(model, rigid, problems)
     if shells is not None and len(shells.ids):
         groups.append(shells)
-    return groups
+    from .contact import build_contacts
+
+    return groups + build_contacts(model, groups, problems)  # after the elements: they add to their forces
 
 
 def build(model: Model) -> Setup:

@@ -1,0 +1,544 @@
+"""Penalty contact from the Model: *CONTACT_AUTOMATIC_SINGLE_SURFACE,
+_NODES_TO_SURFACE and _SURFACE_TO_SURFACE as time-loop groups.
+
+Each interface becomes one ContactGroup (kind "contact": its energy counts
+as sliding energy). Segments are the shells of the surface's parts (both
+sides, contact thickness = shell thickness, or SST/MST) and the exterior
+faces of their solids (faces used by one element of the surface, outward
+normals, zero thickness). Slave entries are nodes facing segments:
+
+- single surface: every surface node against every segment not holding it;
+- nodes to surface: the slave nodes (node set or the parts' element nodes)
+  against the master segments;
+- surface to surface: both passes, slave nodes against master segments and
+  master nodes against slave segments (symmetric treatment).
+
+Penalty stiffness (LS-DYNA, SOFT = 0): k = SLSFAC·SF·K·A/min(diagonal)
+for shells, SLSFAC·SF·K·A²/V for solid faces (K the bulk modulus
+E/(3(1−2ν)) of the segment's material, SF = SFS for slave, SFM for master
+segments), and for a pair the smaller of the segment's and the slave node's
+(the smallest of its own segments; none for nodes without segments).
+SOFT = 1 takes the larger of that and 0.5·SOFSCL·m*/Δt0², with m* the
+reduced mass of the node and the mean node mass of the segment and Δt0 the
+initial element time step (DTSTIF when given). Friction: μ = FSF·(FD +
+(FS − FD)·exp(−DC·|v_t|)), elastic-plastic tangential spring of the same
+stiffness; VDC adds normal damping in percent of critical.
+
+The search is a bucket sort (kernels.contact.find_candidates) with boxes
+grown by the contact reach plus a margin; it is redone every BSORT cycles
+(default 100) or as soon as a node may have moved half the margin, so the
+candidate lists stay conservative. Options that would change the physics
+and are not run are refused with a Problem naming the field.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from types import SimpleNamespace
+
+import numpy as np
+
+from ..keyword.errors import Problem
+from ..model.model import Model
+from .groups import ElementGroup
+from .kernels import contact as kc
+from .kernels.solid import N_CHUNKS, N_WORK, solid_volumes
+
+KINDS = ("CONTACT_AUTOMATIC_SINGLE_SURFACE", "CONTACT_AUTOMATIC_NODES_TO_SURFACE",
+         "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE")
+BSORT_DEFAULT = 100
+
+# fields whose non-default values are not run: field -> (accepted values, what it does)
+_FIXED = {
+    "sboxid": ((0,), "box-limited slave surface"), "mboxid": ((0,), "box-limited master surface"),
+    "vc": ((0.0,), "viscous friction limit VC"), "penchk": ((0,), "penetration check"),
+    "lcidab": ((0,), "airbag thickness curve (SOFT = 2)"), "frcfrq": ((0, 1), "friction every FRCFRQ cycles"),
+    "penmax": ((0.0,), "release of deeply penetrated nodes"), "thkopt": ((0,), "thickness option"),
+    "isym": ((0,), "symmetry planes"), "i2d3d": ((0,), "2D/3D segment priority"),
+    "sldthk": ((0.0,), "solid contact thickness"), "sldstf": ((0.0,), "solid contact stiffness"),
+    "ignore": ((0,), "ignoring initial penetrations"), "dprfac": ((0.0,), "depth of penetration reduction"),
+    "cid_rcf": ((0,), "rcforc in a local system"), "q2tri": ((0,), "quad splitting"),
+    "dtpchk": ((0.0,), "penetration time step check"), "sfnbr": ((0.0,), "neighbour segment scale"),
+    "fnlscl": ((0.0,), "non-linear penalty"), "dnlscl": ((0.0,), "non-linear penalty depth"),
+    "tcso": ((0,), "segment-orientation option"), "tiedid": ((0,), "tied incremental displacement"),
+    "shledg": ((0,), "shell edge treatment"), "sharec": ((0,), "shared edge constraint"),
+    "cparm8": ((0,), "spot weld exclusion"), "ipback": ((0,), "backup penalty"),
+    "srnde": ((0,), "non-extended rounded edges"), "fricsf": ((1.0,), "friction scale on the tangent"),
+    "icor": ((0,), "coefficient of restitution"), "ftorq": ((0,), "friction torque"),
+    "region": ((0,), "contact region"), "pstiff": ((0,), "stiffness from the master segment only"),
+    "ignroff": ((0,), "ignore thickness offsets"), "twodbinr": ((0,), "2D binary output"),
+    "ssftyp": ((0,), "SSF type"), "swtpr": ((0,), "tapered shell thickness"), "tetfac": ((0.0,), "tetrahedra factor"),
+    "shloff": ((0.0,), "shell offset"),
+}
+_CONTROL_FIXED = {"ignore": ((0,), "ignoring initial penetrations"), "sfric": ((0.0,), "default friction"),
+                  "dfric": ((0.0,), "default friction"), "edc": ((0.0,), "default friction decay"),
+                  "vfc": ((0.0,), "default viscous friction")}
+
+# LS-DYNA hexahedron faces (0-based, outward normals by the right-hand rule)
+_HEX_FACES = np.array([[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]])
+
+
+@dataclass
+class Surface:
+    """Segments of one side of an interface."""
+
+    seg: np.ndarray  # (k, 4) int64 node indices (triangles n1 n2 n3 n3)
+    thick: np.ndarray  # (k,) float64 contact thickness [length]
+    k: np.ndarray  # (k,) float64 penalty stiffness (SOFT = 0) [force/length]
+    onesided: np.ndarray  # (k,) int8 1: solid face
+    depth: np.ndarray  # (k,) float64 deepest penetration accepted behind a solid face [length]
+    size: np.ndarray  # (k,) float64 √area [length]
+
+    @staticmethod
+    def empty() -> "Surface":
+        return Surface(np.zeros((0, 4), np.int64), np.zeros(0), np.zeros(0), np.zeros(0, np.int8), np.zeros(0),
+                       np.zeros(0))
+
+    def nodes(self) -> np.ndarray:
+        return np.unique(self.seg)
+
+    def node_values(self, nodes: np.ndarray, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
+        """(thickness, stiffness) of ``nodes``: the largest shell thickness and
+        the smallest stiffness of this surface's segments holding them (0
+        and inf for none)."""
+        t, k = np.zeros(n_nodes), np.full(n_nodes, np.inf)
+        for a in range(4):
+            np.maximum.at(t, self.seg[:, a], self.thick)
+            np.minimum.at(k, self.seg[:, a], self.k)
+        return t[nodes], k[nodes]
+
+
+def concat(*surfs: Surface) -> Surface:
+    return Surface(*(np.concatenate([getattr(s, f) for s in surfs]) for f in
+                     ("seg", "thick", "k", "onesided", "depth", "size")))
+
+
+@dataclass
+class Interface:
+    """One contact interface as the kernels see it (kernels.contact)."""
+
+    cid: int
+    name: str
+    snode: np.ndarray  # (ns,) int64 slave entry nodes
+    sside: np.ndarray  # (ns,) int64 side of the entry (-1: single surface)
+    sthick: np.ndarray  # (ns,) float64 [length]
+    sk: np.ndarray  # (ns,) float64 [force/length]
+    node_side: np.ndarray  # (ns,) int64 1: the node is on the slave side (rcforc), 0: the segment is
+    seg: np.ndarray  # (nm, 4) int64
+    mside: np.ndarray  # (nm,) int64
+    mthick: np.ndarray  # (nm,) float64
+    mk: np.ndarray  # (nm,) float64
+    onesided: np.ndarray  # (nm,) int8
+    depth: np.ndarray  # (nm,) float64
+    msize: np.ndarray  # (nm,) float64
+    fs: float = 0.0
+    fd: float = 0.0
+    dc: float = 0.0
+    vdc: float = 0.0
+    fsf: float = 1.0
+    soft: int = 0
+    sofscl: float = 0.1
+    dt0: float = np.inf  # initial time step for SOFT = 1 (inf: the first step of the run)
+    birth: float = 0.0
+    death: float = 1e20
+    bsort: int = BSORT_DEFAULT
+
+
+class ContactGroup(ElementGroup):
+    """One contact interface in the time loop (groups.ElementGroup, kind
+    "contact"): forces ON the nodes into st.f, the work of the contact
+    forces as ``energy`` (1,) [energy], the force on the slave side as
+    ``resultant`` (3,) [force]."""
+
+    kind = "contact"
+
+    def __init__(self, c: Interface, n_nodes: int):
+        self.c = c
+        self.cid, self.name = c.cid, c.name
+        self.ids = np.zeros(0, np.int64)  # no elements: parts and element counts leave contacts out
+        self.pid = np.zeros(0, np.int64)
+        self.conn = np.zeros((0, 5), np.int64)
+        self.energy = np.zeros(1)
+        self.resultant = np.zeros(3)
+        ns = len(c.snode)
+        self.ft = np.zeros((ns, 3))
+        self.rows = np.zeros((ns, 5, 3))
+        self.rnode = np.full((ns, 5), -1, np.int64)
+        self.gap = np.zeros(ns)
+        self.max_gap = 0.0  # largest penetration met so far [length]
+        self.sorts = 0  # bucket sorts done
+        self.prm = np.zeros(kc.N_PRM)
+        self.prm[[kc.P_FS, kc.P_FD, kc.P_DC, kc.P_VDC, kc.P_FSF]] = c.fs, c.fd, c.dc, c.vdc, c.fsf
+        self.involved = np.unique(np.concatenate([c.snode, c.seg.ravel()])).astype(np.int64)
+        self.x_sort = np.zeros((len(self.involved), 3))
+        # search margin: half a mean segment; boxes grow by the reach of a contact plus the margin
+        self.margin = 0.5 * float(c.msize.mean()) if len(c.msize) else 0.0
+        tmax = float(c.sthick.max()) if ns else 0.0
+        self.grow = 0.5 * (c.mthick + tmax) + np.where(c.onesided == 1, c.depth, 0.0) + self.margin
+        self._cptr, self._cand = np.zeros(ns + 1, np.int64), np.zeros(0, np.int64)
+        self._since = 0
+        self._smass = self._mmass = None
+
+    def lumped(self, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
+        return np.zeros(n_nodes), np.zeros(n_nodes)
+
+    def critical_dt(self, st) -> float:
+        return np.inf  # the penalty is sized to the elements' step (SOFT = 1: to the initial step)
+
+    def _sort(self, x) -> None:
+        c = self.c
+        self._cptr, self._cand = kc.find_candidates(x, c.snode, c.sside, c.seg, c.mside, self.grow)
+        self.x_sort[:] = x[self.involved]
+        self._since = 0
+        self.sorts += 1
+
+    def _first(self, st) -> None:
+        c = self.c
+        mass = np.asarray(st.mass, float)
+        self._smass = mass[c.snode]
+        nn = np.where(c.seg[:, 2] == c.seg[:, 3], 3, 4)
+        self._mmass = (mass[c.seg[:, 0]] + mass[c.seg[:, 1]] + mass[c.seg[:, 2]]
+                       + np.where(nn == 4, mass[c.seg[:, 3]], 0.0)) / nn
+        self._sort(st.x)
+
+    def forces(self, st) -> None:
+        c = self.c
+        if self._smass is None:
+            self._first(st)
+        if c.soft == 1 and self.prm[kc.P_SOFT_K] == 0.0:
+            dt0 = c.dt0 if np.isfinite(c.dt0) else st.dt
+            if dt0 > 0:
+                self.prm[kc.P_SOFT_K] = 0.5 * c.sofscl / dt0 ** 2
+        self.prm[kc.P_ACTIVE] = 1.0 if c.birth <= st.t <= c.death else 0.0
+        self._since += 1
+        if self._since >= c.bsort or 2.0 * kc.max_displacement(st.x, self.x_sort, self.involved) > self.margin:
+            self._sort(st.x)
+        p_old = kc.power(self.rows, self.rnode, st.v)  # forces of t(n) at v(n+½)
+        kc.contact_forces(st.x, st.v, float(st.dt), c.snode, c.sthick, c.sk, self._smass, c.seg, c.mthick, c.mk,
+                          self._mmass, c.onesided, c.depth, c.msize, self._cptr, self._cand, self.prm, self.ft,
+                          self.rows, self.rnode, self.gap)
+        p_new = kc.scatter(self.rows, self.rnode, st.v, c.node_side, st.f, self.resultant)
+        # work of the contact forces over the step (trapezoid); stored and dissipated energy count positive
+        self.energy[0] -= 0.5 * float(st.dt) * (p_old + p_new)
+        if len(self.gap):
+            self.max_gap = max(self.max_gap, float(self.gap.max()))
+
+    def corner_forces(self) -> np.ndarray:
+        return np.zeros((0, 5, 3))
+
+
+# --- from the Model -------------------------------------------------------------------------------
+
+
+def _problem(rec, fld, msg) -> Problem:
+    f, line = rec.where(fld) if rec is not None and hasattr(rec, "where") else ("", 0)
+    return Problem(f, line, getattr(rec, "name", ""), fld.upper() if fld else None, msg)
+
+
+def _num(rec, fld, default=0.0) -> float:
+    v = rec.get(fld) if rec is not None else None
+    return default if v is None else float(v)
+
+
+def _slsfac(model: Model, problems: list) -> float:
+    recs = model.find("CONTROL_CONTACT")
+    if not recs:
+        return 0.1
+    r = recs[0]
+    for fld, (ok, what) in _CONTROL_FIXED.items():
+        if r.get(fld) is not None and float(r.get(fld)) not in ok:
+            problems.append(_problem(r, fld, f"{what} ({fld.upper()} = {r.get(fld)}) is not supported"))
+    return _num(r, "slsfac", 0.1) or 0.1
+
+
+def _shell_thickness(model: Model, sel: np.ndarray, conn: np.ndarray, problems: list, rec) -> np.ndarray:
+    sh = model.shells
+    n = int(sel.sum())
+    tsec = np.zeros((n, 4))
+    pids = sh.pid[sel]
+    for p in np.unique(pids):
+        part = model.parts.get(int(p))
+        sec = model.sections.get(part.get("secid")) if part is not None else None
+        if sec is None or sec.keyword != "SECTION_SHELL":
+            problems.append(_problem(rec, None, f"part {int(p)} of the contact surface needs a *SECTION_SHELL"))
+            continue
+        t = [_num(sec, f"t{i}") for i in range(1, 5)]
+        tsec[pids == p] = [ti if ti > 0 else t[0] for ti in t]
+    given = sh.thickness[sel]
+    tn = np.where(np.isfinite(given) & (given > 0), given, tsec)
+    tri = conn[:, 2] == conn[:, 3]
+    return np.where(tri, tn[:, :3].mean(axis=1), tn.mean(axis=1))
+
+
+def _bulk(model: Model, pid: int, problems: list, rec) -> float:
+    part = model.parts.get(int(pid))
+    mat = model.materials.get(part.get("mid")) if part is not None else None
+    e, nu = _num(mat, "e"), _num(mat, "pr")
+    if mat is None or e <= 0 or not -1.0 < nu < 0.5:
+        problems.append(_problem(rec, None, f"part {int(pid)} of the contact surface needs a material with "
+                                            "E > 0 and -1 < PR < 0.5 (the penalty uses its bulk modulus)"))
+        return 0.0
+    return e / (3.0 * (1.0 - 2.0 * nu))
+
+
+def _solid_conn(model: Model, sel: np.ndarray) -> np.ndarray:
+    """(k, 8) solid connectivity with 4-node input and LS-DYNA tetrahedra
+    made n1 n2 n3 n3 n4 n4 n4 n4 (as solids.build_solids does)."""
+    conn = model.solids.nodes[sel].astype(np.int64)
+    blank = conn[:, 4:] < 0
+    conn[:, 4:] = np.where(blank, conn[:, 3:4], conn[:, 4:])
+    tet = np.all(conn[:, 4:] == conn[:, 3:4], axis=1) & (conn[:, 2] != conn[:, 3])
+    conn[tet] = conn[tet][:, [0, 1, 2, 2, 3, 3, 3, 3]]
+    return conn
+
+
+def _exterior_faces(conn: np.ndarray):
+    """(faces (k, 4) with triangles n1 n2 n3 n3, owning element (k,)) of the
+    faces used by one element of ``conn`` (degenerate faces dropped)."""
+    faces = conn[:, _HEX_FACES].reshape(-1, 4)
+    owner = np.repeat(np.arange(len(conn)), 6)
+    keep = np.ones(len(faces), bool)
+    for i in np.flatnonzero((faces == np.roll(faces, -1, axis=1)).any(axis=1)):  # degenerate shapes
+        f = faces[i]
+        d = list(dict.fromkeys(int(f[j]) for j in range(4) if f[j] != f[(j + 1) % 4]))  # cyclic, no repeats
+        keep[i] = len(d) >= 3
+        faces[i] = d + [d[-1]] * (4 - len(d)) if keep[i] else -1
+    faces, owner = faces[keep], owner[keep]
+    if not len(faces):
+        return faces, owner
+    key = faces.copy()
+    key[faces[:, 2] == faces[:, 3], 3] = -1  # a triangle's key: its three nodes
+    key = np.sort(key, axis=1)
+    _, inv, cnt = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    once = cnt[inv.ravel()] == 1
+    return faces[once], owner[once]
+
+
+def _areas(x, seg):
+    tri = seg[:, 2] == seg[:, 3]
+    u = np.where(tri[:, None], x[seg[:, 1]] - x[seg[:, 0]], x[seg[:, 2]] - x[seg[:, 0]])
+    w = np.where(tri[:, None], x[seg[:, 2]] - x[seg[:, 0]], x[seg[:, 3]] - x[seg[:, 1]])
+    return 0.5 * np.linalg.norm(np.cross(u, w), axis=1)
+
+
+def build_surface(model: Model, pids, slsfac: float, sf: float, thick: float, thick_scale: float, problems: list,
+                  rec) -> Surface:
+    """Segments of the parts ``pids``: shells and exterior solid faces, with
+    their thickness (``thick`` > 0 replaces the shells'; else scaled by
+    ``thick_scale``) and SOFT = 0 penalty stiffness scaled by slsfac·sf."""
+    x = model.nodes.xyz
+    pids = np.asarray(pids, np.int64)
+    out = []
+    sh = model.shells
+    sel = np.isin(sh.pid, pids)
+    if sel.any():
+        conn = sh.nodes[sel].astype(np.int64)
+        conn[:, 3] = np.where(conn[:, 3] < 0, conn[:, 2], conn[:, 3])
+        t = thick if thick > 0 else thick_scale * _shell_thickness(model, sel, conn, problems, rec)
+        t = np.broadcast_to(t, (len(conn),)).astype(float)
+        bulk = np.array([_bulk(model, p, problems, rec) for p in sh.pid[sel]]) if len(conn) else np.zeros(0)
+        area = _areas(x, conn)
+        tri = conn[:, 2] == conn[:, 3]
+        edges = np.stack([np.linalg.norm(x[conn[:, (j + 1) % 3]] - x[conn[:, j]], axis=1) for j in range(3)], 1)
+        diag = np.where(tri, edges.max(axis=1),
+                        np.minimum(np.linalg.norm(x[conn[:, 2]] - x[conn[:, 0]], axis=1),
+                                   np.linalg.norm(x[conn[:, 3]] - x[conn[:, 1]], axis=1)))
+        k = slsfac * sf * bulk * area / np.where(diag > 0, diag, 1.0)
+        out.append(Surface(conn, t, k, np.zeros(len(conn), np.int8), np.zeros(len(conn)), np.sqrt(area)))
+    so = model.solids
+    sel = np.isin(so.pid, pids)
+    if sel.any():
+        conn = _solid_conn(model, sel)
+        vol = np.empty(len(conn))
+        solid_volumes(x, conn, np.zeros((N_CHUNKS, N_WORK)), vol)
+        faces, owner = _exterior_faces(conn)
+        bulk = {int(p): _bulk(model, p, problems, rec) for p in np.unique(so.pid[sel])}
+        kb = np.array([bulk[int(p)] for p in so.pid[sel][owner]]) if len(owner) else np.zeros(0)
+        area = _areas(x, faces)
+        v = np.maximum(vol[owner], 1e-300)
+        out.append(Surface(faces, np.zeros(len(faces)), slsfac * sf * kb * area ** 2 / v,
+                           np.ones(len(faces), np.int8), 0.5 * v / np.maximum(area, 1e-300), np.sqrt(area)))
+    return concat(*out) if out else Surface.empty()
+
+
+def _part_ids(model: Model, rec, id_fld: str, typ_fld: str, allowed: tuple, problems: list):
+    """('parts', pids) or ('nodes', node indices) of a contact side, or None."""
+    sid, typ = int(_num(rec, id_fld)), int(_num(rec, typ_fld))
+    names = {0: "segment sets", 1: "shell element sets", 2: "part sets", 3: "parts", 4: "node sets",
+             5: "all parts", 6: "part sets to exclude"}
+    if typ == 0 and sid == 0 and 0 in allowed:  # single surface: SSID 0 means every part
+        typ = 5
+    if typ not in allowed:
+        problems.append(_problem(rec, typ_fld, f"{typ_fld.upper()} {typ} ({names.get(typ, 'unknown type')}) is not "
+                                               "supported here (supported: "
+                                               + ", ".join(f"{a} {names[a]}" for a in allowed if a) + ")"))
+        return None
+    if typ == 0:
+        problems.append(_problem(rec, typ_fld, f"{typ_fld.upper()} 0 (segment sets) is not supported yet; give the "
+                                               "parts (2 part set, 3 part)"))
+        return None
+    if typ == 5:
+        return "parts", np.array(sorted(model.parts), np.int64)
+    if sid <= 0:
+        problems.append(_problem(rec, id_fld, f"{id_fld.upper()} is needed with {typ_fld.upper()} {typ}"))
+        return None
+    try:
+        if typ == 2:
+            pids = model.set_members("PART", sid)
+        elif typ == 4:
+            nodes = model.node_index(model.set_members("NODE", sid))
+            if np.any(nodes < 0):
+                problems.append(_problem(rec, id_fld, f"*SET_NODE {sid} names nodes that are not defined"))
+                return None
+            return "nodes", nodes.astype(np.int64)
+        else:
+            pids = np.array([sid], np.int64)
+    except (KeyError, ValueError) as e:
+        problems.append(_problem(rec, id_fld, str(e).strip("'\"")))
+        return None
+    missing = [int(p) for p in pids if int(p) not in model.parts]
+    if missing:
+        problems.append(_problem(rec, id_fld, f"part {missing[0]} is not defined"))
+        return None
+    return "parts", np.asarray(pids, np.int64)
+
+
+def _element_nodes(model: Model, pids) -> np.ndarray:
+    out = [np.zeros(0, np.int64)]
+    for t in (model.shells, model.solids):
+        if len(t):
+            out.append(t.nodes[np.isin(t.pid, pids)].ravel().astype(np.int64))
+    nodes = np.unique(np.concatenate(out))
+    return nodes[nodes >= 0]
+
+
+def _options(rec, problems: list) -> dict | None:
+    ok = True
+    for fld, (accepted, what) in _FIXED.items():
+        val = rec.get(fld)
+        if val is not None and float(val) not in accepted:
+            problems.append(_problem(rec, fld, f"{what} ({fld.upper()} = {val}) is not supported"))
+            ok = False
+    soft = int(_num(rec, "soft"))
+    if soft not in (0, 1):
+        problems.append(_problem(rec, "soft", f"SOFT {soft} is not supported (0 penalty, 1 soft constraint)"))
+        ok = False
+    for fld in ("fs", "fd", "dc", "vdc", "sst", "mst"):
+        if _num(rec, fld) < 0:
+            problems.append(_problem(rec, fld, f"{fld.upper()} < 0 (friction or thickness from other cards) is "
+                                               "not supported"))
+            ok = False
+    if _num(rec, "bt") < 0:
+        problems.append(_problem(rec, "bt", "BT < 0 (birth during dynamic relaxation) is not supported"))
+        ok = False
+    if not ok:
+        return None
+
+    def pos(fld, default):
+        return _num(rec, fld, default) or default
+    return dict(fs=_num(rec, "fs"), fd=_num(rec, "fd"), dc=_num(rec, "dc"), vdc=_num(rec, "vdc"),
+                fsf=pos("fsf", 1.0), soft=soft, sofscl=pos("sofscl", 0.1), birth=_num(rec, "bt"),
+                death=pos("dt", 1e20), bsort=int(pos("bsort", BSORT_DEFAULT)), sfs=pos("sfs", 1.0),
+                sfm=pos("sfm", 1.0), sst=_num(rec, "sst"), mst=_num(rec, "mst"), sfst=pos("sfst", 1.0),
+                sfmt=pos("sfmt", 1.0), dtstif=_num(rec, "dtstif"))
+
+
+def _interface(model: Model, rec, number: int, slsfac: float, problems: list) -> Interface | None:
+    kind = rec.keyword
+    n = len(model.nodes)
+    o = _options(rec, problems)
+    if o is None:
+        return None
+    cid = int(rec.get("cid") or number)
+    slave = _part_ids(model, rec, "ssid", "sstyp",
+                      {KINDS[0]: (0, 2, 3, 5), KINDS[1]: (2, 3, 4, 5), KINDS[2]: (2, 3, 5)}[kind], problems)
+    master = None
+    if kind != KINDS[0]:
+        master = _part_ids(model, rec, "msid", "mstyp", (2, 3), problems)
+        if master is None:
+            return None
+    if slave is None:
+        return None
+    before = len(problems)
+    s_surf = (build_surface(model, slave[1], slsfac, o["sfs"], o["sst"], o["sfst"], problems, rec)
+              if slave[0] == "parts" else Surface.empty())
+    if kind == KINDS[0]:
+        nodes = s_surf.nodes()
+        t, k = s_surf.node_values(nodes, n)
+        side = np.full(len(nodes), -1, np.int64)
+        seg, mside = s_surf, np.zeros(len(s_surf.seg), np.int64)
+        node_side = np.ones(len(nodes), np.int64)
+    else:
+        m_surf = build_surface(model, master[1], slsfac, o["sfm"], o["mst"], o["sfmt"], problems, rec)
+        if kind == KINDS[1]:
+            if slave[0] == "nodes":
+                nodes = slave[1]
+                shells = build_surface(model, np.unique(model.shells.pid), 1.0, 1.0, 0.0, o["sfst"], problems,
+                                       rec)
+                t, k = shells.node_values(nodes, n)
+                k = np.full(len(nodes), np.inf)
+                if o["sst"] > 0:
+                    t = np.full(len(nodes), o["sst"])
+            else:
+                nodes = _element_nodes(model, slave[1])
+                t, k = s_surf.node_values(nodes, n)
+            side = np.zeros(len(nodes), np.int64)
+            seg, mside = m_surf, np.ones(len(m_surf.seg), np.int64)
+            node_side = np.ones(len(nodes), np.int64)
+        else:  # both passes: slave nodes on master segments, master nodes on slave segments
+            sn, mn = s_surf.nodes(), m_surf.nodes()
+            ts, ks = s_surf.node_values(sn, n)
+            tm, km = m_surf.node_values(mn, n)
+            nodes, t, k = np.concatenate([sn, mn]), np.concatenate([ts, tm]), np.concatenate([ks, km])
+            side = np.concatenate([np.zeros(len(sn), np.int64), np.ones(len(mn), np.int64)])
+            node_side = 1 - side
+            seg = concat(s_surf, m_surf)
+            mside = np.concatenate([np.zeros(len(s_surf.seg), np.int64), np.ones(len(m_surf.seg), np.int64)])
+    if len(problems) > before:
+        return None
+    if not len(seg.seg):
+        problems.append(_problem(rec, "msid" if kind != KINDS[0] else "ssid",
+                                 "the contact surface has no segments (shells or solids)"))
+        return None
+    return Interface(cid, rec.name, nodes.astype(np.int64), side, np.asarray(t, float), np.asarray(k, float),
+                     node_side, seg.seg, mside, seg.thick, seg.k, seg.onesided, seg.depth, seg.size,
+                     fs=o["fs"], fd=o["fd"], dc=o["dc"], vdc=o["vdc"], fsf=o["fsf"], soft=o["soft"],
+                     sofscl=o["sofscl"], dt0=o["dtstif"] if o["dtstif"] > 0 else np.inf, birth=o["birth"],
+                     death=o["death"], bsort=o["bsort"])
+
+
+def _initial_dt(model: Model, groups) -> float:
+    """TSSFAC × the smallest initial element step of the groups (inf: none)."""
+    ts = model.find("CONTROL_TIMESTEP")
+    tssfac = _num(ts[0], "tssfac", 0.9) or 0.9 if ts else 0.9
+    st = SimpleNamespace(x=model.nodes.xyz)
+    dts = [g.critical_dt(st) for g in groups if hasattr(g, "critical_dt")]
+    return tssfac * min(dts, default=np.inf)
+
+
+def build_contacts(model: Model, groups, problems: list) -> list[ContactGroup]:
+    """One ContactGroup per *CONTACT_AUTOMATIC_{SINGLE_SURFACE,
+    NODES_TO_SURFACE, SURFACE_TO_SURFACE} card, in deck order; ``groups``:
+    the element groups (their initial step sizes SOFT = 1). Cards with
+    options the solver does not run are Problems."""
+    out: list[ContactGroup] = []
+    for raw in model.unknown:
+        name = raw.keyword_line.split()[0].lstrip("*").upper() if hasattr(raw, "keyword_line") else ""
+        if name.startswith("CONTACT_AUTOMATIC"):
+            src = getattr(raw, "source", None) or (model.source or "", 0)
+            problems.append(Problem(str(src[0]), int(src[1]), name, None,
+                                    f"*{name} is not supported (supported: {', '.join(KINDS)} with _ID)"))
+    recs = [r for r in model.keywords if getattr(r, "keyword", "") in KINDS and hasattr(r, "get")]
+    if not recs:
+        return out
+    slsfac = _slsfac(model, problems)
+    dt0 = None
+    for i, rec in enumerate(recs):
+        c = _interface(model, rec, i + 1, slsfac, problems)
+        if c is None:
+            continue
+        if c.soft == 1 and not np.isfinite(c.dt0):
+            dt0 = _initial_dt(model, groups) if dt0 is None else dt0
+            c.dt0 = dt0
+        out.append(ContactGroup(c, len(model.nodes)))
+    return out

@@ -1,0 +1,396 @@
+"""Penalty node-to-segment contact: bucket-sort search, closest-point
+projection, normal penalty with viscous damping, Coulomb friction.
+
+Each slave entry (a node facing the segments of the other side, or of its
+own surface in single-surface contact) keeps a conservative list of
+candidate segments from the last bucket sort; every cycle it picks its
+nearest penetrated segment and writes the forces of that pair as five rows
+(the node and the four segment nodes, weights of the closest point), so the
+parallel loop over slave entries never writes shared memory. ``scatter``
+then adds the rows to the nodal forces serially in slave order: the sums do
+not depend on the number of threads.
+
+Segments are quadrilaterals or triangles (n3 = n4), split into the
+triangles (n1 n2 n3) and (n1 n3 n4) for the closest point, which is
+continuous across the diagonal; the weights of the closest point sum to one
+and reproduce it, so forces and moments balance exactly. Shell segments are
+two-sided: the contact direction is from the closest point to the node, and
+the gap is the half thicknesses minus the distance (edges are rounded).
+Solid faces are one-sided (outward normal): a node behind the face is in
+contact up to ``depth`` when its closest point is its normal projection.
+
+Arrays (ns slave entries, nm segments, nc candidates; model units):
+  x, v (n_nodes, 3) float64 coordinates at t(n+1), velocities at t(n+½)
+  snode (ns,) int64 node; sthick (ns,) contact thickness [length];
+  sk (ns,) node penalty stiffness (inf: none) [force/length];
+  smass (ns,) node mass [mass]
+  seg (nm, 4) int64 nodes; mthick (nm,) thickness [length]; mk (nm,)
+  penalty stiffness [force/length]; mmass (nm,) mean node mass [mass];
+  onesided (nm,) int8 1: solid face; depth (nm,) deepest penetration
+  accepted behind a solid face [length]; msize (nm,) √area [length]
+  cptr (ns + 1,), cand (nc,) int64 CSR slave entry -> candidate segments
+  prm (N_PRM,) float64 interface parameters (P_*)
+  ft (ns, 3) friction force on the node, kept between cycles [force]
+  rows (ns, 5, 3) forces ON the node and the segment nodes [force];
+  rnode (ns, 5) int64 their node indices (-1: none); gap (ns,) penetration
+"""
+
+import math
+
+import numpy as np
+from numba import njit, prange
+
+# interface parameters
+P_FS, P_FD, P_DC, P_VDC, P_FSF, P_SOFT_K, P_ACTIVE, N_PRM = 0, 1, 2, 3, 4, 5, 6, 7
+_BEHIND, _OUTSIDE = 0, 1
+
+
+@njit(cache=True, inline="always")
+def _tri_weights(x, a, b, c, px, py, pz):
+    """Barycentric weights of the point of triangle (a, b, c) closest to p
+    (Ericson, Real-Time Collision Detection, 5.1.5)."""
+    abx, aby, abz = x[b, 0] - x[a, 0], x[b, 1] - x[a, 1], x[b, 2] - x[a, 2]
+    acx, acy, acz = x[c, 0] - x[a, 0], x[c, 1] - x[a, 1], x[c, 2] - x[a, 2]
+    apx, apy, apz = px - x[a, 0], py - x[a, 1], pz - x[a, 2]
+    d1 = abx * apx + aby * apy + abz * apz
+    d2 = acx * apx + acy * apy + acz * apz
+    if d1 <= 0.0 and d2 <= 0.0:
+        return 1.0, 0.0, 0.0
+    bpx, bpy, bpz = px - x[b, 0], py - x[b, 1], pz - x[b, 2]
+    d3 = abx * bpx + aby * bpy + abz * bpz
+    d4 = acx * bpx + acy * bpy + acz * bpz
+    if d3 >= 0.0 and d4 <= d3:
+        return 0.0, 1.0, 0.0
+    vc = d1 * d4 - d3 * d2
+    if vc <= 0.0 and d1 >= 0.0 and d3 <= 0.0:
+        t = d1 / (d1 - d3)
+        return 1.0 - t, t, 0.0
+    cpx, cpy, cpz = px - x[c, 0], py - x[c, 1], pz - x[c, 2]
+    d5 = abx * cpx + aby * cpy + abz * cpz
+    d6 = acx * cpx + acy * cpy + acz * cpz
+    if d6 >= 0.0 and d5 <= d6:
+        return 0.0, 0.0, 1.0
+    vb = d5 * d2 - d1 * d6
+    if vb <= 0.0 and d2 >= 0.0 and d6 <= 0.0:
+        t = d2 / (d2 - d6)
+        return 1.0 - t, 0.0, t
+    va = d3 * d6 - d5 * d4
+    if va <= 0.0 and (d4 - d3) >= 0.0 and (d5 - d6) >= 0.0:
+        t = (d4 - d3) / ((d4 - d3) + (d5 - d6))
+        return 0.0, 1.0 - t, t
+    den = 1.0 / (va + vb + vc)
+    v_ = vb * den
+    w_ = vc * den
+    return 1.0 - v_ - w_, v_, w_
+
+
+@njit(cache=True, inline="always")
+def _closest(x, seg, s, px, py, pz):
+    """Weights (w1..w4) of the closest point of segment s to p."""
+    n0, n1, n2, n3 = seg[s, 0], seg[s, 1], seg[s, 2], seg[s, 3]
+    a0, a1, a2 = _tri_weights(x, n0, n1, n2, px, py, pz)
+    if n2 == n3:
+        return a0, a1, a2, 0.0
+    b0, b2, b3 = _tri_weights(x, n0, n2, n3, px, py, pz)
+    da = 0.0
+    db = 0.0
+    for k in range(3):
+        qa = a0 * x[n0, k] + a1 * x[n1, k] + a2 * x[n2, k]
+        qb = b0 * x[n0, k] + b2 * x[n2, k] + b3 * x[n3, k]
+        p = px if k == 0 else (py if k == 1 else pz)
+        da += (p - qa) ** 2
+        db += (p - qb) ** 2
+    if db < da:
+        return b0, 0.0, b2, b3
+    return a0, a1, a2, 0.0
+
+
+@njit(cache=True, inline="always")
+def _normal(x, seg, s):
+    """Unit normal of segment s (d13 × d24 for quads, right-hand rule)."""
+    n0, n1, n2, n3 = seg[s, 0], seg[s, 1], seg[s, 2], seg[s, 3]
+    if n2 == n3:
+        ux, uy, uz = x[n1, 0] - x[n0, 0], x[n1, 1] - x[n0, 1], x[n1, 2] - x[n0, 2]
+        wx, wy, wz = x[n2, 0] - x[n0, 0], x[n2, 1] - x[n0, 1], x[n2, 2] - x[n0, 2]
+    else:
+        ux, uy, uz = x[n2, 0] - x[n0, 0], x[n2, 1] - x[n0, 1], x[n2, 2] - x[n0, 2]
+        wx, wy, wz = x[n3, 0] - x[n1, 0], x[n3, 1] - x[n1, 1], x[n3, 2] - x[n1, 2]
+    nx = uy * wz - uz * wy
+    ny = uz * wx - ux * wz
+    nz = ux * wy - uy * wx
+    ln = math.sqrt(nx * nx + ny * ny + nz * nz)
+    if ln > 0.0:
+        return nx / ln, ny / ln, nz / ln
+    return 0.0, 0.0, 0.0
+
+
+# --- search -------------------------------------------------------------------------------------
+
+
+@njit(cache=True)
+def segment_boxes(x, seg, grow, lo, hi):
+    """Bounding boxes of the segments grown by ``grow`` (nm,) [length]."""
+    for s in range(seg.shape[0]):
+        for k in range(3):
+            a = x[seg[s, 0], k]
+            b = a
+            for j in range(1, 4):
+                c = x[seg[s, j], k]
+                a = min(a, c)
+                b = max(b, c)
+            lo[s, k] = a - grow[s]
+            hi[s, k] = b + grow[s]
+
+
+@njit(cache=True)
+def _sort_cells(x, snode, lo, hi):
+    """Cell size, origin, cell counts, sorted cell keys and segment order of
+    the bucket grid (one cell per segment, at its box centre)."""
+    nm = lo.shape[0]
+    h = 0.0
+    org = np.empty(3)
+    top = np.empty(3)
+    for k in range(3):
+        org[k] = np.inf
+        top[k] = -np.inf
+    for s in range(nm):
+        for k in range(3):
+            h = max(h, hi[s, k] - lo[s, k])
+            org[k] = min(org[k], lo[s, k])
+            top[k] = max(top[k], hi[s, k])
+    for i in range(snode.shape[0]):
+        for k in range(3):
+            org[k] = min(org[k], x[snode[i], k])
+            top[k] = max(top[k], x[snode[i], k])
+    ncell = np.empty(3, np.int64)
+    for k in range(3):
+        ncell[k] = int((top[k] - org[k]) / h) + 1
+    keys = np.empty(nm, np.int64)
+    for s in range(nm):
+        i0 = int((0.5 * (lo[s, 0] + hi[s, 0]) - org[0]) / h)
+        i1 = int((0.5 * (lo[s, 1] + hi[s, 1]) - org[1]) / h)
+        i2 = int((0.5 * (lo[s, 2] + hi[s, 2]) - org[2]) / h)
+        keys[s] = (i0 * ncell[1] + i1) * ncell[2] + i2
+    order = np.argsort(keys, kind="mergesort")
+    return h, org, ncell, keys[order], order
+
+
+@njit(cache=True, inline="always")
+def _accepts(i, s, x, snode, sside, seg, mside, lo, hi):
+    nd = snode[i]
+    if sside[i] >= 0 and sside[i] == mside[s]:
+        return False
+    for j in range(4):
+        if seg[s, j] == nd:
+            return False
+    for k in range(3):
+        if x[nd, k] < lo[s, k] or x[nd, k] > hi[s, k]:
+            return False
+    return True
+
+
+@njit(cache=True, parallel=True)
+def _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, order, cptr, cand, fill):
+    """Count (fill = False) or store (fill = True) the candidates of each
+    slave entry: the segments of the 27 cells around it whose grown box
+    holds the node, in cell then key order."""
+    ns = snode.shape[0]
+    for i in prange(ns):
+        nd = snode[i]
+        c0 = int((x[nd, 0] - org[0]) / h)
+        c1 = int((x[nd, 1] - org[1]) / h)
+        c2 = int((x[nd, 2] - org[2]) / h)
+        m = 0
+        for a in range(c0 - 1, c0 + 2):
+            if a < 0 or a >= ncell[0]:
+                continue
+            for b in range(c1 - 1, c1 + 2):
+                if b < 0 or b >= ncell[1]:
+                    continue
+                for c in range(c2 - 1, c2 + 2):
+                    if c < 0 or c >= ncell[2]:
+                        continue
+                    key = (a * ncell[1] + b) * ncell[2] + c
+                    j = np.searchsorted(skeys, key)
+                    while j < skeys.shape[0] and skeys[j] == key:
+                        s = order[j]
+                        if _accepts(i, s, x, snode, sside, seg, mside, lo, hi):
+                            if fill:
+                                cand[cptr[i] + m] = s
+                            m += 1
+                        j += 1
+        if not fill:
+            cptr[i + 1] = m
+
+
+def find_candidates(x, snode, sside, seg, mside, grow):
+    """(cptr (ns+1,), cand (nc,)) int64: for each slave entry the segments
+    whose box grown by ``grow`` (nm,) holds its node (own segments and
+    segments of its own side excluded; sside -1: any side)."""
+    ns, nm = len(snode), len(seg)
+    cptr = np.zeros(ns + 1, np.int64)
+    if nm == 0 or ns == 0:
+        return cptr, np.zeros(0, np.int64)
+    lo, hi = np.empty((nm, 3)), np.empty((nm, 3))
+    segment_boxes(x, seg, grow, lo, hi)
+    h, org, ncell, skeys, order = _sort_cells(x, snode, lo, hi)
+    dummy = np.zeros(0, np.int64)
+    _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, order, cptr, dummy, False)
+    cptr = np.cumsum(cptr)
+    cand = np.empty(cptr[-1], np.int64)
+    _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, order, cptr, cand, True)
+    return cptr, cand
+
+
+@njit(cache=True)
+def max_displacement(x, xref, nodes):
+    """Largest |x − xref| over ``nodes`` [length] (xref indexed like nodes)."""
+    m = 0.0
+    for j in range(nodes.shape[0]):
+        nd = nodes[j]
+        d = (x[nd, 0] - xref[j, 0]) ** 2 + (x[nd, 1] - xref[j, 1]) ** 2 + (x[nd, 2] - xref[j, 2]) ** 2
+        m = max(m, d)
+    return math.sqrt(m)
+
+
+# --- forces -------------------------------------------------------------------------------------
+
+
+@njit(cache=True, parallel=True)
+def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, onesided, depth, msize,
+                   cptr, cand, prm, ft, rows, rnode, gap):
+    """Rows of the pair forces of every slave entry (see the module doc)."""
+    fs, fd, dc, vdc, fsf, soft_k = prm[P_FS], prm[P_FD], prm[P_DC], prm[P_VDC], prm[P_FSF], prm[P_SOFT_K]
+    active = prm[P_ACTIVE] != 0.0
+    friction = fs > 0.0 or fd > 0.0
+    for i in prange(snode.shape[0]):
+        for a in range(5):
+            rnode[i, a] = -1
+            for k in range(3):
+                rows[i, a, k] = 0.0
+        gap[i] = 0.0
+        nd = snode[i]
+        px, py, pz = x[nd, 0], x[nd, 1], x[nd, 2]
+        best = -1
+        best_cls = 2
+        best_d = np.inf
+        bg = 0.0
+        bw0 = bw1 = bw2 = bw3 = 0.0
+        bnx = bny = bnz = 0.0
+        if active:
+            for c in range(cptr[i], cptr[i + 1]):
+                s = cand[c]
+                w0, w1, w2, w3 = _closest(x, seg, s, px, py, pz)
+                n0, n1, n2, n3 = seg[s, 0], seg[s, 1], seg[s, 2], seg[s, 3]
+                rx = px - (w0 * x[n0, 0] + w1 * x[n1, 0] + w2 * x[n2, 0] + w3 * x[n3, 0])
+                ry = py - (w0 * x[n0, 1] + w1 * x[n1, 1] + w2 * x[n2, 1] + w3 * x[n3, 1])
+                rz = pz - (w0 * x[n0, 2] + w1 * x[n1, 2] + w2 * x[n2, 2] + w3 * x[n3, 2])
+                d = math.sqrt(rx * rx + ry * ry + rz * rz)
+                nx, ny, nz = _normal(x, seg, s)
+                half = 0.5 * (sthick[i] + mthick[s])
+                tol = 1e-9 * msize[s]
+                sd = rx * nx + ry * ny + rz * nz
+                if onesided[s] != 0 and sd < 0.0:
+                    # behind a solid face: only where the closest point is the normal projection
+                    tx, ty, tz = rx - sd * nx, ry - sd * ny, rz - sd * nz
+                    if math.sqrt(tx * tx + ty * ty + tz * tz) > 1e-2 * msize[s] or d > depth[s]:
+                        continue
+                    g = half + d
+                    cls = _BEHIND
+                else:
+                    g = half - d
+                    cls = _OUTSIDE
+                    if d > tol:
+                        nx, ny, nz = rx / d, ry / d, rz / d
+                if g <= tol:
+                    continue
+                if cls < best_cls or (cls == best_cls and d < best_d):
+                    best, best_cls, best_d, bg = s, cls, d, g
+                    bw0, bw1, bw2, bw3 = w0, w1, w2, w3
+                    bnx, bny, bnz = nx, ny, nz
+        if best < 0:
+            ft[i, 0] = 0.0
+            ft[i, 1] = 0.0
+            ft[i, 2] = 0.0
+            continue
+        s = best
+        n0, n1, n2, n3 = seg[s, 0], seg[s, 1], seg[s, 2], seg[s, 3]
+        mstar = smass[i] * mmass[s] / (smass[i] + mmass[s]) if smass[i] + mmass[s] > 0.0 else 0.0
+        k = min(mk[s], sk[i])
+        if soft_k > 0.0:
+            k = max(k, soft_k * mstar)
+        vrx = v[nd, 0] - (bw0 * v[n0, 0] + bw1 * v[n1, 0] + bw2 * v[n2, 0] + bw3 * v[n3, 0])
+        vry = v[nd, 1] - (bw0 * v[n0, 1] + bw1 * v[n1, 1] + bw2 * v[n2, 1] + bw3 * v[n3, 1])
+        vrz = v[nd, 2] - (bw0 * v[n0, 2] + bw1 * v[n1, 2] + bw2 * v[n2, 2] + bw3 * v[n3, 2])
+        vn = vrx * bnx + vry * bny + vrz * bnz
+        fn = k * bg
+        if vdc > 0.0:
+            fn -= 0.01 * vdc * 2.0 * math.sqrt(k * mstar) * vn
+        fn = max(fn, 0.0)  # no adhesion
+        fx, fy, fz = fn * bnx, fn * bny, fn * bnz
+        if friction:
+            vtx, vty, vtz = vrx - vn * bnx, vry - vn * bny, vrz - vn * bnz
+            vt = math.sqrt(vtx * vtx + vty * vty + vtz * vtz)
+            mu = fsf * (fd + (fs - fd) * math.exp(-dc * vt))
+            # elastic-plastic tangential spring: the stored force turned into the tangent plane
+            on = ft[i, 0] * bnx + ft[i, 1] * bny + ft[i, 2] * bnz
+            tx = ft[i, 0] - on * bnx - k * dt * vtx
+            ty = ft[i, 1] - on * bny - k * dt * vty
+            tz = ft[i, 2] - on * bnz - k * dt * vtz
+            tn = math.sqrt(tx * tx + ty * ty + tz * tz)
+            cap = mu * fn
+            if tn > cap:
+                sc = cap / tn
+                tx, ty, tz = tx * sc, ty * sc, tz * sc
+            ft[i, 0], ft[i, 1], ft[i, 2] = tx, ty, tz
+            fx += tx
+            fy += ty
+            fz += tz
+        gap[i] = bg
+        rows[i, 0, 0], rows[i, 0, 1], rows[i, 0, 2] = fx, fy, fz
+        rnode[i, 0] = nd
+        rnode[i, 1], rnode[i, 2], rnode[i, 3] = n0, n1, n2
+        ws = (bw0, bw1, bw2, bw3)
+        for a in range(4):
+            w = ws[a]
+            rows[i, 1 + a, 0] = -w * fx
+            rows[i, 1 + a, 1] = -w * fy
+            rows[i, 1 + a, 2] = -w * fz
+        if n3 != n2:
+            rnode[i, 4] = n3
+
+
+@njit(cache=True)
+def power(rows, rnode, v):
+    """Σ row · v over every row (the rate of work of the contact forces
+    at the velocities v), summed in slave order."""
+    p = 0.0
+    for i in range(rows.shape[0]):
+        for a in range(5):
+            nd = rnode[i, a]
+            if nd >= 0:
+                p += rows[i, a, 0] * v[nd, 0] + rows[i, a, 1] * v[nd, 1] + rows[i, a, 2] * v[nd, 2]
+    return p
+
+
+@njit(cache=True)
+def scatter(rows, rnode, v, node_side, f, resultant):
+    """f += the rows, in slave order; resultant (3,) = the force on the
+    slave side (row 0 where node_side is 1, else the segment rows).
+    Returns the power of the rows at the velocities v."""
+    p = 0.0
+    resultant[0] = resultant[1] = resultant[2] = 0.0
+    for i in range(rows.shape[0]):
+        for a in range(5):
+            nd = rnode[i, a]
+            if nd < 0:
+                continue
+            f[nd, 0] += rows[i, a, 0]
+            f[nd, 1] += rows[i, a, 1]
+            f[nd, 2] += rows[i, a, 2]
+            p += rows[i, a, 0] * v[nd, 0] + rows[i, a, 1] * v[nd, 1] + rows[i, a, 2] * v[nd, 2]
+            if (a == 0) == (node_side[i] == 1):
+                resultant[0] += rows[i, a, 0]
+                resultant[1] += rows[i, a, 1]
+                resultant[2] += rows[i, a, 2]
+    return p
