@@ -87,6 +87,7 @@ class _Recorder:
         self.rows: dict[str, list] = {}
         self.cycle = 0
         self.discrete = groups[0]
+        self.contacts = [g for g in groups if g.kind == "contact"]  # rcforc: force on each slave side
         # nodes with a constrained DOF: their reactions are written (spcforc)
         held = s.fixed.any(axis=1)
         held[s.skew_nodes] = True
@@ -120,7 +121,8 @@ class _Recorder:
                  acc=acc[h].copy(), coord=st.x[h].copy(), spc=self._spc.copy(), sec=self._sec[0].copy(),
                  sec_m=self._sec[1].copy(), part_ie=self.parts.internal(), part_hg=self.parts.hourglass(),
                  part_ke=self.parts.kinetic(st.mass, v_mid), part_p=self.parts.momentum(st.mass, v_mid),
-                 part_rbv=self.parts.rigid_velocity())
+                 part_rbv=self.parts.rigid_velocity(),
+                 contact_force=np.array([g.resultant for g in self.contacts]).reshape(-1, 3))
         return ie + se + hg
 
     def array(self, key, shape):
@@ -305,7 +307,9 @@ def _results(s, rec, groups, parts, walls, st, locals_) -> Results:
                  part_rigid_velocity=a("part_rbv", (npart, 3)), part_hourglass=a("part_hg", (npart,)),
                  section_moment=a("sec_m", (nsec, 3)), node_acceleration=a("acc", (nh, 3)),
                  node_coordinates=a("coord", (nh, 3)), hourglass=a("hourglass", ()), sliding=a("sliding", ()),
-                 time_step=a("time_step", ()), cycle_number=a("cycle", ()).astype(np.int64))
+                 time_step=a("time_step", ()), cycle_number=a("cycle", ()).astype(np.int64),
+                 contact_force=a("contact_force", (len(rec.contacts), 3)),
+                 contact_ids=np.array([g.cid for g in rec.contacts], np.int64))
     known = {f.name for f in fields(Results)}
     n = len(st.x)
     return Results(

@@ -55,6 +55,8 @@ class Results:
     cycle_number: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (n_states,) int64 cycle of each state
     discrete_force_vector: np.ndarray = _empty(0, 3)  # (n_states, n_discrete, 3) force of each discrete element in global axes [force]
     wall_normal_force: np.ndarray = _empty(0)  # (n_states, n_walls) force along each wall's normal [force]
+    contact_force: np.ndarray = _empty(0, 3)  # (n_states, n_contacts, 3) force on the slave side of each contact interface (rcforc) [force]
+    contact_ids: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (n_contacts,) contact interface IDs
     cycles: int = 0
     dt: float = 0.0
     wall_time: float = 0.0

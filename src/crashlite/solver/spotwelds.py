@@ -1,0 +1,361 @@
+"""Spot welds as constraints: *CONSTRAINED_SPOTWELD (a rigid massless
+link between two nodes) and *CONSTRAINED_GENERALIZED_WELD_SPOT (the nodes
+of a set).
+
+Until it fails, a weld's nodes move as one rigid body: ``forces`` sums
+their forces and moments into the weld and hands each node its share of
+the rigid-body acceleration (a + α × r, and α for nodes with rotational
+DOFs), the difference being the weld force; ``velocities`` then projects
+the nodes' velocities on the rigid motion of the same total momentum and
+angular momentum (so both are kept exactly, and no drift builds up).
+
+Failure: at the time TF (TFAIL), or when the weld force on a node, split
+into the normal part fn (along the weld, node 1 → node 2; for coincident
+nodes along the mean normal of the shells at the nodes) and the shear
+part fs, reaches (|fn|/SN)^N + (|fs|/SS)^M ≥ 1 (a term with SN or SS = 0
+is left out). A failed weld lets its nodes go; the failure time and cause
+are kept in ``SpotWelds.log``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numba import njit
+
+from ..keyword.errors import Problem
+from ..model.model import Model
+
+_REG = 1e-10  # relative regularisation of the weld inertia (collinear nodes without rotations)
+
+
+@njit(cache=True)
+def _inertia(ptr, nodes, k, x, mass, jrot):
+    """(M, centre (3,), inertia (3, 3) about it incl. nodal rotary inertia)."""
+    m_tot = 0.0
+    c = np.zeros(3)
+    for q in range(ptr[k], ptr[k + 1]):
+        i = nodes[q]
+        m_tot += mass[i]
+        for d in range(3):
+            c[d] += mass[i] * x[i, d]
+    if m_tot > 0.0:
+        c /= m_tot
+    inert = np.zeros((3, 3))
+    for q in range(ptr[k], ptr[k + 1]):
+        i = nodes[q]
+        r0, r1, r2 = x[i, 0] - c[0], x[i, 1] - c[1], x[i, 2] - c[2]
+        rr = r0 * r0 + r1 * r1 + r2 * r2
+        m = mass[i]
+        inert[0, 0] += m * (rr - r0 * r0) + jrot[i]
+        inert[1, 1] += m * (rr - r1 * r1) + jrot[i]
+        inert[2, 2] += m * (rr - r2 * r2) + jrot[i]
+        inert[0, 1] -= m * r0 * r1
+        inert[0, 2] -= m * r0 * r2
+        inert[1, 2] -= m * r1 * r2
+    inert[1, 0], inert[2, 0], inert[2, 1] = inert[0, 1], inert[0, 2], inert[1, 2]
+    tr = inert[0, 0] + inert[1, 1] + inert[2, 2]
+    for d in range(3):
+        inert[d, d] += _REG * tr
+    return m_tot, c, inert, tr
+
+
+@njit(cache=True)
+def _solve(inert, tr, b):
+    if tr <= 0.0:
+        return np.zeros(3)
+    return np.linalg.solve(inert, b)
+
+
+@njit(cache=True)
+def weld_forces(ptr, nodes, alive, x, f, moment, mass, jrot, normal0, along, sn, ss, en, em, fn_out, fs_out,
+                crit_out):
+    """Rigid-body share of the summed force and moment for each live weld,
+    the weld force on its nodes split into normal fn and shear fs (the
+    node with the largest failure measure), and that measure crit_out.
+    A weld whose measure reaches 1 keeps its nodes' own forces."""
+    for k in range(len(alive)):
+        if not alive[k]:
+            continue
+        m_tot, c, inert, tr = _inertia(ptr, nodes, k, x, mass, jrot)
+        if m_tot <= 0.0:
+            continue
+        fsum = np.zeros(3)
+        msum = np.zeros(3)
+        for q in range(ptr[k], ptr[k + 1]):
+            i = nodes[q]
+            r0, r1, r2 = x[i, 0] - c[0], x[i, 1] - c[1], x[i, 2] - c[2]
+            fsum[0] += f[i, 0]
+            fsum[1] += f[i, 1]
+            fsum[2] += f[i, 2]
+            msum[0] += r1 * f[i, 2] - r2 * f[i, 1]
+            msum[1] += r2 * f[i, 0] - r0 * f[i, 2]
+            msum[2] += r0 * f[i, 1] - r1 * f[i, 0]
+            if jrot[i] > 0.0:
+                msum[0] += moment[i, 0]
+                msum[1] += moment[i, 1]
+                msum[2] += moment[i, 2]
+        acc = fsum / m_tot
+        alpha = _solve(inert, tr, msum)
+        # weld direction: along the nodes (first to last) or the given normal
+        n = normal0[k].copy()
+        if along[k]:
+            i1, i2 = nodes[ptr[k]], nodes[ptr[k + 1] - 1]
+            d = x[i2] - x[i1]
+            ln = np.sqrt(d[0] ** 2 + d[1] ** 2 + d[2] ** 2)
+            if ln > 0.0:
+                n = d / ln
+        worst, wn, ws = 0.0, 0.0, 0.0
+        for q in range(ptr[k], ptr[k + 1]):
+            i = nodes[q]
+            r0, r1, r2 = x[i, 0] - c[0], x[i, 1] - c[1], x[i, 2] - c[2]
+            a0 = acc[0] + alpha[1] * r2 - alpha[2] * r1
+            a1 = acc[1] + alpha[2] * r0 - alpha[0] * r2
+            a2 = acc[2] + alpha[0] * r1 - alpha[1] * r0
+            g0, g1, g2 = mass[i] * a0 - f[i, 0], mass[i] * a1 - f[i, 1], mass[i] * a2 - f[i, 2]
+            fn = g0 * n[0] + g1 * n[1] + g2 * n[2]
+            fs = np.sqrt(max(g0 * g0 + g1 * g1 + g2 * g2 - fn * fn, 0.0))
+            crit = 0.0
+            if sn[k] > 0.0:
+                crit += (abs(fn) / sn[k]) ** en[k]
+            if ss[k] > 0.0:
+                crit += (fs / ss[k]) ** em[k]
+            if q == ptr[k] or crit > worst:
+                worst, wn, ws = crit, fn, fs
+        fn_out[k], fs_out[k], crit_out[k] = wn, ws, worst
+        if worst >= 1.0:
+            continue
+        for q in range(ptr[k], ptr[k + 1]):
+            i = nodes[q]
+            r0, r1, r2 = x[i, 0] - c[0], x[i, 1] - c[1], x[i, 2] - c[2]
+            f[i, 0] = mass[i] * (acc[0] + alpha[1] * r2 - alpha[2] * r1)
+            f[i, 1] = mass[i] * (acc[1] + alpha[2] * r0 - alpha[0] * r2)
+            f[i, 2] = mass[i] * (acc[2] + alpha[0] * r1 - alpha[1] * r0)
+            if jrot[i] > 0.0:
+                moment[i, 0] = jrot[i] * alpha[0]
+                moment[i, 1] = jrot[i] * alpha[1]
+                moment[i, 2] = jrot[i] * alpha[2]
+
+
+@njit(cache=True)
+def weld_velocities(ptr, nodes, alive, x, v, w, mass, jrot):
+    """Velocities of each live weld's nodes: the rigid motion with their
+    total momentum and angular momentum about the mass centre."""
+    for k in range(len(alive)):
+        if not alive[k]:
+            continue
+        m_tot, c, inert, tr = _inertia(ptr, nodes, k, x, mass, jrot)
+        if m_tot <= 0.0:
+            continue
+        p = np.zeros(3)
+        ang = np.zeros(3)
+        for q in range(ptr[k], ptr[k + 1]):
+            i = nodes[q]
+            m = mass[i]
+            r0, r1, r2 = x[i, 0] - c[0], x[i, 1] - c[1], x[i, 2] - c[2]
+            p[0] += m * v[i, 0]
+            p[1] += m * v[i, 1]
+            p[2] += m * v[i, 2]
+            ang[0] += m * (r1 * v[i, 2] - r2 * v[i, 1])
+            ang[1] += m * (r2 * v[i, 0] - r0 * v[i, 2])
+            ang[2] += m * (r0 * v[i, 1] - r1 * v[i, 0])
+            if jrot[i] > 0.0:
+                ang[0] += jrot[i] * w[i, 0]
+                ang[1] += jrot[i] * w[i, 1]
+                ang[2] += jrot[i] * w[i, 2]
+        vc = p / m_tot
+        om = _solve(inert, tr, ang)
+        for q in range(ptr[k], ptr[k + 1]):
+            i = nodes[q]
+            r0, r1, r2 = x[i, 0] - c[0], x[i, 1] - c[1], x[i, 2] - c[2]
+            v[i, 0] = vc[0] + om[1] * r2 - om[2] * r1
+            v[i, 1] = vc[1] + om[2] * r0 - om[0] * r2
+            v[i, 2] = vc[2] + om[0] * r1 - om[1] * r0
+            if jrot[i] > 0.0:
+                w[i, 0] = om[0]
+                w[i, 1] = om[1]
+                w[i, 2] = om[2]
+
+
+@dataclass
+class SpotWelds:
+    """k welds. ids (k,) weld IDs; keyword (k,) the card of each; ptr
+    (k+1,), nodes (m,) CSR member node indices; sn, ss [force], en, em
+    failure criterion; tfail (k,) failure time [time]; normal0 (k, 3) weld
+    normal where the nodes coincide; along (k,) the normal runs along the
+    nodes; alive (k,) bool; fail_time (k,) (inf while intact); fn, fs
+    (k,) last normal and shear weld force [force]; crit (k,) last failure
+    measure; log: (weld ID, time, cause) of each failure, in order."""
+
+    ids: np.ndarray
+    keyword: list
+    ptr: np.ndarray
+    nodes: np.ndarray
+    sn: np.ndarray
+    ss: np.ndarray
+    en: np.ndarray
+    em: np.ndarray
+    tfail: np.ndarray
+    normal0: np.ndarray
+    along: np.ndarray
+    alive: np.ndarray = None
+    fail_time: np.ndarray = None
+    fn: np.ndarray = None
+    fs: np.ndarray = None
+    crit: np.ndarray = None
+    log: list = field(default_factory=list)
+    _jrot: np.ndarray | None = None
+
+    def __post_init__(self):
+        k = len(self.ids)
+        self.alive = np.ones(k, np.bool_)
+        self.fail_time = np.full(k, np.inf)
+        self.fn, self.fs, self.crit = np.zeros(k), np.zeros(k), np.zeros(k)
+
+    def __len__(self) -> int:
+        return len(self.ids)
+
+    def _rot(self, st) -> np.ndarray:
+        if self._jrot is None or len(self._jrot) != len(st.mass):
+            self._jrot = np.asarray(st.rot_inertia, float)
+        return self._jrot
+
+    def forces(self, st) -> None:
+        if not self.alive.any():
+            return
+        t = float(getattr(st, "t", 0.0))
+        for k in np.flatnonzero(self.alive & (t >= self.tfail)):
+            self._fail(k, t, "time")
+        weld_forces(self.ptr, self.nodes, self.alive, st.x, st.f, st.moment, st.mass, self._rot(st), self.normal0,
+                    self.along, self.sn, self.ss, self.en, self.em, self.fn, self.fs, self.crit)
+        for k in np.flatnonzero(self.alive & (self.crit >= 1.0)):
+            self._fail(k, t, "force")
+
+    def velocities(self, st) -> None:
+        if self.alive.any():
+            weld_velocities(self.ptr, self.nodes, self.alive, st.x, st.v, st.w, st.mass, self._rot(st))
+
+    def start(self, v: np.ndarray, w: np.ndarray, mass: np.ndarray, rot_inertia: np.ndarray, x: np.ndarray) -> None:
+        """Initial velocities made rigid per weld, momentum and angular
+        momentum kept (the kinetic energy of the relative motion is lost,
+        as in a plastic impact)."""
+        if self.alive.any():
+            weld_velocities(self.ptr, self.nodes, self.alive & (self.tfail > 0), x, v, w, mass,
+                            np.asarray(rot_inertia, float))
+
+    def _fail(self, k: int, t: float, cause: str) -> None:
+        self.alive[k] = False
+        self.fail_time[k] = t
+        self.log.append((int(self.ids[k]), t, cause))
+
+
+# --- from the Model ------------------------------------------------------------------------------
+
+
+def _problem(rec, fld, msg) -> Problem:
+    f, line = rec.where(fld) if hasattr(rec, "where") else ("", 0)
+    return Problem(f, line, getattr(rec, "name", ""), fld.upper() if fld else None, msg)
+
+
+def _shell_normals(model: Model) -> np.ndarray:
+    """(n, 3) sum of the unit normals of the shells at each node."""
+    out = np.zeros((len(model.nodes), 3))
+    sh = model.shells
+    if not len(sh):
+        return out
+    x = model.nodes.xyz
+    c = sh.nodes.astype(np.int64)
+    c4 = np.where(c[:, 3] < 0, c[:, 2], c[:, 3])
+    nrm = np.cross(x[c[:, 2]] - x[c[:, 0]], x[c4] - x[c[:, 1]])
+    tri = c4 == c[:, 2]
+    nrm[tri] = np.cross(x[c[tri, 1]] - x[c[tri, 0]], x[c[tri, 2]] - x[c[tri, 0]])
+    nrm /= np.maximum(np.linalg.norm(nrm, axis=1), 1e-300)[:, None]
+    for a in range(4):
+        sel = (a < 3) | ~tri
+        np.add.at(out, c[sel, a], nrm[sel])
+    return out
+
+
+def build_spotwelds(model: Model, problems: list) -> SpotWelds | None:
+    """The spot welds of a deck (None without any)."""
+    rows = []  # (id, keyword, node indices, sn, ss, n, m, tfail, rec)
+    for rec in model.find("CONSTRAINED_SPOTWELD"):
+        r = rec.rows if rec.rows else None
+        entries = ([{k: r[k][i] for k in r} for i in range(len(r["n1"]))] if r else [rec])
+        for i, e in enumerate(entries):
+            get = (lambda k, d=None, e=e: e.get(k, d)) if isinstance(e, dict) else e.get
+            n1, n2 = int(get("n1") or 0), int(get("n2") or 0)
+            idx = model.node_index([n1, n2])
+            if n1 <= 0 or n2 <= 0 or np.any(idx < 0) or n1 == n2:
+                problems.append(_problem(rec, "n1", f"a spot weld needs two distinct defined nodes (N1 {n1}, "
+                                                    f"N2 {n2})"))
+                continue
+            if float(get("ep", 1e20) or 1e20) < 1e20:
+                problems.append(_problem(rec, "ep", "plastic-strain failure (EP) of spot welds is not supported "
+                                                    "yet"))
+                continue
+            wid = int(get("wid") or 0) or len(rows) + 1
+            rows.append((wid, rec.keyword, idx.astype(np.int64), get("sn", 0.0), get("ss", 0.0), get("n", 0.0),
+                         get("m", 0.0), get("tf", 1e20), rec))
+    for rec in model.find("CONSTRAINED_GENERALIZED_WELD"):
+        if rec.keyword != "CONSTRAINED_GENERALIZED_WELD_SPOT":
+            problems.append(_problem(rec, None, f"*{rec.keyword} is not supported (GENERALIZED_WELD_SPOT is)"))
+            continue
+        nsid = int(rec.get("nsid") or 0)
+        if ("NODE", nsid) not in model.sets:
+            problems.append(_problem(rec, "nsid", f"*SET_NODE {nsid} is not defined"))
+            continue
+        idx = model.node_index(model.set_members("NODE", nsid))
+        if len(idx) < 2 or np.any(idx < 0):
+            problems.append(_problem(rec, "nsid", f"a generalized spot weld needs at least 2 defined nodes; "
+                                                  f"*SET_NODE {nsid} has {int((idx >= 0).sum())}"))
+            continue
+        if int(rec.get("cid") or 0):
+            problems.append(_problem(rec, "cid", "failure forces in a local system (CID) are not supported yet"))
+            continue
+        if float(rec.get("epsf", 1e20) or 1e20) < 1e20:
+            problems.append(_problem(rec, "epsf", "plastic-strain failure (EPSF) is not supported yet"))
+            continue
+        wid = int(rec.get("wid") or 0) or len(rows) + 1
+        rows.append((wid, rec.keyword, idx.astype(np.int64), rec.get("sn", 0.0), rec.get("ss", 0.0),
+                     rec.get("n", 0.0), rec.get("m", 0.0), rec.get("tfail", 1e20), rec))
+    if not rows:
+        return None
+    x = model.nodes.xyz
+    normals = None
+    k = len(rows)
+    sn, ss, en, em, tf = (np.zeros(k) for _ in range(5))
+    normal0, along = np.zeros((k, 3)), np.zeros(k, np.bool_)
+    owner: dict[int, int] = {}
+    for j, (wid, kw, idx, a_sn, a_ss, a_n, a_m, a_tf, rec) in enumerate(rows):
+        sn[j], ss[j] = float(a_sn or 0.0), float(a_ss or 0.0)
+        en[j], em[j] = float(a_n or 0.0), float(a_m or 0.0)
+        tf[j] = float(a_tf if a_tf not in (None, 0.0) else 1e20)
+        for fld, s_, e_ in (("n", sn[j], en[j]), ("m", ss[j], em[j])):
+            if s_ < 0 or (s_ > 0 and e_ <= 0):
+                problems.append(_problem(rec, fld, f"weld {wid}: SN/SS >= 0 and exponents N, M > 0 with them are "
+                                                   "needed"))
+        for i in idx:
+            if int(i) in owner:
+                problems.append(_problem(rec, "n1" if kw == "CONSTRAINED_SPOTWELD" else "nsid",
+                                         f"node {int(model.nodes.ids[i])} is in two welds ({owner[int(i)]} and "
+                                         f"{wid}); join them in one generalized weld instead"))
+            owner[int(i)] = wid
+        d = x[idx[-1]] - x[idx[0]]
+        if np.linalg.norm(d) > 1e-9 * max(1.0, float(np.abs(x[idx]).max())):
+            along[j] = True
+        elif sn[j] > 0 or ss[j] > 0:
+            if normals is None:
+                normals = _shell_normals(model)
+            nrm = normals[idx].sum(axis=0)
+            if np.linalg.norm(nrm) == 0:
+                problems.append(_problem(rec, "n1" if kw == "CONSTRAINED_SPOTWELD" else "nsid",
+                                         f"weld {wid}: the nodes coincide and no shell gives a normal for the "
+                                         "failure forces"))
+            else:
+                normal0[j] = nrm / np.linalg.norm(nrm)
+    ptr = np.zeros(k + 1, np.int64)
+    ptr[1:] = np.cumsum([len(r[2]) for r in rows])
+    return SpotWelds(np.array([r[0] for r in rows], np.int64), [r[1] for r in rows], ptr,
+                     np.concatenate([r[2] for r in rows]).astype(np.int64), sn, ss, en, em, tf, normal0, along)
