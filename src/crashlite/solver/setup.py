@@ -483,6 +483,31 @@ def _element_groups(model: Model, rigid: np.ndarray, n: int, problems: list) -> 
     return groups + build_contacts(model, groups, problems)  # after the elements: they add to their forces
 
 
+def _constraint_objects(model: Model, mass, rot_inertia, v0, w0, in_body, problems: list) -> list:
+    """Tied contacts and spot welds (Setup.constraints): the tied slaves'
+    masses (and rotary inertias) go to their masters and the initial
+    velocities are made consistent with the ties, momentum kept."""
+    from .spotwelds import build_spotwelds
+    from .tied import build_tied
+
+    ties = build_tied(model, problems)
+    welds = build_spotwelds(model, problems)
+    x = model.nodes.xyz
+    for t in ties:
+        slave_mass = mass[t.slave].copy()
+        t.lump(mass, rot_inertia, x)
+        t.start(v0, mass, slave_mass, x, w0)
+    linked = [(t.keyword, np.concatenate([t.slave, t.seg.ravel()])) for t in ties]
+    if welds is not None:
+        welds.start(v0, w0, mass, rot_inertia, x)
+        linked.append(("CONSTRAINED_SPOTWELD", welds.nodes))
+    for kw, nodes in linked:
+        if in_body[nodes].any():
+            problems.append(Problem(model.source or "", 0, kw, None, "tied contacts and welds on nodal rigid body "
+                                                                     "or rigid part nodes are not supported yet"))
+    return ties + ([welds] if welds is not None else [])
+
+
 def build(model: Model) -> Setup:
     """Arrays for the time loop; raises SetupError listing everything the
     solver cannot run yet."""
@@ -568,6 +593,8 @@ def _build(model: Model) -> Setup:
     for i in massless[:10]:
         problems.append(Problem(model.source or "", 0, "ELEMENT_MASS", None,
                                 f"node {int(model.nodes.ids[i])} carries elements but has no mass"))
+    w0 = _initial_rotation(model, n)
+    constraints = _constraint_objects(model, mass, rot_inertia, v0, w0, in_body, problems)
     term = model.find("CONTROL_TERMINATION")
     ts = model.find("CONTROL_TIMESTEP")
     end_time = float(term[0].get("endtim", 0.0)) if term else 0.0
@@ -596,7 +623,7 @@ def _build(model: Model) -> Setup:
                 continue
             axis = np.eye(3)["XYZ".index(name[-1])]
             loads.append((axis, _curve(model, int(rec["lcid"])), float(rec.get("sf", 1.0))))
-    sections = build_sections(model, beams.ids if beams is not None else np.zeros(0, np.int64), problems)
+    sections = build_sections(model, beams.ids if beams is not None else np.zeros(0, np.int64), problems, groups)
     if ts and float(ts[0].get("dt2ms", 0.0) or 0.0) != 0.0 and groups:
         problems.append(_problem(ts[0], "dt2ms", "mass scaling (DT2MS) of "
                                  + ", ".join(sorted({g.kind + "s" for g in groups})) + " is not supported yet"))
@@ -609,7 +636,7 @@ def _build(model: Model) -> Setup:
         history_nodes=hist_idx[hist_idx >= 0], dt_max=dt_max, motions=motions, bodies=bodies,
         body_loads=loads, dt2ms=float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0,
         beams=beams, rot_inertia=rot_inertia, fixed_rot=fixed_rot,
-        w0=_initial_rotation(model, n),
+        w0=w0, constraints=constraints,
         discrete_pid=model.discretes.pid.astype(np.int64),
         sections=sections,
         beam_pid=model.beams.pid[~np.isin(model.beams.pid, rigid)].astype(np.int64),
