@@ -17,7 +17,7 @@ Penalty stiffness (LS-DYNA, SOFT = 0): k = SLSFAC·SF·K·A/min(diagonal)
 for shells, SLSFAC·SF·K·A²/V for solid faces (K the bulk modulus
 E/(3(1−2ν)) of the segment's material, SF = SFS for slave, SFM for master
 segments), and for a pair the smaller of the segment's and the slave node's
-(the smallest of its own segments; none for nodes without segments).
+(the largest of its own segments; none for nodes without segments).
 SOFT = 1 takes the larger of that and 0.5·SOFSCL·m*/Δt0², with m* the
 reduced mass of the node and the mean node mass of the segment and Δt0 the
 initial element time step (DTSTIF when given). Friction: μ = FSF·(FD +
@@ -99,13 +99,14 @@ class Surface:
 
     def node_values(self, nodes: np.ndarray, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
         """(thickness, stiffness) of ``nodes``: the largest shell thickness and
-        the smallest stiffness of this surface's segments holding them (0
-        and inf for none)."""
-        t, k = np.zeros(n_nodes), np.full(n_nodes, np.inf)
+        the largest stiffness of this surface's segments holding them (0
+        and inf for none; the largest, so that a thin side face of a solid
+        does not soften the contact of the face it borders)."""
+        t, k = np.zeros(n_nodes), np.zeros(n_nodes)
         for a in range(4):
             np.maximum.at(t, self.seg[:, a], self.thick)
-            np.minimum.at(k, self.seg[:, a], self.k)
-        return t[nodes], k[nodes]
+            np.maximum.at(k, self.seg[:, a], self.k)
+        return t[nodes], np.where(k > 0, k, np.inf)[nodes]
 
 
 def concat(*surfs: Surface) -> Surface:
@@ -162,6 +163,7 @@ class ContactGroup(ElementGroup):
         self.resultant = np.zeros(3)
         ns = len(c.snode)
         self.ft = np.zeros((ns, 3))
+        self.prev = np.full(ns, -1, np.int64)  # segment of each entry in the last cycle
         self.rows = np.zeros((ns, 5, 3))
         self.rnode = np.full((ns, 5), -1, np.int64)
         self.gap = np.zeros(ns)
@@ -216,7 +218,7 @@ class ContactGroup(ElementGroup):
         p_old = kc.power(self.rows, self.rnode, st.v)  # forces of t(n) at v(n+½)
         kc.contact_forces(st.x, st.v, float(st.dt), c.snode, c.sthick, c.sk, self._smass, c.seg, c.mthick, c.mk,
                           self._mmass, c.onesided, c.depth, c.msize, self._cptr, self._cand, self.prm, self.ft,
-                          self.rows, self.rnode, self.gap)
+                          self.prev, self.rows, self.rnode, self.gap)
         p_new = kc.scatter(self.rows, self.rnode, st.v, c.node_side, st.f, self.resultant)
         # work of the contact forces over the step (trapezoid); stored and dissipated energy count positive
         self.energy[0] -= 0.5 * float(st.dt) * (p_old + p_new)

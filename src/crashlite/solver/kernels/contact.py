@@ -258,8 +258,13 @@ def max_displacement(x, xref, nodes):
 
 @njit(cache=True, parallel=True)
 def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, onesided, depth, msize,
-                   cptr, cand, prm, ft, rows, rnode, gap):
-    """Rows of the pair forces of every slave entry (see the module doc)."""
+                   cptr, cand, prm, ft, prev, rows, rnode, gap):
+    """Rows of the pair forces of every slave entry (see the module doc).
+
+    The segment of an entry is the nearest one it penetrates; a node behind
+    a solid face keeps that face (prev (ns,) int64, -1: none) while it
+    stays behind it, so that a node at a corner is not handed to the side
+    face it grazes."""
     fs, fd, dc, vdc, fsf, soft_k = prm[P_FS], prm[P_FD], prm[P_DC], prm[P_VDC], prm[P_FSF], prm[P_SOFT_K]
     active = prm[P_ACTIVE] != 0.0
     friction = fs > 0.0 or fd > 0.0
@@ -293,9 +298,9 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
                 if onesided[s] != 0 and sd < 0.0:
                     # behind a solid face: only where the closest point is the normal projection
                     tx, ty, tz = rx - sd * nx, ry - sd * ny, rz - sd * nz
-                    if math.sqrt(tx * tx + ty * ty + tz * tz) > 1e-2 * msize[s] or d > depth[s]:
+                    if math.sqrt(tx * tx + ty * ty + tz * tz) > 1e-2 * msize[s] or -sd > depth[s]:
                         continue
-                    g = half + d
+                    g = half - sd  # the depth along the normal (a node just past an edge has none)
                     cls = _BEHIND
                 else:
                     g = half - d
@@ -304,10 +309,14 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
                         nx, ny, nz = rx / d, ry / d, rz / d
                 if g <= tol:
                     continue
-                if cls < best_cls or (cls == best_cls and d < best_d):
+                keep = s == prev[i] and cls == _BEHIND
+                if best_cls >= 0 and (keep or cls < best_cls or (cls == best_cls and d < best_d)):
                     best, best_cls, best_d, bg = s, cls, d, g
                     bw0, bw1, bw2, bw3 = w0, w1, w2, w3
                     bnx, bny, bnz = nx, ny, nz
+                    if keep:
+                        best_cls = -1  # no other candidate replaces it
+        prev[i] = best
         if best < 0:
             ft[i, 0] = 0.0
             ft[i, 1] = 0.0

@@ -1,0 +1,226 @@
+"""Penalty contact (*CONTACT_AUTOMATIC_...): rebound of a mass from a shell
+plate, head-on impact of two elastic bars, Coulomb friction, single surface,
+thread independence, the bucket-sort search and bad input."""
+
+import math
+
+import numba
+import numpy as np
+import pytest
+
+from crashlite import read_deck
+from crashlite.solver.contact import build_surface
+from crashlite.solver.kernels.contact import find_candidates
+from crashlite.solver.setup import SetupError, build
+
+from _contact_decks import STEEL, Deck, momentum, run
+
+RHO, E, NU = STEEL
+K_BULK = E / (3 * (1 - 2 * NU))
+
+
+def _shell_k(h, k_bulk=K_BULK, slsfac=0.1):
+    """LS-DYNA SOFT = 0 penalty of a square shell segment of side h:
+    SLSFAC·K·A/min(diagonal)."""
+    return slsfac * k_bulk * h * h / (h * math.sqrt(2.0))
+
+
+def _drop_deck(tmp_path, fixed=True, v=-1000.0, m=1e-4, gap=0.1, end=None, extra_card=None):
+    d = Deck()
+    plate = d.plate(1, 4, 4, 20.0, 20.0)
+    (node,) = d.nodes([[10.0, 10.0, 0.5 + gap]])  # above the plate's centre node, thickness 1
+    d.mass(node, m)
+    d.node_set(1, [node])
+    if fixed:
+        d.fix(plate)
+    d.velocity([node], (0.0, 0.0, v))
+    d.contact("NODES_TO_SURFACE", "1,1,4,3", "", "", extra_card)
+    k = _shell_k(5.0)
+    t_contact = math.pi * math.sqrt(m / k)
+    end = end or gap / abs(v) + 1.5 * t_contact
+    return d.write(tmp_path / "drop.k", end), node - 1, k
+
+
+def test_mass_rebounds_elastically_from_a_fixed_plate(tmp_path):
+    path, node, k = _drop_deck(tmp_path)
+    res, (g,), s = run(path, output_dt=2e-6)
+    m, v0 = 1e-4, 1000.0
+    assert res.final_v[node, 2] == pytest.approx(v0, rel=0.02)  # restitution 1
+    # largest penetration: V·√(m/k) of the penalty spring, a small fraction of the thickness
+    assert g.max_gap == pytest.approx(v0 * math.sqrt(m / k), rel=0.03)
+    assert g.max_gap < 0.05 * 1.0
+    total = res.kinetic + res.internal + res.sliding
+    assert np.max(np.abs(total - total[0])) < 0.01 * total[0]
+    assert res.sliding.max() > 0.9 * total[0]  # the spring took (nearly) all the energy ...
+    assert abs(res.sliding[-1]) < 1e-3 * total[0]  # ... and gave it back after separation
+    # rcforc: peak force on the slave node k·δmax, pointing up
+    assert res.contact_ids.tolist() == [1]
+    fz = res.contact_force[:, 0, 2]
+    assert fz.max() == pytest.approx(k * g.max_gap, rel=0.03)
+
+
+def test_momentum_is_conserved_with_a_free_plate(tmp_path):
+    path, node, _ = _drop_deck(tmp_path, fixed=False)
+    res, (g,), s = run(path)
+    p0 = momentum(s, s.v0)
+    p1 = momentum(s, res.final_v)
+    assert np.allclose(p1, p0, rtol=0, atol=1e-9 * abs(p0[2]))
+    assert g.max_gap > 0  # they did meet
+    assert res.final_v[node, 2] > -1000.0 * 0.99  # the mass was slowed down
+    total = res.kinetic + res.internal + res.hourglass + res.sliding
+    assert np.max(np.abs(total - total[0])) < 0.01 * total[0]
+
+
+def test_bars_meeting_head_on_exchange_velocities(tmp_path):
+    """Two equal elastic bars at ±V: contact for 2L/c, then they part at ∓V."""
+    n, length, side, v, gap = 40, 100.0, 10.0, 5000.0, 0.05
+    mat = (RHO, E, 0.0)  # ν = 0: the bar wave speed √(E/ρ) exactly
+    d = Deck()
+    a = d.bar(1, n, length, side, x0=-length - gap / 2, mat=mat)
+    b = d.bar(2, n, length, side, x0=gap / 2, mat=mat)
+    d.velocity(a, (v, 0, 0))
+    d.velocity(b, (-v, 0, 0))
+    d.contact("SURFACE_TO_SURFACE", "1,2,3,3", cid=5)
+    c = math.sqrt(E / RHO)
+    t_hit, t_c = gap / (2 * v), 2 * length / c
+    res, (g,), s = run(d.write(tmp_path / "bars.k", t_hit + 1.6 * t_c), output_dt=t_c / 200)
+    ia, ib = a - 1, b - 1
+    va = (s.mass[ia] * res.final_v[ia, 0]).sum() / s.mass[ia].sum()
+    vb = (s.mass[ib] * res.final_v[ib, 0]).sum() / s.mass[ib].sum()
+    assert va == pytest.approx(-v, rel=0.05) and vb == pytest.approx(v, rel=0.05)
+    fx = res.contact_force[:, 0, 0]
+    on = res.time[np.abs(fx) > 0.02 * np.abs(fx).max()]
+    assert on[-1] - on[0] == pytest.approx(t_c, rel=0.05)
+    # force while in contact: σ·A with σ = ρ c V
+    assert np.median(np.abs(fx[np.abs(fx) > 0.5 * np.abs(fx).max()])) == pytest.approx(RHO * c * v * side ** 2,
+                                                                                      rel=0.05)
+    total = res.kinetic + res.internal + res.hourglass + res.sliding
+    assert np.max(np.abs(total - total[0])) < 0.01 * total[0]
+
+
+def test_friction_stops_a_sliding_mass_after_v0_squared_over_2_mu_g(tmp_path):
+    mu, v0, acc, m = 0.3, 500.0, 1.0e5, 1e-4
+    soft = (RHO, E / 100, NU)  # a soft plate: a longer time step, the same physics
+    k = _shell_k(5.0, soft[1] / (3 * (1 - 2 * NU)))
+    d = Deck()
+    plate = d.plate(1, 4, 2, 20.0, 10.0, mat=soft)
+    (node,) = d.nodes([[3.0, 5.0, 0.5 - m * acc / k]])  # at its static penetration
+    d.mass(node, m)
+    d.node_set(1, [node])
+    d.fix(plate)
+    d.velocity([node], (v0, 0.0, 0.0))
+    d.contact("NODES_TO_SURFACE", "1,1,4,3", f"{mu},{mu}")
+    d.extra += ["*LOAD_BODY_Z", "1", "*DEFINE_CURVE", "1", "0.0,1.0", "1.0,1.0"]
+    t_stop = v0 / (mu * acc)
+    res, (g,), s = run(d.write(tmp_path / "slide.k", 1.3 * t_stop))
+    dist = res.final_x[node - 1, 0] - 3.0
+    assert dist == pytest.approx(v0 ** 2 / (2 * mu * acc), rel=0.03)
+    assert abs(res.final_v[node - 1, 0]) < 0.01 * v0
+    # the energy taken by the interface is the friction work μ·m·g·d
+    assert res.sliding[-1] == pytest.approx(mu * m * acc * dist, rel=0.03)
+    assert res.energy_ratio[-1] == pytest.approx(1.0, abs=0.01)
+
+
+def test_single_surface_keeps_two_plates_apart(tmp_path):
+    t, v = 1.0, -2000.0
+    d = Deck()
+    d.plate(1, 4, 4, 20.0, 20.0, thick=t)
+    top = d.plate(2, 4, 4, 20.0, 20.0, z=t + 0.5, thick=t)  # 0.5 mm between the surfaces
+    d.velocity(top, (0.0, 0.0, v))
+    d.contact("SINGLE_SURFACE", "0,0,0")
+    res, (g,), s = run(d.write(tmp_path / "ss.k", 1.2e-3))
+    # the upper plate came down, was stopped by the lower one and moves apart from it
+    assert g.max_gap > 0 and g.max_gap < 0.2 * t
+    zt, zb = res.final_x[top - 1, 2].mean(), res.final_x[: len(top), 2].mean()
+    assert zt - zb > t
+    p0, p1 = momentum(s, s.v0), momentum(s, res.final_v)
+    assert np.allclose(p1, p0, rtol=0, atol=1e-9 * abs(p0[2]))
+    total = res.kinetic + res.internal + res.hourglass + res.sliding
+    assert np.max(np.abs(total - total[0])) < 0.01 * total[0]
+
+
+def test_one_flat_plate_does_not_touch_itself(tmp_path):
+    d = Deck()
+    plate = d.plate(1, 4, 4, 20.0, 20.0)
+    d.velocity(plate, (100.0, 0.0, 0.0))
+    d.contact("SINGLE_SURFACE", "1,0,3")
+    res, (g,), s = run(d.write(tmp_path / "one.k", 2e-5))
+    assert g.max_gap == 0.0 and res.sliding[-1] == 0.0
+
+
+def test_thread_count_does_not_change_the_result(tmp_path):
+    d = Deck()
+    d.plate(1, 4, 4, 20.0, 20.0)
+    top = d.plate(2, 3, 3, 15.0, 15.0, x0=2.0, y0=3.0, z=1.3)
+    d.velocity(top, (300.0, 0.0, -3000.0))
+    d.contact("SINGLE_SURFACE", "0,0,0", "0.2,0.1,0.01")
+    model = read_deck(d.write(tmp_path / "thr.k", 2e-4))
+    from crashlite.solver.loop import integrate
+
+    default = numba.get_num_threads()
+    try:
+        numba.set_num_threads(1)
+        one = integrate(build(model))
+        numba.set_num_threads(min(2, numba.config.NUMBA_NUM_THREADS))
+        two = integrate(build(model))
+    finally:
+        numba.set_num_threads(default)
+    assert one.sliding.max() > 0
+    assert np.array_equal(one.final_x, two.final_x) and np.array_equal(one.contact_force, two.contact_force)
+
+
+def test_bucket_search_finds_every_pair_within_reach():
+    rng = np.random.default_rng(3)
+    n_seg = 200
+    base = rng.uniform(0, 50, (n_seg, 3))
+    x = np.concatenate([base[:, None, :] + rng.uniform(0, 3, (n_seg, 4, 3))]).reshape(-1, 3)
+    nodes = rng.uniform(-2, 52, (300, 3))
+    x = np.concatenate([x, nodes])
+    seg = np.arange(4 * n_seg).reshape(n_seg, 4)
+    seg[::7, 3] = seg[::7, 2]  # some triangles
+    snode = np.arange(4 * n_seg, 4 * n_seg + 300)
+    grow = rng.uniform(0.1, 2.0, n_seg)
+    cptr, cand = find_candidates(x, snode, np.full(300, -1), seg, np.zeros(n_seg, np.int64), grow)
+    lo = np.min(x[seg], axis=1) - grow[:, None]
+    hi = np.max(x[seg], axis=1) + grow[:, None]
+    for i, nd in enumerate(snode):
+        inside = np.flatnonzero(np.all((x[nd] >= lo) & (x[nd] <= hi), axis=1))
+        assert sorted(cand[cptr[i]:cptr[i + 1]].tolist()) == inside.tolist()
+
+
+def test_solid_surface_is_the_exterior_faces(tmp_path):
+    d = Deck()
+    d.bar(1, 3, 30.0, 10.0)
+    model = read_deck(d.write(tmp_path / "bar.k", 1.0))
+    problems = []
+    surf = build_surface(model, [1], 0.1, 1.0, 0.0, 1.0, problems, None)
+    assert not problems
+    assert len(surf.seg) == 2 + 3 * 4  # two ends, four sides of three elements
+    # outward normals (the bar is convex: away from its centre)
+    x = model.nodes.xyz
+    c = x[surf.seg].mean(axis=1)
+    nrm = np.cross(x[surf.seg[:, 2]] - x[surf.seg[:, 0]], x[surf.seg[:, 3]] - x[surf.seg[:, 1]])
+    assert np.all(np.einsum("ij,ij->i", nrm, c - [15.0, 5.0, 5.0]) > 0)
+    # K·A²/V, depth half the element length normal to the face
+    assert np.allclose(surf.k[:2], 0.1 * K_BULK * 100.0 ** 2 / 1000.0)
+    assert np.allclose(np.sort(surf.depth)[-2:], 5.0)
+
+
+def test_undefined_part_set_names_the_card_and_field(tmp_path):
+    d = Deck()
+    d.plate(1, 2, 2, 10.0, 10.0)
+    d.contact("SINGLE_SURFACE", "99,0,2")
+    with pytest.raises(SetupError) as e:
+        build(read_deck(d.write(tmp_path / "bad.k", 1e-4)))
+    msg = str(e.value)
+    assert "CONTACT_AUTOMATIC_SINGLE_SURFACE" in msg and "SSID" in msg and "99" in msg
+
+
+@pytest.mark.parametrize("card_a, field", [("2", "SOFT"), ("0,0.1,0,0,0,0,0,0\n0,0,0,0,0,0,0,0\n0,1", "IGNORE")])
+def test_options_not_run_are_refused(tmp_path, card_a, field):
+    d = Deck()
+    d.plate(1, 2, 2, 10.0, 10.0)
+    d.contact("SINGLE_SURFACE", "1,0,3", "", "", card_a)
+    with pytest.raises(SetupError) as e:
+        build(read_deck(d.write(tmp_path / "opt.k", 1e-4)))
+    assert field in str(e.value)
