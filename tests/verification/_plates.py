@@ -59,7 +59,7 @@ class Plates:
         out += ["*SECTION_SHELL", "1,2,0.8333,2", f"{self.t},{self.t},{self.t},{self.t}",
                 "*MAT_ELASTIC", f"1,{RHO},{E},{self.nu}", "*HOURGLASS", self.hourglass]
         out += [x.rstrip("\n") for x in self.extra]
-        out += ["*CONTROL_TERMINATION", f"{end_time!r}", "*END"]
+        out += ["*CONTROL_TERMINATION", f"{end_time!r},", "*END"]
         return "\n".join(out) + "\n"
 
     def write(self, path, end_time: float):

@@ -254,11 +254,14 @@ class TiedContact:
 
     def start(self, v: np.ndarray, mass: np.ndarray, slave_mass: np.ndarray, x: np.ndarray, w: np.ndarray) -> None:
         """Initial velocities made consistent with the tie, keeping the
-        momentum: each slave's momentum relative to its master point goes
-        to the segment nodes (masses ``mass`` after ``lump``)."""
+        momentum: each slave's momentum relative to the motion the tie
+        gives it goes to the segment nodes (masses ``mass`` after ``lump``);
+        a consistent start is left as it is."""
         if not len(self.slave):
             return
-        dp = slave_mass[:, None] * (v[self.slave] - np.einsum("ka,kaj->kj", self.w, v[self.seg]))
+        target, w_t = v.copy(), w.copy()
+        tie_velocities(self.slave, self.seg, self.w, self.nn, self.offset, self.rotations, self.mrot, x, target, w_t)
+        dp = slave_mass[:, None] * (v[self.slave] - target[self.slave])
         dv = np.zeros_like(v)
         for a in range(4):
             np.add.at(dv, self.seg[:, a], self.w[:, a, None] * dp)
