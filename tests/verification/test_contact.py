@@ -3,6 +3,7 @@ plate, head-on impact of two elastic bars, Coulomb friction, single surface,
 thread independence, the bucket-sort search and bad input."""
 
 import math
+from types import SimpleNamespace
 
 import numba
 import numpy as np
@@ -25,7 +26,7 @@ def _shell_k(h, k_bulk=K_BULK, slsfac=0.1):
     return slsfac * k_bulk * h * h / (h * math.sqrt(2.0))
 
 
-def _drop_deck(tmp_path, fixed=True, v=-1000.0, m=1e-4, gap=0.1, end=None, extra_card=None):
+def _drop_deck(tmp_path, fixed=True, v=-1000.0, m=1e-4, gap=0.1, end=None, card_a=None):
     d = Deck()
     plate = d.plate(1, 4, 4, 20.0, 20.0)
     (node,) = d.nodes([[10.0, 10.0, 0.5 + gap]])  # above the plate's centre node, thickness 1
@@ -34,7 +35,7 @@ def _drop_deck(tmp_path, fixed=True, v=-1000.0, m=1e-4, gap=0.1, end=None, extra
     if fixed:
         d.fix(plate)
     d.velocity([node], (0.0, 0.0, v))
-    d.contact("NODES_TO_SURFACE", "1,1,4,3", "", "", extra_card)
+    d.contact("NODES_TO_SURFACE", "1,1,4,3", "", "", card_a)
     k = _shell_k(5.0)
     t_contact = math.pi * math.sqrt(m / k)
     end = end or gap / abs(v) + 1.5 * t_contact
@@ -228,3 +229,22 @@ def test_options_not_run_are_refused(tmp_path, card_a, field):
     with pytest.raises(SetupError) as e:
         build(read_deck(d.write(tmp_path / "opt.k", 1e-4)))
     assert field in str(e.value)
+
+
+def test_soft_constraint_stiffness_from_the_masses_and_the_initial_step(tmp_path):
+    """SOFT = 1: k = max(SOFT 0 penalty, 0.5·SOFSCL·m*/Δt0²), m* the reduced
+    mass of the node and its segment; the mass rebounds on that spring."""
+    m, v0 = 1e-4, 1000.0
+    path, node, k0 = _drop_deck(tmp_path, card_a="1,2.0")
+    s = build(read_deck(path))
+    (g,) = [c for c in s.groups if c.kind == "contact"]
+    dt0 = 0.9 * s.groups[0].critical_dt(SimpleNamespace(x=s.x0))  # the shells' initial step × TSSFAC
+    assert g.c.soft == 1 and g.c.dt0 == pytest.approx(dt0, rel=1e-12)
+    m_seg = s.mass[0:25].reshape(5, 5)[1:4, 1:4].mean()  # the plate nodes round the centre
+    k = 0.5 * 2.0 * (m * m_seg / (m + m_seg)) / dt0 ** 2
+    assert k > 2 * k0  # the soft constraint governs here
+    from crashlite.solver.loop import integrate
+
+    res = integrate(s)
+    assert g.max_gap == pytest.approx(v0 * math.sqrt(m / k), rel=0.03)
+    assert res.final_v[node, 2] == pytest.approx(v0, rel=0.02)
