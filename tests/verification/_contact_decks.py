@@ -28,8 +28,9 @@ class Deck:
         self.xyz += [tuple(float(c) for c in p) for p in np.asarray(xyz, float).reshape(-1, 3)]
         return np.arange(first, len(self.xyz) + 1)
 
-    def plate(self, pid, nx, ny, lx, ly, z=0.0, x0=0.0, y0=0.0, thick=1.0, mat=STEEL) -> np.ndarray:
-        """A flat quad shell plate of part ``pid`` at height z; its node IDs."""
+    def plate(self, pid, nx, ny, lx, ly, z=0.0, x0=0.0, y0=0.0, thick=1.0, mat=STEEL, rigid=False) -> np.ndarray:
+        """A flat quad shell plate of part ``pid`` at height z (a free
+        *MAT_RIGID part when ``rigid``); its node IDs."""
         xs, ys = np.linspace(x0, x0 + lx, nx + 1), np.linspace(y0, y0 + ly, ny + 1)
         ids = self.nodes([[x, y, z] for y in ys for x in xs]).reshape(ny + 1, nx + 1)
         rows = []
@@ -39,7 +40,7 @@ class Deck:
                 rows.append(f"{self.elem},{pid},{ids[j, i]},{ids[j, i + 1]},{ids[j + 1, i + 1]},{ids[j + 1, i]}")
         self.lines += ["*ELEMENT_SHELL", *rows, "*PART", f"plate {pid}", f"{pid},{pid},{pid}",
                        "*SECTION_SHELL", f"{pid},2,1.0,2", f"{thick},{thick},{thick},{thick}",
-                       "*MAT_ELASTIC", f"{pid},{mat[0]},{mat[1]},{mat[2]}"]
+                       "*MAT_RIGID" if rigid else "*MAT_ELASTIC", f"{pid},{mat[0]},{mat[1]},{mat[2]}"]
         return ids.ravel()
 
     def bar(self, pid, n, length, side, x0=0.0, mat=STEEL) -> np.ndarray:

@@ -12,6 +12,7 @@ import pytest
 from crashlite import read_deck
 from crashlite.solver.contact import build_surface
 from crashlite.solver.kernels.contact import find_candidates
+from crashlite.solver.results import Results
 from crashlite.solver.setup import SetupError, build
 
 from _contact_decks import STEEL, Deck, momentum, run
@@ -58,6 +59,9 @@ def test_mass_rebounds_elastically_from_a_fixed_plate(tmp_path):
     assert res.contact_ids.tolist() == [1]
     fz = res.contact_force[:, 0, 2]
     assert fz.max() == pytest.approx(k * g.max_gap, rel=0.03)
+    res.save(tmp_path / "out")
+    back = Results.load(tmp_path / "out")
+    assert np.array_equal(back.contact_force, res.contact_force) and back.contact_ids.tolist() == [1]
 
 
 def test_momentum_is_conserved_with_a_free_plate(tmp_path):
@@ -69,6 +73,26 @@ def test_momentum_is_conserved_with_a_free_plate(tmp_path):
     assert g.max_gap > 0  # they did meet
     assert res.final_v[node, 2] > -1000.0 * 0.99  # the mass was slowed down
     total = res.kinetic + res.internal + res.hourglass + res.sliding
+    assert np.max(np.abs(total - total[0])) < 0.01 * total[0]
+
+
+def test_a_free_rigid_plate_takes_the_momentum(tmp_path):
+    d = Deck()
+    d.plate(1, 4, 4, 20.0, 20.0, rigid=True)
+    (node,) = d.nodes([[10.0, 10.0, 0.6]])
+    d.mass(node, 1e-4)
+    d.node_set(1, [node])
+    d.velocity([node], (0.0, 0.0, -1000.0))
+    d.contact("NODES_TO_SURFACE", "1,1,4,3")
+    res, (g,), s = run(d.write(tmp_path / "rigid.k", 4e-4))
+    (body,) = s.bodies
+    # elastic impact of the mass on the lighter rigid plate: v' = (m - M)/(m + M)·v, V' = 2m/(m + M)·v
+    m, mb, v = 1e-4, body.mass, -1000.0
+    assert res.final_v[node - 1, 2] == pytest.approx((m - mb) / (m + mb) * v, rel=0.02)
+    assert res.info["bodies"][1]["velocity"][2] == pytest.approx(2 * m / (m + mb) * v, rel=0.02)
+    p = m * res.final_v[node - 1, 2] + mb * res.info["bodies"][1]["velocity"][2]
+    assert p == pytest.approx(m * v, rel=1e-9)
+    total = res.kinetic + res.internal + res.sliding
     assert np.max(np.abs(total - total[0])) < 0.01 * total[0]
 
 
