@@ -67,6 +67,9 @@ def build_parser() -> argparse.ArgumentParser:
     from .cli_barrier import add_commands as barrier_commands
 
     barrier_commands(sub)
+    from .cli_compare import add_commands as compare_commands
+
+    compare_commands(sub)
     return p
 
 
