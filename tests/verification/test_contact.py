@@ -272,3 +272,52 @@ def test_soft_constraint_stiffness_from_the_masses_and_the_initial_step(tmp_path
     res = integrate(s)
     assert g.max_gap == pytest.approx(v0 * math.sqrt(m / k), rel=0.03)
     assert res.final_v[node, 2] == pytest.approx(v0, rel=0.02)
+
+
+def test_segments_of_eroded_shells_drop_out(tmp_path):
+    path, node, _ = _drop_deck(tmp_path)
+    s = build(read_deck(path))
+    shells, contact = s.groups[0], s.groups[1]
+    assert len(contact.links) == 1
+    shells.st.alive[:] = 0  # every shell failed
+    from crashlite.solver.loop import integrate
+
+    res = integrate(s)
+    assert contact.max_gap == 0.0 and res.final_v[node, 2] == pytest.approx(-1000.0, rel=1e-12)
+
+
+def test_contact_damping_vdc_against_the_spring_dashpot_solution(tmp_path):
+    """VDC = 20 % of critical (LS-DYNA: of 2·min(m)·ω, ω² = k/m*): the
+    restitution of the mass equals that of a linear spring-dashpot
+    without tension, integrated here with a fine ODE solver."""
+    from scipy.integrate import solve_ivp
+
+    m, v0, vdc, t = 1e-4, 1000.0, 20.0, 5.0
+    rho = m / (t * 25.0)  # plate nodes as heavy as the mass: m* = m/2
+    d = Deck()
+    plate = d.plate(1, 4, 4, 20.0, 20.0, thick=t, mat=(rho, E, NU))
+    (node,) = d.nodes([[10.0, 10.0, t / 2 + 0.05]])
+    d.mass(node, m)
+    d.node_set(1, [node])
+    d.fix(plate)
+    d.velocity([node], (0.0, 0.0, -v0))
+    d.contact("NODES_TO_SURFACE", "1,1,4,3", f"0,0,0,0,{vdc}")
+    d.extra += ["*CONTROL_TIMESTEP", "0.0,0.2"]  # the damper acts on half-step velocities: 1st order in Δt
+    k = _shell_k(5.0)
+    mstar = m / 2
+    c = 0.01 * vdc * 2 * m * math.sqrt(k / mstar)
+    end = 0.05 / v0 + 2 * math.pi * math.sqrt(m / k)
+    res, (g,), s = run(d.write(tmp_path / "vdc.k", end))
+
+    def rhs(_, y):  # y = (penetration, its rate); the force never pulls
+        return [y[1], -max(k * y[0] + c * y[1], 0.0) / m]
+
+    def released(_, y):
+        return k * y[0] + c * y[1] if y[0] > 0 or y[1] < 0 else 1.0
+    released.terminal, released.direction = True, -1
+    sol = solve_ivp(rhs, (0, end), [0.0, v0], events=released, rtol=1e-10, atol=1e-12, max_step=1e-7)
+    e_ref = -sol.y_events[0][0][1] / v0
+    assert 0.3 < e_ref < 0.8  # damping matters
+    assert res.final_v[node - 1, 2] / v0 == pytest.approx(e_ref, rel=0.03)
+    # the energy lost is in the interface (positive sliding energy)
+    assert res.sliding[-1] == pytest.approx(0.5 * m * v0 ** 2 * (1 - e_ref ** 2), rel=0.05)

@@ -88,11 +88,13 @@ class Surface:
     onesided: np.ndarray  # (k,) int8 1: solid face
     depth: np.ndarray  # (k,) float64 deepest penetration accepted behind a solid face [length]
     size: np.ndarray  # (k,) float64 √area [length]
+    owner: np.ndarray  # (k,) int64 row of the element in model.shells (solid faces: model.solids)
+    solid: np.ndarray  # (k,) int8 1: the owner is a solid
 
     @staticmethod
     def empty() -> "Surface":
         return Surface(np.zeros((0, 4), np.int64), np.zeros(0), np.zeros(0), np.zeros(0, np.int8), np.zeros(0),
-                       np.zeros(0))
+                       np.zeros(0), np.zeros(0, np.int64), np.zeros(0, np.int8))
 
     def nodes(self) -> np.ndarray:
         return np.unique(self.seg)
@@ -111,7 +113,7 @@ class Surface:
 
 def concat(*surfs: Surface) -> Surface:
     return Surface(*(np.concatenate([getattr(s, f) for s in surfs]) for f in
-                     ("seg", "thick", "k", "onesided", "depth", "size")))
+                     ("seg", "thick", "k", "onesided", "depth", "size", "owner", "solid")))
 
 
 @dataclass
@@ -132,6 +134,8 @@ class Interface:
     onesided: np.ndarray  # (nm,) int8
     depth: np.ndarray  # (nm,) float64
     msize: np.ndarray  # (nm,) float64
+    owner: np.ndarray  # (nm,) int64 element row in model.shells or model.solids
+    solid: np.ndarray  # (nm,) int8 1: owner in model.solids
     fs: float = 0.0
     fd: float = 0.0
     dc: float = 0.0
@@ -153,8 +157,11 @@ class ContactGroup(ElementGroup):
 
     kind = "contact"
 
-    def __init__(self, c: Interface, n_nodes: int):
+    def __init__(self, c: Interface, n_nodes: int, links=()):
         self.c = c
+        # eroded elements drop their segments: (segment rows, the group's alive array, element rows in it)
+        self.links = list(links)
+        self.alive = np.ones(len(c.seg), np.int8)
         self.cid, self.name = c.cid, c.name
         self.ids = np.zeros(0, np.int64)  # no elements: parts and element counts leave contacts out
         self.pid = np.zeros(0, np.int64)
@@ -212,12 +219,14 @@ class ContactGroup(ElementGroup):
             if dt0 > 0:
                 self.prm[kc.P_SOFT_K] = 0.5 * c.sofscl / dt0 ** 2
         self.prm[kc.P_ACTIVE] = 1.0 if c.birth <= st.t <= c.death else 0.0
+        for rows, alive, el in self.links:
+            self.alive[rows] = alive[el] == 1
         self._since += 1
         if self._since >= c.bsort or 2.0 * kc.max_displacement(st.x, self.x_sort, self.involved) > self.margin:
             self._sort(st.x)
         p_old = kc.power(self.rows, self.rnode, st.v)  # forces of t(n) at v(n+½)
         kc.contact_forces(st.x, st.v, float(st.dt), c.snode, c.sthick, c.sk, self._smass, c.seg, c.mthick, c.mk,
-                          self._mmass, c.onesided, c.depth, c.msize, self._cptr, self._cand, self.prm, self.ft,
+                          self._mmass, c.onesided, c.depth, c.msize, self.alive, self._cptr, self._cand, self.prm, self.ft,
                           self.prev, self.rows, self.rnode, self.gap)
         p_new = kc.scatter(self.rows, self.rnode, st.v, c.node_side, st.f, self.resultant)
         # work of the contact forces over the step (trapezoid); stored and dissipated energy count positive
@@ -346,7 +355,8 @@ def build_surface(model: Model, pids, slsfac: float, sf: float, thick: float, th
                         np.minimum(np.linalg.norm(x[conn[:, 2]] - x[conn[:, 0]], axis=1),
                                    np.linalg.norm(x[conn[:, 3]] - x[conn[:, 1]], axis=1)))
         k = slsfac * sf * bulk * area / np.where(diag > 0, diag, 1.0)
-        out.append(Surface(conn, t, k, np.zeros(len(conn), np.int8), np.zeros(len(conn)), np.sqrt(area)))
+        out.append(Surface(conn, t, k, np.zeros(len(conn), np.int8), np.zeros(len(conn)), np.sqrt(area),
+                           np.flatnonzero(sel), np.zeros(len(conn), np.int8)))
     so = model.solids
     sel = np.isin(so.pid, pids)
     if sel.any():
@@ -359,7 +369,8 @@ def build_surface(model: Model, pids, slsfac: float, sf: float, thick: float, th
         area = _areas(x, faces)
         v = np.maximum(vol[owner], 1e-300)
         out.append(Surface(faces, np.zeros(len(faces)), slsfac * sf * kb * area ** 2 / v,
-                           np.ones(len(faces), np.int8), 0.5 * v / np.maximum(area, 1e-300), np.sqrt(area)))
+                           np.ones(len(faces), np.int8), 0.5 * v / np.maximum(area, 1e-300), np.sqrt(area),
+                           np.flatnonzero(sel)[owner], np.ones(len(faces), np.int8)))
     return concat(*out) if out else Surface.empty()
 
 
@@ -503,7 +514,8 @@ def _interface(model: Model, rec, number: int, slsfac: float, problems: list) ->
                                  "the contact surface has no segments (shells or solids)"))
         return None
     return Interface(cid, rec.name, nodes.astype(np.int64), side, np.asarray(t, float), np.asarray(k, float),
-                     node_side, seg.seg, mside, seg.thick, seg.k, seg.onesided, seg.depth, seg.size,
+                     node_side, seg.seg, mside, seg.thick, seg.k, seg.onesided, seg.depth, seg.size, seg.owner,
+                     seg.solid,
                      fs=o["fs"], fd=o["fd"], dc=o["dc"], vdc=o["vdc"], fsf=o["fsf"], soft=o["soft"],
                      sofscl=o["sofscl"], dt0=o["dtstif"] if o["dtstif"] > 0 else np.inf, birth=o["birth"],
                      death=o["death"], bsort=o["bsort"])
@@ -542,5 +554,26 @@ def build_contacts(model: Model, groups, problems: list) -> list[ContactGroup]:
         if c.soft == 1 and not np.isfinite(c.dt0):
             dt0 = _initial_dt(model, groups) if dt0 is None else dt0
             c.dt0 = dt0
-        out.append(ContactGroup(c, len(model.nodes)))
+        out.append(ContactGroup(c, len(model.nodes), _links(model, c, groups)))
+    return out
+
+
+def _links(model: Model, c: Interface, groups) -> list:
+    """(segment rows, alive array, element rows) tying segments to the
+    deformable shell and solid elements they come from (rigid parts never
+    erode)."""
+    out = []
+    for g in groups:
+        kind = getattr(g, "kind", "")
+        alive = getattr(getattr(g, "st", None), "alive", None)
+        if kind not in ("shell", "solid") or alive is None or not len(g.ids):
+            continue
+        is_solid = int(kind == "solid")
+        rows = np.flatnonzero(c.solid == is_solid)
+        ids = (model.solids.ids if is_solid else model.shells.ids)[c.owner[rows]]
+        order = np.argsort(g.ids)
+        j = np.minimum(np.searchsorted(g.ids[order], ids), len(order) - 1)
+        hit = g.ids[order][j] == ids
+        if hit.any():
+            out.append((rows[hit], alive, order[j[hit]]))
     return out

@@ -27,7 +27,8 @@ Arrays (ns slave entries, nm segments, nc candidates; model units):
   seg (nm, 4) int64 nodes; mthick (nm,) thickness [length]; mk (nm,)
   penalty stiffness [force/length]; mmass (nm,) mean node mass [mass];
   onesided (nm,) int8 1: solid face; depth (nm,) deepest penetration
-  accepted behind a solid face [length]; msize (nm,) √area [length]
+  accepted behind a solid face [length]; msize (nm,) √area [length];
+  alive (nm,) int8 0: the segment's element is eroded
   cptr (ns + 1,), cand (nc,) int64 CSR slave entry -> candidate segments
   prm (N_PRM,) float64 interface parameters (P_*)
   ft (ns, 3) friction force on the node, kept between cycles [force]
@@ -257,7 +258,7 @@ def max_displacement(x, xref, nodes):
 
 
 @njit(cache=True, parallel=True)
-def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, onesided, depth, msize,
+def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, onesided, depth, msize, alive,
                    cptr, cand, prm, ft, prev, rows, rnode, gap):
     """Rows of the pair forces of every slave entry (see the module doc).
 
@@ -285,6 +286,8 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
         if active:
             for c in range(cptr[i], cptr[i + 1]):
                 s = cand[c]
+                if alive[s] == 0:
+                    continue
                 w0, w1, w2, w3 = _closest(x, seg, s, px, py, pz)
                 n0, n1, n2, n3 = seg[s, 0], seg[s, 1], seg[s, 2], seg[s, 3]
                 rx = px - (w0 * x[n0, 0] + w1 * x[n1, 0] + w2 * x[n2, 0] + w3 * x[n3, 0])
@@ -333,8 +336,8 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
         vrz = v[nd, 2] - (bw0 * v[n0, 2] + bw1 * v[n1, 2] + bw2 * v[n2, 2] + bw3 * v[n3, 2])
         vn = vrx * bnx + vry * bny + vrz * bnz
         fn = k * bg
-        if vdc > 0.0:
-            fn -= 0.01 * vdc * 2.0 * math.sqrt(k * mstar) * vn
+        if vdc > 0.0 and mstar > 0.0:  # LS-DYNA: VDC % of 2·min(m)·ω, ω² = k/m*
+            fn -= 0.01 * vdc * 2.0 * min(smass[i], mmass[s]) * math.sqrt(k / mstar) * vn
         fn = max(fn, 0.0)  # no adhesion
         fx, fy, fz = fn * bnx, fn * bny, fn * bnz
         if friction:
