@@ -10,6 +10,8 @@ from .plots import _pyplot, png
 
 # faces of an 8-node brick (VTK / LS-DYNA node order)
 _HEX_FACES = ((0, 1, 2, 3), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7))
+MAX_FACETS = 40_000  # beyond this matplotlib is too slow: the nodes are drawn instead
+MAX_POINTS = 20_000
 VIEWS = {"iso": (25.0, -60.0), "side": (0.0, -90.0), "top": (90.0, -90.0), "front": (0.0, 0.0)}
 
 
@@ -31,6 +33,10 @@ def split_cells(cells) -> tuple[np.ndarray, list[np.ndarray]]:
 def _draw(ax, x: np.ndarray, u: np.ndarray, lines, polys, norm, cmap) -> None:
     from mpl_toolkits.mplot3d.art3d import Line3DCollection, Poly3DCollection
 
+    if len(polys) + len(lines) > MAX_FACETS:  # a large model: every k-th node, same k in both runs
+        k = max(1, len(x) // MAX_POINTS)
+        ax.scatter(x[::k, 0], x[::k, 1], x[::k, 2], c=cmap(norm(u[::k])), s=1, depthshade=False)
+        return
     if len(polys):
         col = Poly3DCollection([x[p] for p in polys], facecolors=cmap(norm([u[p].mean() for p in polys])),
                                edgecolors="0.25", linewidths=0.2)

@@ -100,8 +100,8 @@ class Run:
         if t is not None and len(t):
             out.update(states=int(len(t)), start_time=float(t[0]), end_time=float(t[-1]))
         ts = self.read("glstat", "time_step")
-        if ts is not None and len(ts):
-            out.update(time_step_min=float(np.min(ts)), time_step_last=float(ts[-1]))
+        if ts is not None and np.any(ts > 0):  # the state at t = 0 may carry no step yet
+            out.update(time_step_min=float(np.min(ts[ts > 0])), time_step_last=float(ts[-1]))
         if self.info is not None:
             out["run"] = self.info.as_dict()
         if self.model is not None:

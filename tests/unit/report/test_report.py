@@ -93,3 +93,11 @@ def test_pictures_without_cells_show_the_nodes():
     s = plate_states(1.0)
     s.cells = []
     assert side_by_side([("a", s), ("b", s)], 0.1, view="side")[:8] == PNG
+
+
+def test_large_models_are_drawn_as_nodes(monkeypatch):
+    from crashlite.report import pictures
+
+    monkeypatch.setattr(pictures, "MAX_FACETS", 2)
+    s = plate_states(1.0)
+    assert side_by_side([("a", s), ("b", s)], 0.1)[:8] == PNG
