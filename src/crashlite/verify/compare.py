@@ -33,6 +33,7 @@ ENERGIES = (("total_energy", "total"), ("kinetic_energy", "kinetic"), ("internal
             ("hourglass_energy", "hourglass"), ("sliding_interface_energy", "sliding"))
 GROUPS = ("energy", "part", "section", "wall", "node_displacement", "node_acceleration")
 AXES = "xyz"
+FLAT = 1e-3  # relative variation below which a reference curve is not rated
 
 
 @dataclass
@@ -255,7 +256,13 @@ def _add(c: Comparison, group: str, name: str, unit: str, tr, yr, tk, yk) -> Non
     if at is not None and not max(tr[0], tk[0]) <= at <= min(tr[-1], tk[-1]):
         raise CompareError(f"{name}: time {at:.6g} of the 'value at' figures is outside the common range "
                            f"[{max(tr[0], tk[0]):.6g}, {min(tr[-1], tk[-1]):.6g}]")
-    c.pairs.append(make_pair(group, name, unit, tr, yr, tk, yk, at=at, time_scale=c.options.time_scale))
+    # ISO/TS 18571 scores of a curve that hardly varies (e.g. a conserved
+    # total energy) measure its round-off, not the model: not rated
+    flat = float(np.ptp(yr)) <= FLAT * float(np.max(np.abs(yr)))
+    p = make_pair(group, name, unit, tr, yr, tk, yk, at=at, time_scale=c.options.time_scale, rate=not flat)
+    if flat:
+        p.note = f"not rated: the reference varies by less than {FLAT:.0e} of its magnitude"
+    c.pairs.append(p)
 
 
 # --- quantities -------------------------------------------------------------

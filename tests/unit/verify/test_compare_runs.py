@@ -115,3 +115,14 @@ def test_parts_by_title_and_part_set_with_the_decks(deck):
     # part 2 of a carries 2x the base energy, part 4 of b (its second column) as well
     assert box_r.deviation["peak_deviation_percent"] == 0.0
     assert both.deviation["peak_ref"] == pytest.approx(3 * 0.25 * V0**2, rel=1e-6)
+
+
+def test_a_nearly_constant_reference_is_compared_but_not_rated():
+    a, b = run("a"), run("b")
+    for r, wobble in ((a, 1e-6), (b, -1e-6)):
+        g = r.history._data["glstat"]
+        g["total_energy"] = 1e8 * (1 + wobble * np.sin(400 * T))
+    c = compare(a, b)
+    (total,) = [p for p in c.group("energy") if p.name == "total energy"]
+    assert total.rating is None and "not rated" in total.note
+    assert abs(total.deviation["value_deviation_percent"]) < 1e-3
