@@ -123,8 +123,9 @@ def test_bars_meeting_head_on_exchange_velocities(tmp_path):
     assert np.max(np.abs(total - total[0])) < 0.01 * total[0]
 
 
-def test_friction_stops_a_sliding_mass_after_v0_squared_over_2_mu_g(tmp_path):
-    mu, v0, acc, m = 0.3, 500.0, 1.0e5, 1e-4
+def _slide(tmp_path, fs, fd, dc, v0=500.0, acc=1.0e5, m=1e-4):
+    """A mass pressed on a fixed plate by a body load ``acc`` and launched
+    along it at v0: (Results, displacement along the plate)."""
     soft = (RHO, E / 100, NU)  # a soft plate: a longer time step, the same physics
     k = _shell_k(5.0, soft[1] / (3 * (1 - 2 * NU)))
     d = Deck()
@@ -134,16 +135,33 @@ def test_friction_stops_a_sliding_mass_after_v0_squared_over_2_mu_g(tmp_path):
     d.node_set(1, [node])
     d.fix(plate)
     d.velocity([node], (v0, 0.0, 0.0))
-    d.contact("NODES_TO_SURFACE", "1,1,4,3", f"{mu},{mu}")
+    d.contact("NODES_TO_SURFACE", "1,1,4,3", f"{fs},{fd},{dc}")
     d.extra += ["*LOAD_BODY_Z", f"1,{acc}", "*DEFINE_CURVE", "1", "0.0,1.0", "1.0,1.0"]  # gravity -z
-    t_stop = v0 / (mu * acc)
-    res, (g,), s = run(d.write(tmp_path / "slide.k", 1.3 * t_stop))
-    dist = res.final_x[node - 1, 0] - 3.0
+    t_stop = 1.3 * v0 / (min(fs, fd) * acc)
+    res, (g,), s = run(d.write(tmp_path / "slide.k", t_stop))
+    return res, res.final_x[node - 1] - [3.0, 5.0, 0.5 - m * acc / k], res.final_v[node - 1]
+
+
+def test_friction_stops_a_sliding_mass_after_v0_squared_over_2_mu_g(tmp_path):
+    mu, v0, acc, m = 0.3, 500.0, 1.0e5, 1e-4
+    res, (dist, dy, _), v = _slide(tmp_path, mu, mu, 0.0, v0, acc, m)
     assert dist == pytest.approx(v0 ** 2 / (2 * mu * acc), rel=0.03)
-    assert abs(res.final_v[node - 1, 0]) < 0.01 * v0
+    assert abs(v[0]) < 0.01 * v0 and abs(dy) < 1e-9
     # the energy taken by the interface is the friction work μ·m·g·d
     assert res.sliding[-1] == pytest.approx(mu * m * acc * dist, rel=0.03)
     assert res.energy_ratio[-1] == pytest.approx(1.0, abs=0.01)
+
+
+def test_friction_decays_from_static_to_dynamic_with_the_sliding_speed(tmp_path):
+    """μ(v) = FD + (FS − FD)·exp(−DC·v): the distance is ∫ v dv / (μ(v)·g)."""
+    from scipy.integrate import quad
+
+    fs, fd, dc, v0, acc, m = 0.5, 0.2, 0.005, 500.0, 1.0e5, 1e-4
+    res, (dist, _, _), v = _slide(tmp_path, fs, fd, dc, v0, acc, m)
+    ref = quad(lambda u: u / ((fd + (fs - fd) * math.exp(-dc * u)) * acc), 0.0, v0)[0]
+    assert ref > 1.2 * v0 ** 2 / (2 * fs * acc)  # well apart from the static-only answer
+    assert dist == pytest.approx(ref, rel=0.03)
+    assert res.sliding[-1] == pytest.approx(0.5 * m * v0 ** 2, rel=0.03)  # all the motion dissipated
 
 
 def test_single_surface_keeps_two_plates_apart(tmp_path):
@@ -321,3 +339,22 @@ def test_contact_damping_vdc_against_the_spring_dashpot_solution(tmp_path):
     assert res.final_v[node - 1, 2] / v0 == pytest.approx(e_ref, rel=0.03)
     # the energy lost is in the interface (positive sliding energy)
     assert res.sliding[-1] == pytest.approx(0.5 * m * v0 ** 2 * (1 - e_ref ** 2), rel=0.05)
+
+
+@pytest.mark.parametrize("z, card2, card3, rebounds", [
+    (1.6, "", "1.0,1.0,0.0,3.0", True),  # MST = 3: the plate acts 1.5 thick each side
+    (1.6, "", "", False),  # its own 1 mm: not reached in the time
+    (0.6, "0,0,0,0,0,0,0,5e-5", "", False),  # DT: dead before the mass arrives
+    (0.6, "0,0,0,0,0,0,1e-3", "", False),  # BT: born after the end
+])
+def test_thickness_override_and_birth_death_times(tmp_path, z, card2, card3, rebounds):
+    d = Deck()
+    d.fix(d.plate(1, 4, 4, 20.0, 20.0))
+    (node,) = d.nodes([[10.0, 10.0, z]])
+    d.mass(node, 1e-4)
+    d.node_set(1, [node])
+    d.velocity([node], (0.0, 0.0, -1000.0))
+    d.contact("NODES_TO_SURFACE", "1,1,4,3", card2, card3)
+    res, (g,), s = run(d.write(tmp_path / "opt.k", 1e-4 + 1.5 * math.pi * math.sqrt(1e-4 / _shell_k(5.0))))
+    assert (res.final_v[node - 1, 2] > 990.0) == rebounds
+    assert (g.max_gap > 0) == rebounds
