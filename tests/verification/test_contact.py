@@ -220,7 +220,8 @@ def test_bucket_search_finds_every_pair_within_reach():
     rng = np.random.default_rng(3)
     n_seg = 200
     base = rng.uniform(0, 50, (n_seg, 3))
-    x = np.concatenate([base[:, None, :] + rng.uniform(0, 3, (n_seg, 4, 3))]).reshape(-1, 3)
+    size = np.where(np.arange(n_seg) % 50 == 0, 40.0, 3.0)[:, None, None]  # a few large segments
+    x = (base[:, None, :] + size * rng.uniform(0, 1, (n_seg, 4, 3))).reshape(-1, 3)
     nodes = rng.uniform(-2, 52, (300, 3))
     x = np.concatenate([x, nodes])
     seg = np.arange(4 * n_seg).reshape(n_seg, 4)

@@ -144,19 +144,16 @@ def segment_boxes(x, seg, grow, lo, hi):
 
 
 @njit(cache=True)
-def _sort_cells(x, snode, lo, hi):
-    """Cell size, origin, cell counts, sorted cell keys and segment order of
-    the bucket grid (one cell per segment, at its box centre)."""
-    nm = lo.shape[0]
-    h = 0.0
+def _grid(x, snode, lo, hi, h):
+    """Origin and cell counts of a grid of cell size h over the boxes and
+    the slave nodes, and the number of (segment, cell) entries."""
     org = np.empty(3)
     top = np.empty(3)
     for k in range(3):
         org[k] = np.inf
         top[k] = -np.inf
-    for s in range(nm):
+    for s in range(lo.shape[0]):
         for k in range(3):
-            h = max(h, hi[s, k] - lo[s, k])
             org[k] = min(org[k], lo[s, k])
             top[k] = max(top[k], hi[s, k])
     for i in range(snode.shape[0]):
@@ -166,14 +163,34 @@ def _sort_cells(x, snode, lo, hi):
     ncell = np.empty(3, np.int64)
     for k in range(3):
         ncell[k] = int((top[k] - org[k]) / h) + 1
-    keys = np.empty(nm, np.int64)
-    for s in range(nm):
-        i0 = int((0.5 * (lo[s, 0] + hi[s, 0]) - org[0]) / h)
-        i1 = int((0.5 * (lo[s, 1] + hi[s, 1]) - org[1]) / h)
-        i2 = int((0.5 * (lo[s, 2] + hi[s, 2]) - org[2]) / h)
-        keys[s] = (i0 * ncell[1] + i1) * ncell[2] + i2
+    total = 0
+    for s in range(lo.shape[0]):
+        c = 1
+        for k in range(3):
+            c *= int((hi[s, k] - org[k]) / h) - int((lo[s, k] - org[k]) / h) + 1
+        total += c
+    return org, ncell, total
+
+
+@njit(cache=True)
+def _register(lo, hi, h, org, ncell, total):
+    """Sorted cell keys and the segment of each (segment, cell) entry: every
+    segment is in each cell its box overlaps (segment order kept per cell)."""
+    keys = np.empty(total, np.int64)
+    owner = np.empty(total, np.int64)
+    e = 0
+    for s in range(lo.shape[0]):
+        a0, a1 = int((lo[s, 0] - org[0]) / h), int((hi[s, 0] - org[0]) / h)
+        b0, b1 = int((lo[s, 1] - org[1]) / h), int((hi[s, 1] - org[1]) / h)
+        c0, c1 = int((lo[s, 2] - org[2]) / h), int((hi[s, 2] - org[2]) / h)
+        for a in range(a0, a1 + 1):
+            for b in range(b0, b1 + 1):
+                for c in range(c0, c1 + 1):
+                    keys[e] = (a * ncell[1] + b) * ncell[2] + c
+                    owner[e] = s
+                    e += 1
     order = np.argsort(keys, kind="mergesort")
-    return h, org, ncell, keys[order], order
+    return keys[order], owner[order]
 
 
 @njit(cache=True, inline="always")
@@ -191,35 +208,23 @@ def _accepts(i, s, x, snode, sside, seg, mside, lo, hi):
 
 
 @njit(cache=True, parallel=True)
-def _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, order, cptr, cand, fill):
+def _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, sowner, cptr, cand, fill):
     """Count (fill = False) or store (fill = True) the candidates of each
-    slave entry: the segments of the 27 cells around it whose grown box
-    holds the node, in cell then key order."""
-    ns = snode.shape[0]
-    for i in prange(ns):
+    slave entry: the segments registered in its cell whose grown box holds
+    the node, in segment order."""
+    for i in prange(snode.shape[0]):
         nd = snode[i]
-        c0 = int((x[nd, 0] - org[0]) / h)
-        c1 = int((x[nd, 1] - org[1]) / h)
-        c2 = int((x[nd, 2] - org[2]) / h)
+        key = ((int((x[nd, 0] - org[0]) / h) * ncell[1] + int((x[nd, 1] - org[1]) / h)) * ncell[2]
+               + int((x[nd, 2] - org[2]) / h))
         m = 0
-        for a in range(c0 - 1, c0 + 2):
-            if a < 0 or a >= ncell[0]:
-                continue
-            for b in range(c1 - 1, c1 + 2):
-                if b < 0 or b >= ncell[1]:
-                    continue
-                for c in range(c2 - 1, c2 + 2):
-                    if c < 0 or c >= ncell[2]:
-                        continue
-                    key = (a * ncell[1] + b) * ncell[2] + c
-                    j = np.searchsorted(skeys, key)
-                    while j < skeys.shape[0] and skeys[j] == key:
-                        s = order[j]
-                        if _accepts(i, s, x, snode, sside, seg, mside, lo, hi):
-                            if fill:
-                                cand[cptr[i] + m] = s
-                            m += 1
-                        j += 1
+        j = np.searchsorted(skeys, key)
+        while j < skeys.shape[0] and skeys[j] == key:
+            s = sowner[j]
+            if _accepts(i, s, x, snode, sside, seg, mside, lo, hi):
+                if fill:
+                    cand[cptr[i] + m] = s
+                m += 1
+            j += 1
         if not fill:
             cptr[i + 1] = m
 
@@ -227,19 +232,29 @@ def _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, order, cptr
 def find_candidates(x, snode, sside, seg, mside, grow):
     """(cptr (ns+1,), cand (nc,)) int64: for each slave entry the segments
     whose box grown by ``grow`` (nm,) holds its node (own segments and
-    segments of its own side excluded; sside -1: any side)."""
+    segments of its own side excluded; sside -1: any side).
+
+    Bucket sort: cells of about the median box size; a segment is entered
+    in every cell its box overlaps (a few for most, many for a large one),
+    so a node looks in its own cell only."""
     ns, nm = len(snode), len(seg)
     cptr = np.zeros(ns + 1, np.int64)
     if nm == 0 or ns == 0:
         return cptr, np.zeros(0, np.int64)
     lo, hi = np.empty((nm, 3)), np.empty((nm, 3))
     segment_boxes(x, seg, grow, lo, hi)
-    h, org, ncell, skeys, order = _sort_cells(x, snode, lo, hi)
+    h = max(float(np.median((hi - lo).max(axis=1))), 1e-12 * float(np.abs(hi).max() + np.abs(lo).max()), 1e-300)
+    while True:
+        org, ncell, total = _grid(x, snode, lo, hi, h)
+        if total <= 64 * nm:  # a few huge segments must not flood the grid
+            break
+        h *= 2.0
+    skeys, sowner = _register(lo, hi, h, org, ncell, total)
     dummy = np.zeros(0, np.int64)
-    _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, order, cptr, dummy, False)
+    _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, sowner, cptr, dummy, False)
     cptr = np.cumsum(cptr)
     cand = np.empty(cptr[-1], np.int64)
-    _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, order, cptr, cand, True)
+    _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, sowner, cptr, cand, True)
     return cptr, cand
 
 
