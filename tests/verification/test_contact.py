@@ -359,3 +359,19 @@ def test_thickness_override_and_birth_death_times(tmp_path, z, card2, card3, reb
     res, (g,), s = run(d.write(tmp_path / "opt.k", 1e-4 + 1.5 * math.pi * math.sqrt(1e-4 / _shell_k(5.0))))
     assert (res.final_v[node - 1, 2] > 990.0) == rebounds
     assert (g.max_gap > 0) == rebounds
+
+
+def test_slave_nodes_of_a_node_set_carry_their_shell_thickness(tmp_path):
+    """A node set on a 2 mm shell meets a 1 mm plate at 1.5 mm between the
+    mid-surfaces (SST 0: the shells' own thickness)."""
+    d = Deck()
+    d.fix(d.plate(1, 4, 4, 20.0, 20.0))
+    chip = d.plate(2, 1, 1, 2.0, 2.0, x0=9.0, y0=9.0, z=1.6, thick=2.0)
+    d.node_set(1, chip)
+    d.velocity(chip, (0.0, 0.0, -1000.0))
+    d.contact("NODES_TO_SURFACE", "1,1,4,3", "", "1.0,0.1")
+    res, (g,), s = run(d.write(tmp_path / "chip.k", 4e-4))
+    assert np.allclose(g.c.sthick, 2.0)
+    z = res.final_x[chip - 1, 2]
+    assert g.max_gap > 0 and np.all(res.final_v[chip - 1, 2] > 900.0)  # stopped at 1.5 and sent back
+    assert np.all(z > 1.5)

@@ -303,6 +303,20 @@ def _solid_conn(model: Model, sel: np.ndarray) -> np.ndarray:
     return conn
 
 
+def _node_shell_thickness(model: Model, nodes: np.ndarray, problems: list, rec) -> np.ndarray:
+    """(k,) the largest thickness of the shells holding each node (0: none)."""
+    sh = model.shells
+    sel = np.isin(sh.nodes, nodes).any(axis=1) if len(sh) else np.zeros(0, bool)
+    t = np.zeros(len(model.nodes))
+    if sel.any():
+        conn = sh.nodes[sel].astype(np.int64)
+        conn[:, 3] = np.where(conn[:, 3] < 0, conn[:, 2], conn[:, 3])
+        te = _shell_thickness(model, sel, conn, problems, rec)
+        for a in range(4):
+            np.maximum.at(t, conn[:, a], te)
+    return t[nodes]
+
+
 def _exterior_faces(conn: np.ndarray):
     """(faces (k, 4) with triangles n1 n2 n3 n3, owning element (k,)) of the
     faces used by one element of ``conn`` (degenerate faces dropped)."""
@@ -484,14 +498,11 @@ def _interface(model: Model, rec, number: int, slsfac: float, problems: list) ->
     else:
         m_surf = build_surface(model, master[1], slsfac, o["sfm"], o["mst"], o["sfmt"], problems, rec)
         if kind == KINDS[1]:
-            if slave[0] == "nodes":
+            if slave[0] == "nodes":  # thickness of the shells on the nodes; stiffness from the master
                 nodes = slave[1]
-                shells = build_surface(model, np.unique(model.shells.pid), 1.0, 1.0, 0.0, o["sfst"], problems,
-                                       rec)
-                t, k = shells.node_values(nodes, n)
+                t = (np.full(len(nodes), o["sst"]) if o["sst"] > 0 else
+                     o["sfst"] * _node_shell_thickness(model, nodes, problems, rec))
                 k = np.full(len(nodes), np.inf)
-                if o["sst"] > 0:
-                    t = np.full(len(nodes), o["sst"])
             else:
                 nodes = _element_nodes(model, slave[1])
                 t, k = s_surf.node_values(nodes, n)
