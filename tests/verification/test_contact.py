@@ -264,11 +264,16 @@ def test_undefined_part_set_names_the_card_and_field(tmp_path):
     assert "CONTACT_AUTOMATIC_SINGLE_SURFACE" in msg and "SSID" in msg and "99" in msg
 
 
-@pytest.mark.parametrize("card_a, field", [("2", "SOFT"), ("0,0.1,0,0,0,0,0,0\n0,0,0,0,0,0,0,0\n0,1", "IGNORE")])
-def test_options_not_run_are_refused(tmp_path, card_a, field):
+@pytest.mark.parametrize("card_a, extra, field", [
+    ("2", [], "SOFT"),
+    ("0,0.1,0,0,0,0,0,0\n0,0,0,0,0,0,0,0\n0,1", [], "IGNORE"),
+    (None, ["*CONTROL_CONTACT", "0.1,0,1,0,4"], "PENOPT"),
+])
+def test_options_not_run_are_refused(tmp_path, card_a, extra, field):
     d = Deck()
     d.plate(1, 2, 2, 10.0, 10.0)
     d.contact("SINGLE_SURFACE", "1,0,3", "", "", card_a)
+    d.extra += extra
     with pytest.raises(SetupError) as e:
         build(read_deck(d.write(tmp_path / "opt.k", 1e-4)))
     assert field in str(e.value)

@@ -71,6 +71,8 @@ _FIXED = {
     "shloff": ((0.0,), "shell offset"),
 }
 _CONTROL_FIXED = {"ignore": ((0,), "ignoring initial penetrations"), "sfric": ((0.0,), "default friction"),
+                  "penopt": ((0, 1), "penalty other than the smaller of segment and node (PENOPT 0/1)"),
+                  "thkchg": ((0,), "shell thickness changes in contact"),
                   "dfric": ((0.0,), "default friction"), "edc": ((0.0,), "default friction decay"),
                   "vfc": ((0.0,), "default viscous friction")}
 
