@@ -476,8 +476,6 @@ def _interface(model: Model, rec, number: int, slsfac: float, problems: list) ->
     kind = rec.keyword
     n = len(model.nodes)
     o = _options(rec, problems)
-    if o is None:
-        return None
     cid = int(rec.get("cid") or number)
     slave = _part_ids(model, rec, "ssid", "sstyp",
                       {KINDS[0]: (0, 2, 3, 5), KINDS[1]: (2, 3, 4, 5), KINDS[2]: (2, 3, 5)}[kind], problems)
@@ -486,7 +484,7 @@ def _interface(model: Model, rec, number: int, slsfac: float, problems: list) ->
         master = _part_ids(model, rec, "msid", "mstyp", (2, 3), problems)
         if master is None:
             return None
-    if slave is None:
+    if slave is None or o is None:
         return None
     before = len(problems)
     s_surf = (build_surface(model, slave[1], slsfac, o["sfs"], o["sst"], o["sfst"], problems, rec)
