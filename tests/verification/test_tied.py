@@ -23,19 +23,24 @@ def _ties(s):
     return [c for c in s.constraints if isinstance(c, TiedContact)]
 
 
-def test_strip_tied_end_to_end_is_as_stiff_as_one_strip(tmp_path):
+@pytest.mark.parametrize("mstyp", [3, 2, 1, 0])
+def test_strip_tied_end_to_end_is_as_stiff_as_one_strip(tmp_path, mstyp):
     """Two 50 x 10 x 1 mm membrane strips (ν = 0) meet end to end; the end
-    nodes of the second are tied (nodes to surface) to the first. Clamped
-    at x = 0 and pulled quasi-statically by u = 0.05 mm at x = 100: the
-    clamp reaction is E·t·w·u/L within 2 % and the strain energy ½·F·u
-    within 1 %."""
+    nodes of the second are tied (nodes to surface) to the first (master:
+    its part, a part set, a shell set or a segment set). Clamped at x = 0
+    and pulled quasi-statically by u = 0.05 mm at x = 100: the clamp
+    reaction is E·t·w·u/L within 2 % and the strain energy ½·F·u within
+    1 %."""
     t, w, L, u = 1.0, 10.0, 100.0, 0.05
     T, T_end = 6e-4, 9e-4  # ramp over ~8 axial periods 4L/c, then held
     P = Plates(t=t)
     a = P.plate(1, 0, 50, 10, 0, w, 2)
     b = P.plate(2, 50, 100, 10, 0, w, 2)
     P.node_set(1, b[:, 0])
-    P.add("*CONTACT_TIED_NODES_TO_SURFACE\n1,1,4,3\n0,0\n0,0")
+    last = [e for e in P.elems if e[0] in (1010, 1020)]  # the two elements at the end of the first strip
+    P.add({3: "", 2: "*SET_PART_LIST\n5\n1", 1: "*SET_SHELL_LIST\n5\n" + ",".join(str(e[0]) for e in last),
+           0: "*SET_SEGMENT\n5\n" + "\n".join(",".join(str(int(n)) for n in e[2]) for e in last)}[mstyp])
+    P.add(f"*CONTACT_TIED_NODES_TO_SURFACE\n1,{1 if mstyp == 3 else 5},4,{mstyp}\n0,0\n0,0")
     P.spc(a[:, 0])
     P.spc(np.setdiff1d(np.concatenate([a.ravel(), b.ravel()]), a[:, 0]), "0,0,1,1,1,1")  # in-plane
     P.node_set(2, b[:, -1])
@@ -205,4 +210,36 @@ def test_undefined_master_part_is_a_setup_error(tmp_path):
     p = _lap(tmp_path, "*SET_NODE_LIST\n1\n1001\n*CONTACT_TIED_SHELL_EDGE_TO_SURFACE_OFFSET\n1,5,4,3\n0,0\n0,0")
     with pytest.raises(SetupError, match=r"\*CONTACT_TIED_SHELL_EDGE_TO_SURFACE_OFFSET, field MSID: part 5 is not "
                                          "defined"):
+        setup.build(read_deck(p))
+
+
+def test_projection_on_triangles_and_quads():
+    """Closest points: inside a triangle (barycentric weights), beyond its
+    edge (clamped to the edge) and on a warped quad (weights that rebuild
+    the point's foot)."""
+    from crashlite.solver.tied import project
+
+    x = np.array([[0, 0, 0], [10, 0, 0], [0, 10, 0], [10, 10, 1.0], [20, 0, 0]], float)
+    seg = np.array([[0, 1, 2, 2], [1, 4, 3, 3]])
+    idx, w, d = project(np.array([[2.0, 3.0, 0.5], [-1.0, 4.0, 0.0]]), x, seg, np.array([1.0, 1.0]))
+    assert idx.tolist() == [0, 0]
+    np.testing.assert_allclose(w[0], [0.5, 0.2, 0.3, 0.0], atol=1e-12)
+    np.testing.assert_allclose(d, [0.5, 1.0], atol=1e-12)
+    np.testing.assert_allclose(w[1], [0.6, 0.0, 0.4, 0.0], atol=1e-12)
+    quad = np.array([[0, 0, 0], [10, 0, 0], [10, 10, 2.0], [0, 10, 0]], float)
+    p = np.array([[6.0, 3.0, 3.0]])
+    idx, w, d = project(p, quad, np.array([[0, 1, 2, 3]]), np.array([5.0]))
+    foot = w[0] @ quad
+    assert idx[0] == 0 and w[0].sum() == pytest.approx(1.0)
+    # the foot is where p - foot is normal to both surface tangents
+    xi, eta = 2 * (foot[:2] / 10.0) - 1
+    t1 = 0.25 * ((1 - eta) * (quad[1] - quad[0]) + (1 + eta) * (quad[2] - quad[3]))
+    t2 = 0.25 * ((1 - xi) * (quad[3] - quad[0]) + (1 + xi) * (quad[2] - quad[1]))
+    assert abs((p[0] - foot) @ t1) < 1e-9 and abs((p[0] - foot) @ t2) < 1e-9
+    assert d[0] == pytest.approx(np.linalg.norm(p[0] - foot))
+
+
+def test_unsupported_tied_variant_is_refused(tmp_path):
+    p = _lap(tmp_path, "*CONTACT_TIED_SURFACE_TO_SURFACE_FAILURE\n1,1,3,3\n0,0\n0,0")
+    with pytest.raises(SetupError, match=r"CONTACT_TIED_SURFACE_TO_SURFACE_FAILURE.*not run by the crashlite solver"):
         setup.build(read_deck(p))

@@ -19,6 +19,7 @@ are kept in ``SpotWelds.log``.
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -27,6 +28,7 @@ from numba import njit
 from ..keyword.errors import Problem
 from ..model.model import Model
 
+_LOG = logging.getLogger(__name__)
 _REG = 1e-10  # relative regularisation of the weld inertia (collinear nodes without rotations)
 
 
@@ -248,6 +250,8 @@ class SpotWelds:
         self.alive[k] = False
         self.fail_time[k] = t
         self.log.append((int(self.ids[k]), t, cause))
+        _LOG.info("*%s %d failed at t = %.6g (%s; fn = %.4g, fs = %.4g)", self.keyword[k], int(self.ids[k]), t,
+                  cause, self.fn[k], self.fs[k])
 
 
 # --- from the Model ------------------------------------------------------------------------------
@@ -279,6 +283,9 @@ def _shell_normals(model: Model) -> np.ndarray:
 
 def build_spotwelds(model: Model, problems: list) -> SpotWelds | None:
     """The spot welds of a deck (None without any)."""
+    from .tied import refuse_unread
+
+    refuse_unread(model, ("CONSTRAINED_SPOTWELD", "CONSTRAINED_GENERALIZED_WELD"), problems)
     rows = []  # (id, keyword, node indices, sn, ss, n, m, tfail, rec)
     for rec in model.find("CONSTRAINED_SPOTWELD"):
         r = rec.rows if rec.rows else None

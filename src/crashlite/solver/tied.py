@@ -405,8 +405,8 @@ def _slaves(model: Model, rec, problems: list) -> np.ndarray | None:
         pids = _parts(model, rec, typ, sid, "ssid", problems)
         if pids is None:
             return None
-        nodes = np.concatenate([t.nodes[np.isin(t.pid, pids)].ravel().astype(np.int64)
-                                for t in (model.shells, model.solids, model.beams)])
+        nodes = np.concatenate([t.nodes[np.isin(t.pid, pids)][:, :k].ravel().astype(np.int64)
+                                for t, k in ((model.shells, 4), (model.solids, 8), (model.beams, 2))])
     else:
         problems.append(_problem(rec, "sstyp", f"SSTYP {typ} is not supported for tied contacts (4 node set, "
                                                "0 segment set, 1 shell set, 2 part set, 3 part)"))
@@ -509,10 +509,26 @@ def project(points: np.ndarray, x: np.ndarray, seg: np.ndarray, tol: np.ndarray)
     return best, best_w, best_d
 
 
+def refuse_unread(model: Model, prefixes: tuple, problems: list) -> None:
+    """A Problem for each card kept unread (no spec) whose name starts with
+    one of ``prefixes``: the solver accepts the prefix, so a variant it does
+    not build must not pass silently."""
+    from .support import _name, _where
+
+    for raw in model.unknown:
+        name = _name(raw)
+        if name.startswith(prefixes):
+            file, line = _where(raw)
+            problems.append(Problem(file or model.source or "", line, name, None,
+                                    f"*{name} is not run by the crashlite solver yet; remove it or run the deck in "
+                                    "LS-DYNA"))
+
+
 def build_tied(model: Model, problems: list, warnings: list | None = None) -> list[TiedContact]:
     """The tied contacts of a deck (projection done; masses not yet moved:
     see ``TiedContact.lump``)."""
     out = []
+    refuse_unread(model, ("CONTACT_TIED_",), problems)
     x = model.nodes.xyz
     node_t = None
     taken: dict[int, int] = {}
