@@ -22,7 +22,10 @@ SOFT = 1 takes the larger of that and 0.5·SOFSCL·m*/Δt0², with m* the
 reduced mass of the node and the mean node mass of the segment and Δt0 the
 initial element time step (DTSTIF when given). Friction: μ = FSF·(FD +
 (FS − FD)·exp(−DC·|v_t|)), elastic-plastic tangential spring of the same
-stiffness; VDC adds normal damping in percent of critical.
+stiffness; VDC adds normal damping in percent of critical (of 2·min(m)·ω,
+ω² = k/m*). Segments of eroded shells and solids drop out; BT/DT switch the
+interface on and off. The rcforc resultant is the force on the slave side
+(for a single surface, on all its nodes: it cancels).
 
 The search is a bucket sort (kernels.contact.find_candidates) with boxes
 grown by the contact reach plus a margin; it is redone every BSORT cycles

@@ -17,7 +17,11 @@ and reproduce it, so forces and moments balance exactly. Shell segments are
 two-sided: the contact direction is from the closest point to the node, and
 the gap is the half thicknesses minus the distance (edges are rounded).
 Solid faces are one-sided (outward normal): a node behind the face is in
-contact up to ``depth`` when its closest point is its normal projection.
+contact up to ``depth`` (measured along the normal) when its closest point
+is its normal projection; such a contact wins over one in front of a face,
+and a node keeps the face it is behind while it stays there, so a node at
+a corner is not handed to the side face it grazes. Otherwise the nearest
+penetrated segment is taken.
 
 Arrays (ns slave entries, nm segments, nc candidates; model units):
   x, v (n_nodes, 3) float64 coordinates at t(n+1), velocities at t(n+½)
@@ -31,7 +35,8 @@ Arrays (ns slave entries, nm segments, nc candidates; model units):
   alive (nm,) int8 0: the segment's element is eroded
   cptr (ns + 1,), cand (nc,) int64 CSR slave entry -> candidate segments
   prm (N_PRM,) float64 interface parameters (P_*)
-  ft (ns, 3) friction force on the node, kept between cycles [force]
+  ft (ns, 3) friction force on the node, kept between cycles [force];
+  prev (ns,) int64 segment of the last cycle (-1: none)
   rows (ns, 5, 3) forces ON the node and the segment nodes [force];
   rnode (ns, 5) int64 their node indices (-1: none); gap (ns,) penetration
 """
