@@ -176,6 +176,7 @@ class ContactGroup(ElementGroup):
         ns = len(c.snode)
         self.ft = np.zeros((ns, 3))
         self.prev = np.full(ns, -1, np.int64)  # segment of each entry in the last cycle
+        self.side = np.zeros(ns, np.int8)  # the side of that (shell) segment it is on
         self.rows = np.zeros((ns, 5, 3))
         self.rnode = np.full((ns, 5), -1, np.int64)
         self.gap = np.zeros(ns)
@@ -232,7 +233,7 @@ class ContactGroup(ElementGroup):
         p_old = kc.power(self.rows, self.rnode, st.v)  # forces of t(n) at v(n+½)
         kc.contact_forces(st.x, st.v, float(st.dt), c.snode, c.sthick, c.sk, self._smass, c.seg, c.mthick, c.mk,
                           self._mmass, c.onesided, c.depth, c.msize, self.alive, self._cptr, self._cand, self.prm, self.ft,
-                          self.prev, self.rows, self.rnode, self.gap)
+                          self.prev, self.side, self.rows, self.rnode, self.gap)
         p_new = kc.scatter(self.rows, self.rnode, st.v, c.node_side, st.f, self.resultant)
         # work of the contact forces over the step (trapezoid); stored and dissipated energy count positive
         self.energy[0] -= 0.5 * float(st.dt) * (p_old + p_new)

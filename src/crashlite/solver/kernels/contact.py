@@ -36,7 +36,8 @@ Arrays (ns slave entries, nm segments, nc candidates; model units):
   cptr (ns + 1,), cand (nc,) int64 CSR slave entry -> candidate segments
   prm (N_PRM,) float64 interface parameters (P_*)
   ft (ns, 3) friction force on the node, kept between cycles [force];
-  prev (ns,) int64 segment of the last cycle (-1: none)
+  prev (ns,) int64 segment of the last cycle (-1: none); side (ns,) int8
+  the side of that shell segment the node is on (0: none)
   rows (ns, 5, 3) forces ON the node and the segment nodes [force];
   rnode (ns, 5) int64 their node indices (-1: none); gap (ns,) penetration
 """
@@ -279,13 +280,15 @@ def max_displacement(x, xref, nodes):
 
 @njit(cache=True, parallel=True)
 def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, onesided, depth, msize, alive,
-                   cptr, cand, prm, ft, prev, rows, rnode, gap):
+                   cptr, cand, prm, ft, prev, side, rows, rnode, gap):
     """Rows of the pair forces of every slave entry (see the module doc).
 
     The segment of an entry is the nearest one it penetrates; a node behind
     a solid face keeps that face (prev (ns,) int64, -1: none) while it
     stays behind it, so that a node at a corner is not handed to the side
-    face it grazes."""
+    face it grazes; a node on a shell keeps the side it came from (side
+    (ns,) int8, ±1 along the segment normal) while it stays over the same
+    segment, so a node pushed past the mid-surface is still pushed back."""
     fs, fd, dc, vdc, fsf, soft_k = prm[P_FS], prm[P_FD], prm[P_DC], prm[P_VDC], prm[P_FSF], prm[P_SOFT_K]
     active = prm[P_ACTIVE] != 0.0
     friction = fs > 0.0 or fd > 0.0
@@ -303,11 +306,13 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
         bg = 0.0
         bw0 = bw1 = bw2 = bw3 = 0.0
         bnx = bny = bnz = 0.0
+        bsg = 0
         if active:
             for c in range(cptr[i], cptr[i + 1]):
                 s = cand[c]
                 if alive[s] == 0:
                     continue
+                sg = 0
                 w0, w1, w2, w3 = _closest(x, seg, s, px, py, pz)
                 n0, n1, n2, n3 = seg[s, 0], seg[s, 1], seg[s, 2], seg[s, 3]
                 rx = px - (w0 * x[n0, 0] + w1 * x[n1, 0] + w2 * x[n2, 0] + w3 * x[n3, 0])
@@ -326,10 +331,19 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
                     g = half - sd  # the depth along the normal (a node just past an edge has none)
                     cls = _BEHIND
                 else:
-                    g = half - d
                     cls = _OUTSIDE
-                    if d > tol:
-                        nx, ny, nz = rx / d, ry / d, rz / d
+                    sg = 1 if sd >= 0.0 else -1
+                    tx, ty, tz = rx - sd * nx, ry - sd * ny, rz - sd * nz
+                    if (onesided[s] == 0 and s == prev[i] and side[i] != 0
+                            and math.sqrt(tx * tx + ty * ty + tz * tz) <= 1e-6 * msize[s]):
+                        sg = side[i]  # over the same shell segment: the side it came from
+                        g = half - sd * sg
+                        nx, ny, nz = sg * nx, sg * ny, sg * nz
+                        cls = _BEHIND  # held like a node behind a solid face
+                    else:
+                        g = half - d
+                        if d > tol:
+                            nx, ny, nz = rx / d, ry / d, rz / d
                 if g <= tol:
                     continue
                 keep = s == prev[i] and cls == _BEHIND
@@ -337,9 +351,11 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
                     best, best_cls, best_d, bg = s, cls, d, g
                     bw0, bw1, bw2, bw3 = w0, w1, w2, w3
                     bnx, bny, bnz = nx, ny, nz
+                    bsg = sg if onesided[s] == 0 else 0
                     if keep:
                         best_cls = -1  # no other candidate replaces it
         prev[i] = best
+        side[i] = bsg if best >= 0 else 0
         if best < 0:
             ft[i, 0] = 0.0
             ft[i, 1] = 0.0
