@@ -367,7 +367,9 @@ def build_surface(model: Model, pids, slsfac: float, sf: float, thick: float, th
         conn[:, 3] = np.where(conn[:, 3] < 0, conn[:, 2], conn[:, 3])
         t = thick if thick > 0 else thick_scale * _shell_thickness(model, sel, conn, problems, rec)
         t = np.broadcast_to(t, (len(conn),)).astype(float)
-        bulk = np.array([_bulk(model, p, problems, rec) for p in sh.pid[sel]]) if len(conn) else np.zeros(0)
+        pids_sel = sh.pid[sel]
+        upids = np.unique(pids_sel)
+        bulk = np.array([_bulk(model, p, problems, rec) for p in upids])[np.searchsorted(upids, pids_sel)]
         area = _areas(x, conn)
         tri = conn[:, 2] == conn[:, 3]
         edges = np.stack([np.linalg.norm(x[conn[:, (j + 1) % 3]] - x[conn[:, j]], axis=1) for j in range(3)], 1)
