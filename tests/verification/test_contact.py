@@ -400,3 +400,12 @@ def test_a_fast_mass_pushed_past_the_mid_surface_still_rebounds(tmp_path):
     assert v0 * math.sqrt(m / k) > 0.5  # deeper than the half thickness
     assert g.max_gap == pytest.approx(v0 * math.sqrt(m / k), rel=0.03)
     assert res.final_v[node, 2] == pytest.approx(v0, rel=0.02)
+
+
+def test_contact_options_not_run_are_refused_by_name(tmp_path):
+    d = Deck()
+    d.plate(1, 2, 2, 10.0, 10.0)
+    d.lines += ["*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_TIEBREAK", "1,1,3,3", "", "", "0"]
+    with pytest.raises(SetupError) as e:
+        build(read_deck(d.write(tmp_path / "tie.k", 1e-4)))
+    assert "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_TIEBREAK is not supported" in str(e.value)

@@ -555,7 +555,7 @@ def build_contacts(model: Model, groups, problems: list) -> list[ContactGroup]:
     out: list[ContactGroup] = []
     for raw in model.unknown:
         name = raw.keyword_line.split()[0].lstrip("*").upper() if hasattr(raw, "keyword_line") else ""
-        if name.startswith("CONTACT_AUTOMATIC"):
+        if name.startswith(KINDS):  # e.g. _MPP, _TIEBREAK: the prefix is run, the option is not
             src = getattr(raw, "source", None) or (model.source or "", 0)
             problems.append(Problem(str(src[0]), int(src[1]), name, None,
                                     f"*{name} is not supported (supported: {', '.join(KINDS)} with _ID)"))
