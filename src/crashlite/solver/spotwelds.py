@@ -27,47 +27,52 @@ from numba import njit
 
 from ..keyword.errors import Problem
 from ..model.model import Model
+from .tied import _solve3
 
 _LOG = logging.getLogger(__name__)
 _REG = 1e-10  # relative regularisation of the weld inertia (collinear nodes without rotations)
 
 
 @njit(cache=True)
-def _inertia(ptr, nodes, k, x, mass, jrot):
-    """(M, centre (3,), inertia (3, 3) about it incl. nodal rotary inertia)."""
+def _inertia(ptr, nodes, k, x, mass, jrot, c, inert):
+    """Mass of weld k, its centre into c (3,) and its inertia about c,
+    nodal rotary inertia included, into inert (6,: xx yy zz xy xz yz),
+    regularised; returns (M, trace)."""
     m_tot = 0.0
-    c = np.zeros(3)
+    c[0] = c[1] = c[2] = 0.0
     for q in range(ptr[k], ptr[k + 1]):
         i = nodes[q]
         m_tot += mass[i]
         for d in range(3):
             c[d] += mass[i] * x[i, d]
     if m_tot > 0.0:
-        c /= m_tot
-    inert = np.zeros((3, 3))
+        for d in range(3):
+            c[d] /= m_tot
+    for d in range(6):
+        inert[d] = 0.0
     for q in range(ptr[k], ptr[k + 1]):
         i = nodes[q]
         r0, r1, r2 = x[i, 0] - c[0], x[i, 1] - c[1], x[i, 2] - c[2]
         rr = r0 * r0 + r1 * r1 + r2 * r2
         m = mass[i]
-        inert[0, 0] += m * (rr - r0 * r0) + jrot[i]
-        inert[1, 1] += m * (rr - r1 * r1) + jrot[i]
-        inert[2, 2] += m * (rr - r2 * r2) + jrot[i]
-        inert[0, 1] -= m * r0 * r1
-        inert[0, 2] -= m * r0 * r2
-        inert[1, 2] -= m * r1 * r2
-    inert[1, 0], inert[2, 0], inert[2, 1] = inert[0, 1], inert[0, 2], inert[1, 2]
-    tr = inert[0, 0] + inert[1, 1] + inert[2, 2]
+        inert[0] += m * (rr - r0 * r0) + jrot[i]
+        inert[1] += m * (rr - r1 * r1) + jrot[i]
+        inert[2] += m * (rr - r2 * r2) + jrot[i]
+        inert[3] -= m * r0 * r1
+        inert[4] -= m * r0 * r2
+        inert[5] -= m * r1 * r2
+    tr = inert[0] + inert[1] + inert[2]
     for d in range(3):
-        inert[d, d] += _REG * tr
-    return m_tot, c, inert, tr
+        inert[d] += _REG * tr
+    return m_tot, tr
 
 
 @njit(cache=True)
-def _solve(inert, tr, b):
+def _solve(inert, tr, b0, b1, b2):
+    """inert⁻¹ b (zero for a weld without rotary inertia of any kind)."""
     if tr <= 0.0:
-        return np.zeros(3)
-    return np.linalg.solve(inert, b)
+        return 0.0, 0.0, 0.0
+    return _solve3(inert[0], inert[3], inert[4], inert[1], inert[5], inert[2], b0, b1, b2)
 
 
 @njit(cache=True)
@@ -77,46 +82,47 @@ def weld_forces(ptr, nodes, alive, x, f, moment, mass, jrot, normal0, along, sn,
     the weld force on its nodes split into normal fn and shear fs (the
     node with the largest failure measure), and that measure crit_out.
     A weld whose measure reaches 1 keeps its nodes' own forces."""
+    c = np.empty(3)
+    inert = np.empty(6)
     for k in range(len(alive)):
         if not alive[k]:
             continue
-        m_tot, c, inert, tr = _inertia(ptr, nodes, k, x, mass, jrot)
+        m_tot, tr = _inertia(ptr, nodes, k, x, mass, jrot, c, inert)
         if m_tot <= 0.0:
             continue
-        fsum = np.zeros(3)
-        msum = np.zeros(3)
+        f0 = f1 = f2 = 0.0
+        q0 = q1 = q2 = 0.0
         for q in range(ptr[k], ptr[k + 1]):
             i = nodes[q]
             r0, r1, r2 = x[i, 0] - c[0], x[i, 1] - c[1], x[i, 2] - c[2]
-            fsum[0] += f[i, 0]
-            fsum[1] += f[i, 1]
-            fsum[2] += f[i, 2]
-            msum[0] += r1 * f[i, 2] - r2 * f[i, 1]
-            msum[1] += r2 * f[i, 0] - r0 * f[i, 2]
-            msum[2] += r0 * f[i, 1] - r1 * f[i, 0]
+            f0 += f[i, 0]
+            f1 += f[i, 1]
+            f2 += f[i, 2]
+            q0 += r1 * f[i, 2] - r2 * f[i, 1]
+            q1 += r2 * f[i, 0] - r0 * f[i, 2]
+            q2 += r0 * f[i, 1] - r1 * f[i, 0]
             if jrot[i] > 0.0:
-                msum[0] += moment[i, 0]
-                msum[1] += moment[i, 1]
-                msum[2] += moment[i, 2]
-        acc = fsum / m_tot
-        alpha = _solve(inert, tr, msum)
+                q0 += moment[i, 0]
+                q1 += moment[i, 1]
+                q2 += moment[i, 2]
+        a0, a1, a2 = f0 / m_tot, f1 / m_tot, f2 / m_tot
+        al0, al1, al2 = _solve(inert, tr, q0, q1, q2)
         # weld direction: along the nodes (first to last) or the given normal
-        n = normal0[k].copy()
+        n0, n1, n2 = normal0[k, 0], normal0[k, 1], normal0[k, 2]
         if along[k]:
             i1, i2 = nodes[ptr[k]], nodes[ptr[k + 1] - 1]
-            d = x[i2] - x[i1]
-            ln = np.sqrt(d[0] ** 2 + d[1] ** 2 + d[2] ** 2)
+            d0, d1, d2 = x[i2, 0] - x[i1, 0], x[i2, 1] - x[i1, 1], x[i2, 2] - x[i1, 2]
+            ln = np.sqrt(d0 * d0 + d1 * d1 + d2 * d2)
             if ln > 0.0:
-                n = d / ln
+                n0, n1, n2 = d0 / ln, d1 / ln, d2 / ln
         worst, wn, ws = 0.0, 0.0, 0.0
         for q in range(ptr[k], ptr[k + 1]):
             i = nodes[q]
             r0, r1, r2 = x[i, 0] - c[0], x[i, 1] - c[1], x[i, 2] - c[2]
-            a0 = acc[0] + alpha[1] * r2 - alpha[2] * r1
-            a1 = acc[1] + alpha[2] * r0 - alpha[0] * r2
-            a2 = acc[2] + alpha[0] * r1 - alpha[1] * r0
-            g0, g1, g2 = mass[i] * a0 - f[i, 0], mass[i] * a1 - f[i, 1], mass[i] * a2 - f[i, 2]
-            fn = g0 * n[0] + g1 * n[1] + g2 * n[2]
+            g0 = mass[i] * (a0 + al1 * r2 - al2 * r1) - f[i, 0]
+            g1 = mass[i] * (a1 + al2 * r0 - al0 * r2) - f[i, 1]
+            g2 = mass[i] * (a2 + al0 * r1 - al1 * r0) - f[i, 2]
+            fn = g0 * n0 + g1 * n1 + g2 * n2
             fs = np.sqrt(max(g0 * g0 + g1 * g1 + g2 * g2 - fn * fn, 0.0))
             crit = 0.0
             if sn[k] > 0.0:
@@ -131,53 +137,55 @@ def weld_forces(ptr, nodes, alive, x, f, moment, mass, jrot, normal0, along, sn,
         for q in range(ptr[k], ptr[k + 1]):
             i = nodes[q]
             r0, r1, r2 = x[i, 0] - c[0], x[i, 1] - c[1], x[i, 2] - c[2]
-            f[i, 0] = mass[i] * (acc[0] + alpha[1] * r2 - alpha[2] * r1)
-            f[i, 1] = mass[i] * (acc[1] + alpha[2] * r0 - alpha[0] * r2)
-            f[i, 2] = mass[i] * (acc[2] + alpha[0] * r1 - alpha[1] * r0)
+            f[i, 0] = mass[i] * (a0 + al1 * r2 - al2 * r1)
+            f[i, 1] = mass[i] * (a1 + al2 * r0 - al0 * r2)
+            f[i, 2] = mass[i] * (a2 + al0 * r1 - al1 * r0)
             if jrot[i] > 0.0:
-                moment[i, 0] = jrot[i] * alpha[0]
-                moment[i, 1] = jrot[i] * alpha[1]
-                moment[i, 2] = jrot[i] * alpha[2]
+                moment[i, 0] = jrot[i] * al0
+                moment[i, 1] = jrot[i] * al1
+                moment[i, 2] = jrot[i] * al2
 
 
 @njit(cache=True)
 def weld_velocities(ptr, nodes, alive, x, v, w, mass, jrot):
     """Velocities of each live weld's nodes: the rigid motion with their
     total momentum and angular momentum about the mass centre."""
+    c = np.empty(3)
+    inert = np.empty(6)
     for k in range(len(alive)):
         if not alive[k]:
             continue
-        m_tot, c, inert, tr = _inertia(ptr, nodes, k, x, mass, jrot)
+        m_tot, tr = _inertia(ptr, nodes, k, x, mass, jrot, c, inert)
         if m_tot <= 0.0:
             continue
-        p = np.zeros(3)
-        ang = np.zeros(3)
+        p0 = p1 = p2 = 0.0
+        l0 = l1 = l2 = 0.0
         for q in range(ptr[k], ptr[k + 1]):
             i = nodes[q]
             m = mass[i]
             r0, r1, r2 = x[i, 0] - c[0], x[i, 1] - c[1], x[i, 2] - c[2]
-            p[0] += m * v[i, 0]
-            p[1] += m * v[i, 1]
-            p[2] += m * v[i, 2]
-            ang[0] += m * (r1 * v[i, 2] - r2 * v[i, 1])
-            ang[1] += m * (r2 * v[i, 0] - r0 * v[i, 2])
-            ang[2] += m * (r0 * v[i, 1] - r1 * v[i, 0])
+            p0 += m * v[i, 0]
+            p1 += m * v[i, 1]
+            p2 += m * v[i, 2]
+            l0 += m * (r1 * v[i, 2] - r2 * v[i, 1])
+            l1 += m * (r2 * v[i, 0] - r0 * v[i, 2])
+            l2 += m * (r0 * v[i, 1] - r1 * v[i, 0])
             if jrot[i] > 0.0:
-                ang[0] += jrot[i] * w[i, 0]
-                ang[1] += jrot[i] * w[i, 1]
-                ang[2] += jrot[i] * w[i, 2]
-        vc = p / m_tot
-        om = _solve(inert, tr, ang)
+                l0 += jrot[i] * w[i, 0]
+                l1 += jrot[i] * w[i, 1]
+                l2 += jrot[i] * w[i, 2]
+        v0, v1, v2 = p0 / m_tot, p1 / m_tot, p2 / m_tot
+        o0, o1, o2 = _solve(inert, tr, l0, l1, l2)
         for q in range(ptr[k], ptr[k + 1]):
             i = nodes[q]
             r0, r1, r2 = x[i, 0] - c[0], x[i, 1] - c[1], x[i, 2] - c[2]
-            v[i, 0] = vc[0] + om[1] * r2 - om[2] * r1
-            v[i, 1] = vc[1] + om[2] * r0 - om[0] * r2
-            v[i, 2] = vc[2] + om[0] * r1 - om[1] * r0
+            v[i, 0] = v0 + o1 * r2 - o2 * r1
+            v[i, 1] = v1 + o2 * r0 - o0 * r2
+            v[i, 2] = v2 + o0 * r1 - o1 * r0
             if jrot[i] > 0.0:
-                w[i, 0] = om[0]
-                w[i, 1] = om[1]
-                w[i, 2] = om[2]
+                w[i, 0] = o0
+                w[i, 1] = o1
+                w[i, 2] = o2
 
 
 @dataclass
