@@ -171,6 +171,8 @@ def integrate(s: Setup, output_dt: float | None = None,
             g.forces(st)
         if s.body_loads:
             f[:] += body_force(t)
+        if s.nodal_loads is not None:
+            s.nodal_loads.apply(t, f, st.moment if nb else None)
         for c in s.constraints:  # tied contacts, spot welds: slave forces to the masters
             c.forces(st)
 
@@ -235,6 +237,8 @@ def integrate(s: Setup, output_dt: float | None = None,
             if s.body_loads:
                 x_prev[:] = x
                 f_body_prev[:] = body_force(t + 0.5 * dt_step)
+            if s.nodal_loads is not None:  # work over t .. t + dt with the half-step velocities
+                w_ext += s.nodal_loads.work(t + 0.5 * dt_step, v, st.w if nb else None, dt_step)
             update_position(x, v, dt_step)
             if nb:
                 update_rotations(st.rot, st.w, st.moment, st.inv_j, st.fixed_rot, 0.0, dt_step)

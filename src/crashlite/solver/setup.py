@@ -98,6 +98,7 @@ class Setup:
     motions: list[Motion] = field(default_factory=list)
     bodies: list = field(default_factory=list)  # rigid.RigidBody
     body_loads: list = field(default_factory=list)  # (unit axis (3,), (time, value) curve, scale)
+    nodal_loads: object = None  # loads.NodalLoads or None
     dt2ms: float = 0.0  # *CONTROL_TIMESTEP DT2MS: mass scaling target step (0: none)
     beams: object = None  # beams.BeamSet of the elastic beams (None: none)
     rot_inertia: np.ndarray | None = None  # (n,) isotropic nodal rotational inertia (0: no rotation DOF)
@@ -623,6 +624,9 @@ def _build(model: Model) -> Setup:
                 continue
             axis = np.eye(3)["XYZ".index(name[-1])]
             loads.append((axis, _curve(model, int(rec["lcid"])), float(rec.get("sf", 1.0))))
+    from .loads import build_nodal_loads
+
+    nodal_loads = build_nodal_loads(model, rot_inertia > 0, problems)
     sections = build_sections(model, beams.ids if beams is not None else np.zeros(0, np.int64), problems, groups)
     if ts and float(ts[0].get("dt2ms", 0.0) or 0.0) != 0.0 and groups:
         problems.append(_problem(ts[0], "dt2ms", "mass scaling (DT2MS) of "
@@ -634,7 +638,7 @@ def _build(model: Model) -> Setup:
         end_time=end_time, end_cycle=int(term[0].get("endcyc", 0)) if term else 0,
         tssfac=float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9,
         history_nodes=hist_idx[hist_idx >= 0], dt_max=dt_max, motions=motions, bodies=bodies,
-        body_loads=loads, dt2ms=float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0,
+        body_loads=loads, nodal_loads=nodal_loads, dt2ms=float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0,
         beams=beams, rot_inertia=rot_inertia, fixed_rot=fixed_rot,
         w0=w0, constraints=constraints,
         discrete_pid=model.discretes.pid.astype(np.int64),

@@ -42,6 +42,13 @@ for _axis in "XYZ":
         card("lcid:i@curve sf:f=1 lciddr:i=0@curve xc:f=0 yc:f=0 zc:f=0 cid:i=0@coord"),)),
         doc=f"Body acceleration along {_axis} (e.g. gravity)."))
 
+_NODAL_LOAD = "dof:i lcid:i@curve sf:f=1 cid:i=0@coord m1:i=0@node m2:i=0@node m3:i=0@node"
+register(Spec("LOAD_NODE_POINT", lambda o: Layout(row=(card(f"nid:i@node {_NODAL_LOAD}"),)),
+              doc="Nodal force (DOF 1-3), follower force (4), moment (5-7) or follower moment (8) "
+                  "from a load curve."))
+register(Spec("LOAD_NODE_SET", lambda o: Layout(row=(card(f"nsid:i@set_node {_NODAL_LOAD}"),)),
+              doc="Nodal load on every node of a node set."))
+
 _RWID = card("rwid:i@rigidwall heading:s70")
 
 
