@@ -32,13 +32,26 @@ s
 
 
 def test_every_unrun_card_is_listed_with_its_line(tmp_path):
+    # neither card is in support.RUN (spot welds are: they are no example of an unrun card)
     p = tmp_path / "d.k"
-    p.write_text(DECK.format(extra="*DAMPING_GLOBAL\n0,0.1\n*CONSTRAINED_SPOTWELD\n1,1,2\n"))
+    p.write_text(DECK.format(extra="*DAMPING_GLOBAL\n0,0.1\n*CONSTRAINED_JOINT_SPHERICAL\n1,2\n"))
     with pytest.raises(SetupError) as e:
         build(read_deck(p))
     msgs = [(pr.keyword, pr.line) for pr in e.value.problems]
-    assert ("DAMPING_GLOBAL", 21) in msgs and ("CONSTRAINED_SPOTWELD", 23) in msgs
-    assert len(msgs) == 2  # output requests and the cards it runs are not listed
+    assert msgs == [("DAMPING_GLOBAL", 21), ("CONSTRAINED_JOINT_SPHERICAL", 23)]  # nothing else listed
+    assert all("is not run by the crashlite solver" in pr.message for pr in e.value.problems)
+
+
+def test_run_and_unrun_cards_are_told_apart():
+    from crashlite.solver.support import NEUTRAL, RUN
+
+    known = RUN + NEUTRAL
+    for card in ("CONSTRAINED_SPOTWELD", "CONSTRAINED_GENERALIZED_WELD_SPOT", "CONTACT_TIED_NODES_TO_SURFACE",
+                 "LOAD_NODE_POINT", "CONTACT_AUTOMATIC_SINGLE_SURFACE", "DATABASE_HISTORY_NODE"):
+        assert card.startswith(known), card
+    for card in ("DAMPING_GLOBAL", "CONSTRAINED_JOINT_SPHERICAL", "CONTACT_ERODING_SINGLE_SURFACE",
+                 "INITIAL_STRESS_SHELL", "LOAD_SEGMENT"):
+        assert not card.startswith(known), card
 
 
 def test_output_requests_are_accepted(tmp_path):
