@@ -604,6 +604,8 @@ def _build(model: Model) -> Setup:
                                 "an end time > 0 is needed"))
     hist = [model.node_index(r.rows[f"id{i}"]) for r in model.find("DATABASE_HISTORY_NODE")
             if "SET" not in r.options and "ID" not in r.options for i in range(1, 9)]
+    hist += [model.node_index(r.rows["id"]) for r in model.find("DATABASE_HISTORY_NODE")
+             if "SET" not in r.options and "ID" in r.options]  # _ID: one node and its heading per card
     hist_idx = np.unique(np.concatenate(hist)) if hist else np.zeros(0, np.int64)
     dt_max = None
     if ts and ts[0].get("lctm"):
