@@ -70,6 +70,9 @@ def build_parser() -> argparse.ArgumentParser:
     from .cli_compare import add_commands as compare_commands
 
     compare_commands(sub)
+    from .cli_vehicle import add_commands as vehicle_commands
+
+    vehicle_commands(sub)
     return p
 
 

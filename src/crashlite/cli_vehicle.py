@@ -1,0 +1,82 @@
+"""``crashlite vehicle ...``: the generic car and its frontal load cases."""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+
+
+def _generic(args) -> int:
+    from .vehicle import generic_vehicle
+
+    t0 = time.perf_counter()
+    v = generic_vehicle(mesh_size=args.mesh_size, mass=args.mass, cog_x=args.cog_x, cog_z=args.cog_z,
+                        interface_x=args.interface_x, engine_mass=args.engine_mass, axle_mass=args.axle_mass)
+    t1 = time.perf_counter()
+    path = v.write(args.output, fmt=args.format)
+    t2 = time.perf_counter()
+    c = v.cog
+    print(f"wrote {path}: {v.shells} shells, {len(v.model.nodes)} nodes, {len(v.model.parts)} parts; "
+          f"mass {v.mass:.1f} kg (structure {v.structure_mass:.1f} kg), CoG ({c[0]:.1f}, {c[1]:.1f}, {c[2]:.1f}) mm; "
+          f"{len(v.sections)} interface sections at x = {v.interface_x:g} mm; "
+          f"generated in {t1 - t0:.1f} s, written in {t2 - t1:.1f} s")
+    return 0
+
+
+def _usncap(args) -> int:
+    from .vehicle import usncap_deck
+
+    out = usncap_deck(args.car, args.output, speed_kmh=args.speed, end_time=args.end_time / 1000.0, gap=args.gap,
+                      ground=args.ground, units=args.units)
+    print(f"wrote {out}: run it with `crashlite run {out} -o OUT`")
+    return 0
+
+
+def _odb(args) -> int:
+    from .vehicle import odb_deck
+
+    out = odb_deck(args.car, args.output, barrier=args.barrier, speed_kmh=args.speed, overlap=args.overlap / 100.0,
+                   side=args.side, end_time=args.end_time / 1000.0, gap=args.gap, ground=args.ground,
+                   units=args.units, element_size=args.barrier_size)
+    print(f"wrote {out} (and {out.stem}_barrier{out.suffix}): run it with `crashlite run {out} -o OUT`")
+    return 0
+
+
+def add_commands(sub) -> None:
+    """Register ``vehicle`` and its subcommands on the top-level parser."""
+    fmt = argparse.ArgumentDefaultsHelpFormatter
+    veh = sub.add_parser("vehicle", help="the generic compact car and its frontal load cases")
+    vsub = veh.add_subparsers(dest="vehicle_command", required=True)
+    g = vsub.add_parser("generic", help="write the parametric generic compact car (shells, mm-t-s)",
+                        formatter_class=fmt)
+    g.add_argument("-o", "--output", type=Path, required=True)
+    g.add_argument("--mesh-size", type=float, default=25.0,
+                   help="element size [mm] (38: ~20 k shells, 25: ~45 k, 5: ~1.1 M)")
+    g.add_argument("--mass", type=float, default=1263.0, help="total mass [kg]")
+    g.add_argument("--cog-x", type=float, default=-1100.0,
+                   help="centre of gravity x [mm] (front axle at 0, +x forward)")
+    g.add_argument("--cog-z", type=float, default=500.0, help="centre of gravity height [mm] (ground at 0)")
+    g.add_argument("--interface-x", type=float, default=-600.0, help="x of the interface cross sections [mm]")
+    g.add_argument("--engine-mass", type=float, default=170.0, help="rigid engine and gearbox [kg]")
+    g.add_argument("--axle-mass", type=float, default=73.0, help="rigid rear axle [kg]")
+    g.add_argument("--format", choices=("fixed", "long", "i10", "free"), default="fixed")
+    g.set_defaults(func=_generic)
+    lc = vsub.add_parser("loadcase", help="a frontal load case deck that includes a vehicle deck")
+    lsub = lc.add_subparsers(dest="loadcase", required=True)
+    u = lsub.add_parser("usncap", help="US NCAP: 100 %% rigid wall", formatter_class=fmt)
+    o = lsub.add_parser("odb", help="Euro NCAP ODB: 40 %% offset deformable barrier", formatter_class=fmt)
+    for p, speed, end in ((u, 56.0, 100.0), (o, 64.0, 120.0)):
+        p.add_argument("car", type=Path, help="vehicle deck (drives in +x, z up)")
+        p.add_argument("-o", "--output", type=Path, required=True)
+        p.add_argument("--speed", type=float, default=speed, help="impact speed [km/h]")
+        p.add_argument("--end-time", type=float, default=end, help="end time [ms]")
+        p.add_argument("--gap", type=float, default=1.0, help="wall or barrier face ahead of the vehicle [mm]")
+        p.add_argument("--ground", type=float, default=0.0, help="ground height [mm]")
+        p.add_argument("--units", default=None, help="unit system of the vehicle deck (default: from its densities)")
+    u.set_defaults(func=_usncap)
+    o.add_argument("--barrier", choices=("simplified", "detailed"), default="simplified")
+    o.add_argument("--overlap", type=float, default=40.0, help="overlap [%% of the vehicle width]")
+    o.add_argument("--side", choices=("left", "right"), default="left", help="driver side")
+    o.add_argument("--barrier-size", type=float, default=20.0, help="element size of the detailed barrier [mm]")
+    o.set_defaults(func=_odb)

@@ -1,0 +1,101 @@
+"""Frontal load cases around a vehicle deck: US NCAP and Euro NCAP ODB,
+read and set up by the solver; the CLI."""
+
+import numpy as np
+import pytest
+
+from crashlite import read_deck
+from crashlite.cli import main
+from crashlite.solver.setup import build
+from crashlite.units import kmh
+from crashlite.vehicle import generic_vehicle, odb_deck, usncap_deck
+
+
+@pytest.fixture(scope="module")
+def car_deck(tmp_path_factory):
+    d = tmp_path_factory.mktemp("vehicle")
+    return generic_vehicle(38.0).write(d / "car.k")
+
+
+def _vehicle_nodes(m, car):
+    return np.isin(m.nodes.ids, read_deck(car).nodes.ids)
+
+
+def test_usncap_rigid_wall_at_56_kmh(car_deck, tmp_path):
+    path = usncap_deck(car_deck, tmp_path / "lc" / "usncap.k")
+    m = read_deck(path)
+    s = build(m)
+    assert s.end_time == pytest.approx(0.1)
+    veh = _vehicle_nodes(m, car_deck)
+    assert veh.all()  # the load case adds no nodes
+    assert np.allclose(s.v0[:, 0], kmh(56.0)) and np.allclose(s.v0[:, 1:], 0.0)
+    wall, ground = sorted(s.walls, key=lambda w: w.normal[2])
+    front = m.nodes.xyz[:, 0].max()
+    assert wall.point[0] == pytest.approx(front + 1.0) and wall.normal == pytest.approx([-1.0, 0.0, 0.0])
+    assert len(wall.nodes) + len(wall.watch) == len(m.nodes)
+    assert ground.normal == pytest.approx([0.0, 0.0, 1.0]) and ground.point[2] == 0.0
+    assert m.find("DATABASE_RWFORC") and m.find("DATABASE_SECFORC")
+    assert len(s.sections) == 11 and len(s.history_nodes) == 6
+    assert len(s.bodies) == 2  # rigid engine and rear axle
+
+
+@pytest.mark.parametrize("barrier", ["simplified", "detailed"])
+def test_odb_offset_barrier_on_the_driver_side(car_deck, tmp_path, barrier):
+    path = odb_deck(car_deck, tmp_path / "odb.k", barrier=barrier, element_size=40.0)
+    assert (tmp_path / "odb_barrier.k").exists()
+    m = read_deck(path)
+    s = build(m)
+    veh = _vehicle_nodes(m, car_deck)
+    assert np.allclose(s.v0[veh, 0], kmh(64.0)) and np.allclose(s.v0[~veh], 0.0)
+    assert m.nodes.ids[~veh].min() > m.nodes.ids[veh].max()  # barrier IDs above the vehicle's
+    xb, xv = m.nodes.xyz[~veh], m.nodes.xyz[veh]
+    assert xb[:, 0].min() == pytest.approx(xv[:, 0].max() + 1.0)
+    width = np.ptp(xv[:, 1])
+    # 40 % of the vehicle width overlapped, on the left (+y, driver side when driving in +x)
+    assert xv[:, 1].max() - xb[:, 1].min() == pytest.approx(0.4 * width)
+    assert xb[:, 1].max() > xv[:, 1].max()
+    contacts = [g for g in s.groups if g.kind == "contact"]
+    assert len(contacts) == 2  # vehicle self contact, vehicle to barrier
+    assert s.end_time == pytest.approx(0.12)
+
+
+def test_load_case_for_another_deck_in_other_units(deck, tmp_path):
+    """Any vehicle deck: a steel plate in mm-kg-ms gets 56 km/h as mm/ms and
+    the wall ahead of its front."""
+    car = deck("plate.k", """
+        *KEYWORD
+        *NODE
+        1,0.0,0.0,300.0
+        2,-100.0,0.0,300.0
+        3,-100.0,100.0,300.0
+        4,0.0,100.0,300.0
+        *ELEMENT_SHELL
+        7,3,1,2,3,4
+        *PART
+        plate
+                 3         3         3
+        *SECTION_SHELL
+                 3         2
+               1.0       1.0       1.0       1.0
+        *MAT_ELASTIC
+                 3   7.85e-6     210.0       0.3
+        *END
+        """)
+    m = read_deck(usncap_deck(car, tmp_path / "plate_usncap.k"))
+    s = build(m)
+    assert np.allclose(s.v0[:, 0], 56.0 / 3.6)  # mm/ms
+    assert s.end_time == pytest.approx(100.0)  # ms
+    assert max(w.point[0] for w in s.walls) == pytest.approx(1.0)
+    assert {r["rwid"] for r in m.find("RIGIDWALL_PLANAR")} == {11, 12}  # above every ID of the deck
+
+
+def test_cli_generic_and_load_cases(tmp_path, capsys):
+    car = tmp_path / "car.k"
+    assert main(["vehicle", "generic", "-o", str(car), "--mesh-size", "45", "--mass", "1300"]) == 0
+    out = capsys.readouterr().out
+    assert "shells" in out and "mass 1300.0 kg" in out
+    assert read_deck(car).mass_properties().mass * 1e3 == pytest.approx(1300.0, rel=1e-6)
+    assert main(["vehicle", "loadcase", "usncap", str(car), "-o", str(tmp_path / "us.k"), "--end-time", "80"]) == 0
+    assert read_deck(tmp_path / "us.k").find("CONTROL_TERMINATION")[0]["endtim"] == pytest.approx(0.08)
+    assert main(["vehicle", "loadcase", "odb", str(car), "-o", str(tmp_path / "odb.k"), "--barrier", "simplified"]) == 0
+    assert (tmp_path / "odb_barrier.k").exists()
