@@ -489,3 +489,44 @@ def test_a_negative_volume_stops_with_the_element_id(tmp_path):
     st = SimpleNamespace(x=xb, v=(xb - x) / 1e-3, dt=1e-3, t=1e-3, f=np.zeros_like(x))
     with pytest.raises(FloatingPointError, match="solid element 1 .*negative volume"):
         g.forces(st)
+
+
+ERODE = "*CONTROL_TIMESTEP\n0.0,0.9,0,0.0,0.0,0,1,0"
+
+
+def test_erode_deletes_an_inverted_solid_and_the_rest_runs_on(tmp_path):
+    """*CONTROL_TIMESTEP ERODE = 1: the inverted element is deleted (no
+    force from it any more, counted), its neighbour still carries load."""
+    x, conn = brick_mesh(2, 1, 1, 10.0, 10.0, 10.0)
+    g, _, _ = group_from_deck(tmp_path, deck_text(x, conn, STEEL, extra=ERODE))
+    xb = x.copy()
+    first = x[:, 0] < 5.0
+    xb[first, 0] += 15.0  # the first element's left face pushed through its right
+    xb[x[:, 0] > 15.0, 0] += 0.01  # the second one stretched a little
+    st = SimpleNamespace(x=xb, v=(xb - x) / 1e-3, dt=1e-3, t=1e-3, f=np.zeros_like(x))
+    g.forces(st)
+    assert g.st.alive.tolist() == [0, 1] and g.erosions == 1
+    far = x[:, 0] > 15.0  # nodes of the second element only
+    assert np.abs(st.f[far, 0]).max() > 0.0
+    st.f[:] = 0.0
+    g.forces(st)  # the deleted one stays deleted and silent
+    assert g.erosions == 1 and np.all(st.f[first] == 0.0)
+
+
+def test_erode_deletes_a_solid_whose_step_falls_below_dtmin(tmp_path):
+    """ERODE = 1 with DTMIN = 0.05: an element squashed to 1/1000 of its
+    length (its step to 1/1000 x sqrt(1000): the density rises with the
+    mass kept, about 1/32) is deleted and the step is the other element's
+    again."""
+    x, conn = brick_mesh(2, 1, 1, 10.0, 10.0, 10.0)
+    text = deck_text(x, conn, STEEL, extra=ERODE).replace("*CONTROL_TERMINATION\n1.0", "*CONTROL_TERMINATION\n1.0,0,0.05")
+    g, _, _ = group_from_deck(tmp_path, text)
+    st = SimpleNamespace(x=x.copy(), v=np.zeros_like(x), dt=1e-7, t=0.0, f=np.zeros_like(x))
+    g.forces(st)
+    dt0 = g.critical_dt(st)
+    xb = x.copy()
+    xb[x[:, 0] < 5.0, 0] = 9.99  # the first element squashed along x, the second untouched
+    st = SimpleNamespace(x=xb, v=np.zeros_like(x), dt=1e-7, t=1e-7, f=np.zeros_like(x))
+    g.forces(st)
+    assert g.critical_dt(st) == pytest.approx(dt0, rel=0.02)
+    assert g.st.alive.tolist() == [0, 1] and g.erosions == 1

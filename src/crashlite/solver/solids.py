@@ -52,6 +52,10 @@ class SolidSet:
     q1: np.ndarray  # (n,) float64 quadratic bulk viscosity coefficient
     q2: np.ndarray  # (n,) float64 linear bulk viscosity coefficient
     warnings: list = field(default_factory=list)  # Problem: options run in an approximated way
+    # *CONTROL_TIMESTEP ERODE = 1: an inverted solid, or one whose step falls below DTMIN (of
+    # *CONTROL_TERMINATION) x the solids' first step, is deleted instead of stopping the run
+    erode: bool = False
+    erode_dtmin: float = 0.0
 
     def __len__(self) -> int:
         return len(self.ids)
@@ -436,9 +440,12 @@ def build_solids(model: Model, rigid_pids, problems: list, warnings: list | None
     cs, ce, cx, cy = curves.arrays()
     if warnings is not None:
         warnings.extend(warns)
+    ts, term = model.find("CONTROL_TIMESTEP"), model.find("CONTROL_TERMINATION")
+    erode = bool(ts) and int(ts[0].get("erode", 0) or 0) == 1
+    dtmin = float(term[0].get("dtmin", 0.0) or 0.0) if term else 0.0
     return SolidSet(ids, pid, conn, mat_of, np.array(mat_ids, np.int64), np.array(mtypes, np.int64),
                     np.array(props), np.array(mcurves, np.int64).reshape(-1, sm.N_CURVES), cs, ce, cx, cy, rho0,
-                    vol0, axes, hg_type, hg_qm, q1, q2, warns)
+                    vol0, axes, hg_type, hg_qm, q1, q2, warns, erode, dtmin if erode else 0.0)
 
 
 # --- in the time loop ----------------------------------------------------------------------------
@@ -458,10 +465,15 @@ class SolidGroup(ElementGroup):
         self.warnings = s.warnings  # Problem: options run in an approximated way (ELFORM, IHQ 6)
         self._rows = self.st.fe.reshape(-1, 3)
         self._dt = np.empty(len(s))
+        self._dt_first = 0.0
+        self.erosions = 0  # elements deleted by ERODE (inverted or below the step limit)
 
     def forces(self, st) -> None:
         compute_forces(self.s, self.st, st.x, st.v, st.dt)
-        if self.st.alive.min() < 0:  # LS-DYNA stops on a negative volume too
+        if self.s.erode and self.st.alive.min() < 0:  # deleted: its mass stays, it carries no more force
+            self.erosions += int(np.count_nonzero(self.st.alive < 0))
+            self.st.alive[self.st.alive < 0] = 0
+        if self.st.alive.min() < 0:  # LS-DYNA stops on a negative volume too (unless ERODE = 1)
             bad = np.flatnonzero(self.st.alive < 0)
             more = f" ({len(bad)} elements)" if len(bad) > 1 else ""
             raise FloatingPointError(f"solid element {int(self.ids[bad[0]])} turned inside out (negative volume) at "
@@ -477,7 +489,17 @@ class SolidGroup(ElementGroup):
     def critical_dt(self, st) -> float:
         s, g = self.s, self.st
         solid_timestep(st.x, s.conn, g.alive, g.vol, s.rho0, s.vol0, g.cmod, g.rate, s.q1, s.q2, self._dt)
-        return float(self._dt.min()) if len(self._dt) else np.inf
+        if not len(self._dt):
+            return np.inf
+        if self._dt_first == 0.0:
+            self._dt_first = float(self._dt.min())
+        elif s.erode_dtmin > 0.0:
+            small = self._dt < s.erode_dtmin * self._dt_first  # eroded ones report an infinite step
+            if small.any():
+                self.erosions += int(np.count_nonzero(small))
+                g.alive[small] = 0
+                self._dt[small] = np.inf
+        return float(self._dt.min())
 
     @property
     def eroded(self) -> int:

@@ -2,6 +2,9 @@
 would pass the wall in this step has its normal velocity changed so that it
 lands on the wall; the wall force is the momentum change / dt.
 
+A node further behind the plane than it or the wall can travel in one step
+is not in contact (it is beside a finite wall, not struck by it).
+
 A moving wall (*RIGIDWALL_PLANAR_MOVING) has a mass and a velocity along its
 normal; the nodes it hits and the wall leave with the velocity that conserves
 their momentum (perfectly plastic impact), as a rigid impactor does.
@@ -60,7 +63,9 @@ def planar_wall(x, v, mass, nodes, point, normal, wall_v, wall_mass, fric, dt, f
             d += (x[i, j] + dt * v[i, j] - point[j] - dt * wall_v * normal[j]) * normal[j]
             vn += v[i, j] * normal[j]
             gap += (x[i, j] - point[j]) * normal[j]
-        hit[k] = d < 0.0
+        # a node already further behind the plane than one step of relative motion never met the wall: it
+        # came round a finite wall's edge (e.g. barrier cells beside an offset impactor), it is not struck
+        hit[k] = d < 0.0 and gap >= -dt * (abs(wall_v) + abs(vn)) * 1.01
         if hit[k] and len_l > 0.0:  # finite wall: only nodes over the rectangle
             pl = 0.0
             pm = 0.0
