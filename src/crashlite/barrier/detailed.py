@@ -104,7 +104,7 @@ def detailed_barrier(spec: ODBSpec | None = None, placement: Placement | None = 
                         bot, top = bot[::-1], top[::-1]
                     elems.append((next(eid), part, *bot, *top))
 
-    hexes(nid_main, pid["main block"])
+    hexes(nid_main, pid[main.name])  # "bumper" when the bumper is characterised alone
     blocks = [main]
     if bmp is not None:
         hexes(nid_b, pid["bumper"])

@@ -15,6 +15,9 @@ from ..units import kmh
 from .simplified import Placement
 
 
+DTMIN = 0.05  # of the first step: a solid whose step falls below it is eroded (ERODE = 1)
+
+
 @dataclass(frozen=True)
 class Impactor:
     """A rigid impactor: mass [t], speed [mm/s], overlap as a fraction of the
@@ -51,11 +54,14 @@ def impactor_deck(barrier_file: str, front_set: int, placement: Placement, impac
         else:  # n = -x, l = +y: m = -z, start from the top
             lines[-1] = f"{x0!r},{y_lo!r},{z_hi!r},{x0 + d!r},{y_lo!r},{z_hi!r},0.0"
             lines.append(f"{x0!r},{y_lo + 1.0!r},{z_hi!r},{lenl!r},{z_hi - z_lo!r}")
+    # one value per card, comma-terminated: free format, so a long number cannot spill into the next field
     lines += [f"{impactor.mass!r},{impactor.speed!r}",
-              "*CONTROL_TERMINATION", f"{end_time!r}",
-              "*DATABASE_GLSTAT", f"{dt!r}", "*DATABASE_MATSUM", f"{dt!r}", "*DATABASE_RWFORC", f"{dt!r}",
-              "*DATABASE_SPCFORC", f"{dt!r}", "*DATABASE_DEFORC", f"{dt!r}",
-              "*DATABASE_BINARY_D3PLOT", f"{end_time / 20.0!r}", "*END"]
+              "*CONTROL_TERMINATION", f"{end_time!r},0,{DTMIN!r},",
+              # honeycomb solids sheared through at the impactor's edge are deleted, as in LS-DYNA
+              "*CONTROL_TIMESTEP", "0.0,0.9,0,0.0,0.0,0,1,0",
+              "*DATABASE_GLSTAT", f"{dt!r},", "*DATABASE_MATSUM", f"{dt!r},", "*DATABASE_RWFORC", f"{dt!r},",
+              "*DATABASE_SPCFORC", f"{dt!r},", "*DATABASE_DEFORC", f"{dt!r},",
+              "*DATABASE_BINARY_D3PLOT", f"{end_time / 20.0!r},", "*END"]
     return "\n".join(lines) + "\n"
 
 
