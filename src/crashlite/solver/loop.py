@@ -13,6 +13,7 @@ from typing import Callable
 
 import numpy as np
 
+from ..keyword.errors import Problem
 from ..model.model import Model
 from .frames import project_out
 from .groups import BeamGroup, DiscreteGroup
@@ -20,10 +21,10 @@ from .kernels.beam import update_rotations
 from .kernels.integrate import update_position, update_velocity
 from .motions import Motions
 from .parts import PartAccount
-from .results import Results
+from .results import Results, element_counts
 from .sections import section_forces
-from .setup import Setup, build
-from .timestep import scale_masses, stable_dt
+from .setup import Setup, SetupError, build
+from .timestep import MAX_CYCLES, scale_masses, smallest_step, stable_dt, step_problem
 from .walls import Walls
 
 
@@ -130,11 +131,64 @@ class _Recorder:
         return np.array(self.rows[key]).reshape((ns,) + shape)
 
 
+class CompileClock:
+    """Seconds spent compiling (or loading from the cache) Numba kernels
+    while it is registered: the outermost holds of Numba's compiler lock
+    (``numba:compiler_lock`` events)."""
+
+    def __init__(self):
+        self.seconds = 0.0
+        self._depth = 0
+        self._t0 = 0.0
+        self._listener = None
+
+    def __enter__(self):
+        try:
+            from numba.core import event
+        except ImportError:  # no event API: compilation is not told apart
+            return self
+        clock = self
+
+        class _Listener(event.Listener):
+            def on_start(self, ev):
+                if clock._depth == 0:
+                    clock._t0 = _time.perf_counter()
+                clock._depth += 1
+
+            def on_end(self, ev):
+                clock._depth -= 1
+                if clock._depth == 0:
+                    clock.seconds += _time.perf_counter() - clock._t0
+
+        self._listener = _Listener()
+        event.register("numba:compiler_lock", self._listener)
+        return self
+
+    def __exit__(self, *exc):
+        if self._listener is not None:
+            from numba.core import event
+
+            event.unregister("numba:compiler_lock", self._listener)
+            self._listener = None
+        return False
+
+
 def integrate(s: Setup, output_dt: float | None = None,
               progress: Callable[[float, int, float, float], None] | None = None,
               ) -> Results:
     """Run the time loop on a Setup; states every ``output_dt`` (default:
-    1/200 of the end time) and at the end."""
+    1/200 of the end time) and at the end.
+
+    Times of the Results: ``loop_time`` and ``cpu_time`` are the wall and
+    CPU (all threads) seconds of the time loop less the Numba compilation
+    met in it, the figure runs are compared by; ``setup_time`` is the rest
+    of ``wall_time`` (mass scaling, first forces, compilation);
+    ``compile_time`` the compilation and cache loads."""
+    with CompileClock() as clock:
+        return _integrate(s, output_dt, progress, clock)
+
+
+def _integrate(s: Setup, output_dt, progress, clock: CompileClock) -> Results:
     t_start = _time.perf_counter()
     added_mass = scale_masses(s, s.discrete_pid if len(s.discrete_pid) == len(s.discrete.ids) else None)
     st = _state(s)
@@ -199,13 +253,28 @@ def integrate(s: Setup, output_dt: float | None = None,
     updated = [g for g in groups if hasattr(g, "critical_dt")]  # shells, solids: from the current shape
 
     def step_size(t):
-        dt_el = min((g.critical_dt(st) for g in updated), default=np.inf) * s.tssfac
-        dt_s = min(dt_static, dt_el)
-        if not np.isfinite(dt_s):
+        dt_s = dt_static
+        for g in updated:
+            dt_g = g.critical_dt(st) * s.tssfac
+            if dt_g != dt_g or dt_s != dt_s:
+                return np.nan  # not a number: the caller stops with a diagnosis
+            dt_s = min(dt_s, dt_g)
+        if dt_s == np.inf:
             dt_s = s.end_time / 1000.0  # nothing to resolve: masses, walls and motions only
-        if s.dt_max is not None:
+        if s.dt_max is not None and not np.isnan(dt_s):
             dt_s = min(dt_s, float(np.interp(t, *s.dt_max)))
-        return dt_s
+        return float(dt_s)
+
+    def unusable(dt_s, t_now):
+        """(diagnosis, element keyword) of a step that is no step (zero, NaN,
+        or one the run would not end with), naming the element that sets
+        it; None if the step is usable."""
+        why = step_problem(dt_s, t_now, s.end_time, s.end_cycle)
+        if why is None:
+            return None
+        _, who = smallest_step(s, groups, st)
+        kw = who.split()[0].lstrip("*") if who.startswith("*") else "CONTROL_TIMESTEP"
+        return why + f"; the smallest element step is that of {who}", kw
 
     # t = 0: forces, half-step velocity
     internal_forces(0.0)
@@ -214,6 +283,10 @@ def integrate(s: Setup, output_dt: float | None = None,
             g.start()
     ew_total = 0.0
     dt = step_size(0.0)
+    why = unusable(dt, 0.0)
+    if why is not None:  # stop before the first cycle, never hang
+        raise SetupError([Problem(s.source, 0, why[1], None, why[0])])
+    t_loop, cpu_loop, compile_loop = _time.perf_counter(), _time.process_time(), clock.seconds
     dt_first = dt
     t = 0.0
     v_prev, w_prev = v.copy(), st.w.copy()
@@ -253,6 +326,10 @@ def integrate(s: Setup, output_dt: float | None = None,
             for g in groups:
                 g.account()
             dt_new = step_size(t)
+            if not dt_new > 0 or (s.end_time - t) > MAX_CYCLES * dt_new:  # zero, NaN or no end in sight
+                why = unusable(dt_new, t)
+                if why is not None:
+                    raise FloatingPointError(why[0] + f" (cycle {cycle}): the run is stopped")
             if s.dt_min > 0 and dt_new < s.dt_min * dt_first:
                 raise FloatingPointError(f"time step {dt_new:.4g} at t = {t:.6g} (cycle {cycle}) fell below "
                                          f"DTMIN x first step = {s.dt_min * dt_first:.4g}: the run is stopped")
@@ -300,6 +377,8 @@ def integrate(s: Setup, output_dt: float | None = None,
         stopped = f"interrupted at t = {t:.6g} (cycle {cycle})"
     return _results(s, rec, groups, parts, walls, st, locals_=dict(
         cycles=cycle, dt=dt, wall_time=_time.perf_counter() - t_start, states_t=states_t, states_x=states_x,
+        loop_time=_time.perf_counter() - t_loop - (clock.seconds - compile_loop),
+        cpu_time=_time.process_time() - cpu_loop - (clock.seconds - compile_loop), compile_time=clock.seconds,
         added_mass=added_mass, stopped=stopped))
 
 
@@ -325,6 +404,8 @@ def _results(s, rec, groups, parts, walls, st, locals_) -> Results:
         history_nodes=s.history_nodes, discrete_ids=d.ids,
         wall_ids=np.array([w.wall_id for w in s.walls], np.int64), final_x=st.x, final_v=st.v,
         cycles=locals_["cycles"], dt=locals_["dt"], wall_time=locals_["wall_time"],
+        loop_time=locals_["loop_time"], cpu_time=max(locals_["cpu_time"], 0.0),
+        setup_time=locals_["wall_time"] - locals_["loop_time"], compile_time=locals_["compile_time"],
         section_ids=np.array([sec.csid for sec in s.sections], np.int64), section_force=a("sec", (nsec, 3)),
         part_ids=parts.part_ids, part_internal=a("part_ie", (npart,)),
         states_time=np.array(locals_["states_t"]) if s.state_dt > 0 else np.zeros(0),
@@ -342,15 +423,23 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
     from .. import read_deck
 
     model = model_or_path if isinstance(model_or_path, Model) else read_deck(model_or_path)
-    s = build(model)
+    t0 = _time.perf_counter()
+    with CompileClock() as clock:
+        s = build(model)
+    t_build = _time.perf_counter() - t0
     progress = None if quiet else _progress_bar(s.end_time)
     try:
         res = integrate(s, output_dt, progress)
     finally:
         if progress is not None:
             progress.close()
+    res.setup_time += t_build  # set-up of the arrays (and the kernels it compiles)
+    res.wall_time += t_build
+    res.compile_time += clock.seconds
     res.history_nodes = model.nodes.ids[s.history_nodes]
     res.spc_nodes = model.nodes.ids[res.spc_nodes]
+    res.node_ids = model.nodes.ids.astype(np.int64)
+    res.info["elements"] = element_counts(model)
     if out is not None:
         res.save(Path(out))  # also when the run stopped early: the states so far are kept
         if len(res.states_time):

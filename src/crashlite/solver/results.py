@@ -59,8 +59,16 @@ class Results:
     contact_ids: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (n_contacts,) contact interface IDs
     cycles: int = 0
     dt: float = 0.0
-    wall_time: float = 0.0
-    info: dict = field(default_factory=dict)
+    wall_time: float = 0.0  # whole run: set-up (with Numba compilation) and time loop [s]
+    loop_time: float = 0.0  # wall time of the time loop, Numba compilation met in it excluded [s]
+    cpu_time: float = 0.0  # CPU time of the time loop (all threads), compilation excluded [s]
+    setup_time: float = 0.0  # wall_time - loop_time: building the arrays, first forces, compilation [s]
+    compile_time: float = 0.0  # Numba compilation and cache loads, in and out of the loop [s]
+    info: dict = field(default_factory=dict)  # added_mass, stopped, elements (count by type), bodies, title
+    # (n_nodes,) int64 deck node IDs of the rows of final_x and states_x (empty: unknown)
+    node_ids: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
+
+    TIMES = ("wall_time", "loop_time", "cpu_time", "setup_time", "compile_time")
 
     def recorded(self, name: str) -> bool:
         """True when the optional history ``name`` holds every state."""
@@ -94,15 +102,23 @@ class Results:
         path = directory / "results.npz"
         arrays = {k: v for k, v in self.__dict__.items() if isinstance(v, np.ndarray)}
         added = self.info.get("added_mass") or {}
-        np.savez_compressed(path, cycles=self.cycles, dt=self.dt, wall_time=self.wall_time,
+        elements = {f"info_elements_{k}": np.int64(v) for k, v in (self.info.get("elements") or {}).items()}
+        np.savez_compressed(path, cycles=self.cycles, dt=self.dt, **{k: getattr(self, k) for k in self.TIMES},
                             info_added_mass_parts=np.array(list(added), np.int64),
                             info_added_mass=np.array(list(added.values()), float),
-                            info_title=np.array(str(self.info.get("title", ""))), **arrays)
+                            info_title=np.array(str(self.info.get("title", ""))),
+                            info_stopped=np.array(str(self.info.get("stopped") or "")), **elements, **arrays)
         from ..results.history import categories
         from ..results.lsdyna_ascii import write_all
 
         write_all(directory, categories(self), title if title is not None else self.info.get("title", ""))
         return path
+
+    def timing(self) -> dict:
+        """Run facts for time accounting: elements by type, last time step,
+        cycles and the times [s]."""
+        return {"elements": dict(self.info.get("elements") or {}), "time_step": float(self.dt),
+                "cycles": int(self.cycles), **{k: float(getattr(self, k)) for k in self.TIMES}}
 
     @classmethod
     def load(cls, path) -> "Results":
@@ -115,7 +131,20 @@ class Results:
             info["added_mass"] = dict(zip(data["info_added_mass_parts"].tolist(), data["info_added_mass"].tolist()))
         if "info_title" in data and str(data["info_title"]):
             info["title"] = str(data["info_title"])
+        if "info_stopped" in data and str(data["info_stopped"]):
+            info["stopped"] = str(data["info_stopped"])
+        elements = {k[len("info_elements_"):]: int(data[k]) for k in data if k.startswith("info_elements_")}
+        if elements:
+            info["elements"] = elements
         scalars = {"cycles": int(data.pop("cycles")), "dt": float(data.pop("dt")),
-                   "wall_time": float(data.pop("wall_time"))}
+                   **{k: float(data.pop(k)) for k in cls.TIMES if k in data}}
         known = {f.name for f in fields(cls)}
         return cls(**{k: v for k, v in data.items() if k in known}, **scalars, info=info)
+
+
+def element_counts(model) -> dict[str, int]:
+    """Elements of a Model by LS-DYNA element type, as a d3hsp counts them
+    (rigid ones included; point masses as "mass")."""
+    counts = {"solid": len(model.solids), "shell": len(model.shells), "beam": len(model.beams),
+              "discrete": len(model.discretes), "mass": len(model.masses)}
+    return {k: int(v) for k, v in counts.items() if v}

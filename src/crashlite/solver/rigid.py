@@ -41,6 +41,20 @@ class RigidBody:
     held_v: np.ndarray | None = None  # (3, 3) rows: held translation directions, zero rows free (MAT_RIGID)
     held_w: np.ndarray | None = None  # (3, 3) rows: held rotation axes, zero rows free
     prev: tuple | None = None  # (velocity, momentum) before the last kick
+    # (j, 3) unit axes (body frame) about which the nodes' masses give no inertia (a point mass: all
+    # three, masses on a line: that line); a tiny inertia stands in for it (see build_body)
+    no_inertia: np.ndarray | None = None
+
+    def inverse_mass_at(self, r: np.ndarray) -> np.ndarray:
+        """(k,) largest inverse effective mass of points at arms r (k, 3)
+        (body frame) for a force in any direction: 1/M + λmax(Sᵀ I⁻¹ S)
+        with S the cross-product matrix of r [1/mass]."""
+        r = np.atleast_2d(np.asarray(r, float))
+        z = np.zeros(len(r))
+        skew = np.stack([np.stack([z, -r[:, 2], r[:, 1]], 1), np.stack([r[:, 2], z, -r[:, 0]], 1),
+                         np.stack([-r[:, 1], r[:, 0], z], 1)], 1)
+        a = np.einsum("kji,jl,klm->kim", skew, np.linalg.inv(self.inertia_body), skew)
+        return 1.0 / self.mass + np.linalg.eigvalsh(a)[:, -1]
 
     def omega(self, rot: np.ndarray | None = None) -> np.ndarray:
         r = self.rot if rot is None else rot
@@ -128,9 +142,13 @@ def build_body(body_id: int, nodes: np.ndarray, x: np.ndarray, v: np.ndarray, ma
         inertia = np.einsum("k,kij->ij", m, (r * r).sum(1)[:, None, None] * np.eye(3) - r[:, :, None] * r[:, None, :])
         if node_inertia is not None:
             inertia = inertia + node_inertia[nodes].sum(axis=0)
+    no_inertia = None
     if np.linalg.matrix_rank(inertia) < 3:
-        # collinear nodes: no inertia about their line; a tiny one keeps the
-        # rotation defined without letting it matter
+        # collinear nodes (no inertia about their line) or a point mass (none
+        # at all): a tiny inertia keeps the rotation defined; nodes with
+        # elements off those axes would get a zero time step (setup refuses them)
+        lam, vec = np.linalg.eigh(inertia)
+        no_inertia = vec[:, lam <= 1e-12 * max(float(lam[-1]), 0.0)].T.copy()
         inertia = inertia + np.eye(3) * max(np.trace(inertia), 1e-30) * 1e-9
     r = x[nodes] - cog
     if given and given.get("tm", 0.0) > 0 and (np.any(given.get("v", 0)) or np.any(given.get("w", 0))):
@@ -143,4 +161,4 @@ def build_body(body_id: int, nodes: np.ndarray, x: np.ndarray, v: np.ndarray, ma
                             - r[:, :, None] * r[:, None, :])
         w = np.linalg.lstsq(i_nodes, ang, rcond=None)[0]
     return RigidBody(body_id, nodes.astype(np.int64), float(total), cog.copy(), inertia.copy(), r.copy(),
-                     vel.copy(), inertia @ w, np.eye(3))
+                     vel.copy(), inertia @ w, np.eye(3), no_inertia=no_inertia)

@@ -113,6 +113,7 @@ class Setup:
     groups: list = field(default_factory=list)  # further element groups (groups.ElementGroup)
     constraints: list = field(default_factory=list)  # tied contacts, spot welds: forces(st), velocities(st)
     node_ids: np.ndarray | None = None  # (n,) deck node IDs, for messages (None: indices)
+    source: str = ""  # the deck, for messages
     skew_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (k,) SPC in local systems
     skew_held: np.ndarray = field(default_factory=lambda: np.zeros((0, 3, 3)))  # (k, 3, 3) held directions
     skew_held_rot: np.ndarray = field(default_factory=lambda: np.zeros((0, 3, 3)))  # (k, 3, 3) held axes
@@ -426,7 +427,46 @@ def node_inertia(model: Model, problems: list) -> np.ndarray:
     return out
 
 
-def _bodies(model: Model, x, v, mass, problems: list) -> list:
+def element_on(model: Model, node: int) -> str:
+    """'*ELEMENT_DISCRETE 7'-style name of the first element on a node
+    (index), for messages; '' when none."""
+    for name, table in (("DISCRETE", model.discretes), ("BEAM", model.beams), ("SHELL", model.shells),
+                        ("SOLID", model.solids)):
+        nodes = table.nodes[:, :2] if name == "BEAM" else table.nodes
+        rows = np.flatnonzero((nodes == node).any(axis=1))
+        if len(rows):
+            return f"*ELEMENT_{name} {int(table.ids[rows[0]])}"
+    return ""
+
+
+def _no_inertia_problem(model: Model, rec, body, used, mass) -> Problem | None:
+    """A body with no inertia about some axis (its mass on one node or on a
+    line) whose nodes carry elements off that axis: the forces of those
+    elements turn it about the axis with no inertia, so their stable time
+    step is 0 and the run would never end."""
+    if body.no_inertia is None:
+        return None
+    ids = model.nodes.ids
+    size = float(np.abs(body.r_body).max()) or 1.0
+    for k, i in enumerate(body.nodes):
+        lever = np.linalg.norm(np.cross(body.no_inertia, body.r_body[k]), axis=1)
+        if not used[i] or lever.max() <= 1e-9 * size:
+            continue
+        heavy = [int(ids[j]) for j in body.nodes if mass[j] > 0]
+        where = (f"at node {heavy[0]}" if len(body.no_inertia) == 3 and len(heavy) == 1 else
+                 "at one point" if len(body.no_inertia) == 3 else "on one line")
+        axis = ("any axis" if len(body.no_inertia) == 3 else
+                "the axis (" + ", ".join(f"{c:.3g}" for c in body.no_inertia[0]) + ")")
+        what = element_on(model, int(i)) or "elements"
+        return _problem(rec, "nsid", f"nodal rigid body {body.body_id}: its mass ({body.mass:g}) sits {where}, so "
+                        f"it has no rotational inertia about {axis}; node {int(ids[i])} carries {what} "
+                        f"at {float(lever.max()):.4g} from it, whose stable time step would be 0 (the run "
+                        "would never end). Give the body its inertia (_INERTIA), or mass (*ELEMENT_MASS, "
+                        "*ELEMENT_INERTIA) on its other nodes")
+    return None
+
+
+def _bodies(model: Model, x, v, mass, problems: list, used: np.ndarray | None = None) -> list:
     from .rigid import build_body
 
     bodies = []
@@ -460,6 +500,9 @@ def _bodies(model: Model, x, v, mass, problems: list) -> list:
         except ValueError as e:
             problems.append(_problem(rec, "nsid", str(e)))
             continue
+        bad = _no_inertia_problem(model, rec, bodies[-1], used, mass) if used is not None else None
+        if bad is not None:
+            problems.append(bad)
         owner[nodes] = len(bodies) - 1
     return bodies
 
@@ -561,7 +604,7 @@ def _build(model: Model) -> Setup:
     used[disc.n2[disc.n2 >= 0]] = True
     for g in groups:
         used[g.conn[g.conn >= 0]] = True
-    bodies = _bodies(model, model.nodes.xyz, v0, mass, problems)
+    bodies = _bodies(model, model.nodes.xyz, v0, mass, problems, used)
     bodies += part_bodies(model, model.nodes.xyz, v0, mass, problems)
     body_of = {b.body_id: b for b in bodies}
     for mo in motions:
@@ -650,6 +693,6 @@ def _build(model: Model) -> Setup:
         if model.find("DATABASE_BINARY_D3PLOT") else 0.0,
         dt_min=float(term[0].get("dtmin", 0.0) or 0.0) if term else 0.0,
         end_energy=float(term[0].get("endeng", 0.0) or 0.0) if term else 0.0,
-        node_ids=model.nodes.ids.astype(np.int64),
+        node_ids=model.nodes.ids.astype(np.int64), source=str(model.source or ""),
         skew_nodes=skew_nodes, skew_held=np.array([skew[i][0] for i in skew_nodes]).reshape(-1, 3, 3),
         skew_held_rot=np.array([skew[i][1] for i in skew_nodes]).reshape(-1, 3, 3), groups=groups)

@@ -24,6 +24,16 @@ def stiffness(d) -> np.ndarray:
     return k
 
 
+def effective_mass(s: Setup) -> np.ndarray:
+    """(n,) nodal masses for the nodal rule: a rigid-body node moves with
+    the body's smallest effective mass at that point (translation and
+    rotation, rigid.RigidBody.inverse_mass_at) [mass]."""
+    mass = s.mass.copy()
+    for b in s.bodies:
+        mass[b.nodes] = 1.0 / b.inverse_mass_at(b.r_body)
+    return mass
+
+
 def stable_dt(s: Setup) -> float:
     """TSSFAC × the smallest critical step: 2/ω with ω² = k (1/m1 + 1/m2)
     for springs (k the steepest curve slope for non-linear ones), and
@@ -34,19 +44,84 @@ def stable_dt(s: Setup) -> float:
     dt_beam = beam_dt(s.beams, s.mass, s.rot_inertia) if s.beams is not None else np.inf
     if len(d.ids) == 0:
         return s.tssfac * dt_beam
-    mass = s.mass.copy()
-    for b in s.bodies:  # a body node moves with the body's effective mass at that point
-        r2 = np.einsum("ij,ij->i", b.r_body, b.r_body)
-        mass[b.nodes] = 1.0 / (1.0 / b.mass + r2 / np.linalg.eigvalsh(b.inertia_body)[0])
+    return s.tssfac * min(float(discrete_dt(s).min()), dt_beam)
+
+
+def discrete_dt(s: Setup) -> np.ndarray:
+    """(n_discrete,) critical step of each discrete element (nodal rule,
+    without TSSFAC; inf for elements with nothing to resolve) [time]."""
+    d = s.discrete
+    mass = effective_mass(s)
     inv = 1.0 / np.where((mass > 0) & ~s.fixed.all(axis=1), mass, np.inf)  # held nodes: ground
     inv_sum = inv[d.n1] + np.where(d.n2 >= 0, inv[np.maximum(d.n2, 0)], 0.0)
     k = stiffness(d)
     damper = d.kind == DAMPER
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):
         dt_spring = np.where(~damper & (k > 0), 2.0 / np.sqrt(k * inv_sum), np.inf)
         dt_damper = np.where(damper & (k > 0), 2.0 / (k * inv_sum), np.inf)
-    dt = min(dt_spring.min(), dt_damper.min(), dt_beam)
-    return s.tssfac * dt
+    return np.minimum(dt_spring, dt_damper)
+
+
+# a step that would need more cycles than this to reach the end time is no step: the run would not end
+MAX_CYCLES = 1e9
+
+
+def smallest_step(s: Setup, groups, st) -> tuple[float, str]:
+    """(step, description) of the element with the smallest critical step
+    (TSSFAC applied), naming it, its nodes and, for rigid-body nodes, the
+    body and its effective mass there; for diagnoses."""
+    from .beams import element_dt
+
+    ids = s.node_ids if s.node_ids is not None else np.arange(len(s.mass))
+    body_of = {int(i): b for b in s.bodies for i in b.nodes}
+    mass = effective_mass(s)
+
+    def node(i: int) -> str:
+        b = body_of.get(int(i))
+        text = f"node {int(ids[i])}"
+        if b is not None:
+            return text + f" (of rigid body {b.body_id}, effective mass {mass[i]:.4g} there)"
+        return text + f" (mass {s.mass[i]:.4g})"
+
+    found: list[tuple[float, str]] = []
+
+    def lowest(dts: np.ndarray, name: str, eids, nodes_of) -> None:
+        dts = np.asarray(dts, float)
+        if not len(dts):
+            return
+        bad = np.isnan(dts)
+        e = int(np.flatnonzero(bad)[0]) if bad.any() else int(np.argmin(dts))
+        found.append((float(dts[e]) * s.tssfac, f"*ELEMENT_{name} {int(eids[e])} on "
+                      + ", ".join(node(i) for i in nodes_of(e) if i >= 0)))
+
+    d = s.discrete
+    if len(d.ids):
+        lowest(discrete_dt(s), "DISCRETE", d.ids, lambda e: (d.n1[e], d.n2[e]))
+    if s.beams is not None and len(s.beams.ids):
+        b = s.beams
+        lowest(element_dt(b, s.mass, s.rot_inertia), "BEAM", b.ids, lambda e: (b.n1[e], b.n2[e]))
+    for g in groups:
+        if hasattr(g, "critical_dt") and hasattr(g, "_dt") and len(g.ids):
+            g.critical_dt(st)
+            lowest(g._dt, g.kind.upper(), g.ids, lambda e, g=g: tuple(dict.fromkeys(g.conn[e].tolist())))
+    if not found:
+        return np.inf, "no element with a time step"
+    nan = [f for f in found if np.isnan(f[0])]
+    return nan[0] if nan else min(found, key=lambda f: f[0])
+
+
+def step_problem(dt: float, t: float, end_time: float, end_cycle: int) -> str | None:
+    """Why ``dt`` at time t is no usable step (None when it is): not a
+    number, not positive, or so small that the run would not end."""
+    if np.isnan(dt):
+        return f"the stable time step at t = {t:.6g} is not a number"
+    if not dt > 0:
+        return f"the stable time step at t = {t:.6g} is {dt:.4g}"
+    cycles = (end_time - t) / dt
+    if cycles > MAX_CYCLES and not (0 < end_cycle <= MAX_CYCLES):
+        return (f"the stable time step at t = {t:.6g} is {dt:.4g}: {cycles:.3g} more cycles to the end time "
+                f"{end_time:.6g}, the run would not end")
+    return None
 
 
 def scale_masses(s: Setup, model_pids: np.ndarray | None = None) -> dict[int, float]:
