@@ -11,9 +11,11 @@ peak force by √2 − 1 = 41.42 % and shortens crush and stop time by
 
 import json
 import math
+import re
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from crashlite.cli import main
@@ -37,9 +39,10 @@ def runs(tmp_path_factory):
     return out
 
 
-def _scaled_ascii(src: Path, dst: Path, factor: float = 1.0, shift: float = 0.0) -> Path:
+def _scaled_ascii(src: Path, dst: Path, factor: float = 1.0, shift: float = 0.0, nodes: bool = False) -> Path:
     """The LS-DYNA ASCII files of a run with energies and forces times
-    ``factor`` and times moved by ``shift``."""
+    ``factor`` (with ``nodes`` also the history nodes' displacements and
+    accelerations) and times moved by ``shift``."""
     data = read_folder(src)
     for name, cat in data.items():
         for key, v in cat.items():
@@ -47,6 +50,8 @@ def _scaled_ascii(src: Path, dst: Path, factor: float = 1.0, shift: float = 0.0)
             if q == "time":
                 cat[key] = v + shift
             elif q.endswith(("energy", "force")) and name in ("glstat", "matsum", "rwforc", "secforc"):
+                cat[key] = v * factor
+            elif nodes and name == "nodout" and q.endswith(("_displacement", "_acceleration")):
                 cat[key] = v * factor
     write_all(dst, data)
     return dst
@@ -110,7 +115,70 @@ def test_scaled_lsdyna_ascii_copy_has_the_known_deviation(runs, tmp_path):
     assert wall.rating.overall == pytest.approx(expected.overall, abs=2e-3)
     disp = c.group("node_displacement")
     assert disp and all(abs(p.deviation["peak_deviation_percent"]) < 0.01 for p in disp)
-    assert "field comparison" in " ".join(c.notes)  # LS-DYNA ASCII files carry no field states
+    # LS-DYNA ASCII files carry no field states: the node field is that of the history nodes
+    (f,) = c.fields
+    assert f.ids.tolist() == [1, 5] and len(c.ref.states.ids) == 8  # all nodes (node IDs from results.npz)
+    assert f.figures["max_relative_deviation_percent"] < 0.5  # 5 digits of nodout, interpolated states
+    assert "node field from its 2 history nodes" in " ".join(c.cmp.notes)
+
+
+def test_every_quantity_of_two_lsdyna_ascii_folders(runs, tmp_path):
+    """Two LS-DYNA ASCII output folders, the second with every energy,
+    force, displacement and acceleration times 1.1: each pair deviates by
+    +10 % (peak, value, integral), the filtered accelerations too (the CFC
+    filter is linear), the intrusion field (history nodes) by 10 % of the
+    largest displacement; d3hsp files give the time accounting."""
+    _, out = runs["soft"]
+    ref = _scaled_ascii(out, tmp_path / "detailed", 1.0, nodes=True)
+    cmp = _scaled_ascii(out, tmp_path / "simplified", 1.1, nodes=True)
+    for folder, seconds in ((ref, 20880), (cmp, 40)):
+        (folder / "d3hsp").write_text(f" number of discrete elements . . . . . .   4\n Problem cycle      =  1000\n"
+                                      f" Elapsed time {seconds} seconds for 1000 cycles using  1 SMP thread\n")
+    c = compare_paths(ref, cmp, Options(times=[0.04, 0.08]))
+    assert {p.group for p in c.pairs} == {"energy", "part", "section", "wall", "node_displacement",
+                                          "node_acceleration"}
+    assert [p.name for p in c.group("node_acceleration")] == ["node 1 x-acceleration CFC 60",
+                                                              "node 5 x-acceleration CFC 60"]
+    for p in c.pairs:
+        for k, ref_key in (("peak", "peak_ref"), ("value", "value_ref"), ("integral", "integral_ref")):
+            v = p.deviation[f"{k}_deviation_percent"]  # 100·(cmp − ref)/|ref|: −10 % for a negative ref
+            assert v is None or v == pytest.approx(10.0 * np.sign(p.deviation[ref_key]), abs=0.02), (p.name, k, v)
+    (wall,) = c.group("wall")
+    assert wall.rating.overall == pytest.approx(
+        iso_rating(wall.t_ref, wall.y_ref, wall.t_ref, 1.1 * wall.y_ref).overall, abs=1e-5)  # 5 digits
+    assert [f.time for f in c.fields] == [0.04, 0.08]
+    for f in c.fields:
+        assert f.ids.tolist() == [1, 5]
+        u = np.linalg.norm(f.u_ref, axis=1)
+        assert f.figures["max_difference"] == pytest.approx(0.1 * u.max(), rel=1e-3)
+        assert f.figures["max_relative_deviation_percent"] == pytest.approx(10.0, abs=0.01)
+        assert f.figures["mean_relative_deviation_percent"] == pytest.approx(10.0 * u.mean() / u.max(), abs=0.01)
+    body = c.fields[-1].u_ref[1, 0]  # node 5 at 80 ms: the body's crush, the history's displacement
+    nod = c.ref.history.read("nodout", "x_displacement")[:, 1]
+    t = c.ref.history.read("nodout", "time")
+    assert body == pytest.approx(np.interp(0.08, t, nod), rel=1e-9)
+    ref_row, cmp_row = c.timing
+    assert ref_row["elements_by_type"] == {"discrete": 4} and ref_row["cycles"] == 1000
+    assert cmp_row["wall_reduction_percent"] == pytest.approx(100 * (1 - 40 / 20880))
+    assert c.pulse["deviation_percent"]["dynamic_crush"] == 0.0  # velocities were left as they are
+
+
+def test_crashlite_results_need_no_deck(runs):
+    """results.npz holds the node IDs and element counts: without the decks
+    the field comparison and time accounting come out as with them."""
+    (da, a), (db, b) = runs["soft"], runs["stiff"]
+    bare = compare_paths(a, b, Options(times=[0.03, 0.06]))
+    full = compare_paths(a, b, Options(times=[0.03, 0.06]), decks=(da, db))
+    assert len(bare.fields) == 2 and not any("history nodes" in n for n in bare.summary()["notes"])
+    for f, g in zip(bare.fields, full.fields):
+        assert f.ids.tolist() == list(range(1, 9))
+        np.testing.assert_array_equal(f.u_ref, g.u_ref)
+        assert f.figures == g.figures
+    assert bare.fields[0].figures["max_displacement_ref"] > 100.0  # the body has crushed the springs
+    for row in bare.timing:
+        assert row["elements_by_type"] == {"discrete": 4, "mass": 8} and row["cycles"] > 100
+        assert row["wall_time"] > 0 and row["cpu_time"] > 0 and row["setup_time"] > 0
+    assert bare.timing == full.timing
 
 
 def test_extra_entities_are_listed(runs):
@@ -136,9 +204,16 @@ def test_cli_writes_the_report(runs, tmp_path, capsys):
     assert [f["time"] for f in s["fields"]] == [0.02, 0.04] and s["report"]["pictures"] == [0.02, 0.04]
     assert s["timing"][0]["elements_by_type"] == {"discrete": 4, "mass": 8}
     assert s["timing"][1]["elements"] == 5 + 9  # springs, point masses
+    for row in s["timing"]:  # the time loop compared, the start-up listed apart
+        assert row["wall_time"] > 0 and row["setup_time"] > 0 and row["compile_time"] >= 0
+        assert row["total_wall_time"] == pytest.approx(row["wall_time"] + row["setup_time"], rel=1e-9)
+    assert s["timing"][1]["wall_reduction_percent"] == pytest.approx(
+        100 * (1 - s["timing"][1]["wall_time"] / s["timing"][0]["wall_time"]), rel=1e-12)
     assert s["reference"]["controls"]["CONTROL_TIMESTEP"]["tssfac"] == 0.5
     html = (tmp_path / "rep" / "index.html").read_text()
-    assert html.count("data:image/png;base64,") >= 10 and "Time accounting" in html
+    assert html.count("data:image/png;base64,") >= 10 and "Time accounting" in html and "start-up" in html
+    assert not re.search(r"<(script|link)\b|src=\"(?!data:)", html)  # self-contained: nothing fetched
+    assert "NaN" not in (tmp_path / "rep" / "summary.json").read_text()
 
 
 def test_cli_errors_are_clear_messages(runs, tmp_path, capsys):

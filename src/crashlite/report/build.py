@@ -127,10 +127,15 @@ def _timing(s: dict) -> list[str]:
     rows = [[r["name"], r["elements"], ", ".join(f"{k} {v}" for k, v in r["elements_by_type"].items()),
              num(r["element_share_percent"], 3), num(r["time_step"]), num(r["cycles"]), num(r["end_time"]),
              format_duration(r["cpu_time"]), format_duration(r["wall_time"]), pct(r["cpu_reduction_percent"]),
-             pct(r["wall_reduction_percent"]), num(r["speedup"], 3)] for r in s["timing"]]
+             pct(r["wall_reduction_percent"]), num(r["speedup"], 3), format_duration(r.get("setup_time")),
+             format_duration(r.get("compile_time"))] for r in s["timing"]]
     return ["<h2>Time accounting</h2>",
             table(["run", "elements", "by type", "% of reference", "time step", "cycles", "end time", "CPU time",
-                   "wall time", "CPU reduction", "wall reduction", "speed-up"], rows, left=3)]
+                   "wall time", "CPU reduction", "wall reduction", "speed-up", "start-up", "of it compilation"],
+                  rows, left=3),
+            '<p class="note">CPU and wall time of crashlite runs are those of the time loop; the start-up '
+            "(building the arrays, first forces, Numba compilation) is listed apart and not compared. "
+            "LS-DYNA times are the d3hsp totals.</p>"]
 
 
 def _pulse(c, s: dict, unit: str, with_plots: bool) -> list[str]:

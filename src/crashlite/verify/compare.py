@@ -22,7 +22,7 @@ import numpy as np
 
 from .curves import CurvePair, make_pair, relative_percent
 from .errors import CompareError
-from .fields import FieldComparison, FieldStates, compare_fields, load_states
+from .fields import FieldComparison, FieldStates, compare_fields, history_states, load_states
 from .filters import filter_signal
 from .pulse import crash_pulse
 from .rating import RatingError, common_interval
@@ -114,7 +114,7 @@ class Run:
             out["controls"] = controls
         if self.states is not None:
             out["field_states"] = {"count": int(len(self.states.time)), "end": float(self.states.time[-1]),
-                                   "nodes": int(self.states.x.shape[1])}
+                                   "nodes": int(self.states.x.shape[1]), "source": self.states.source}
         return out
 
 
@@ -152,8 +152,16 @@ def open_run(path, name: str | None = None, deck=None) -> Run:
         raise
     except (OSError, ValueError, KeyError) as e:
         run.notes.append(f"field states not read: {e}")
-    if run.states is not None and run.states.ids is None:
-        run.notes.append("field states without node IDs (give the deck): no field comparison")
+    if run.states is None or run.states.ids is None:
+        # no field states with node IDs (LS-DYNA ASCII output, a run without
+        # d3plot states): the history nodes' displacements are the field
+        nodal = history_states(hist, model)
+        if nodal is not None:
+            run.notes.append(f"{run.name}: node field from its {len(nodal.ids)} history nodes (nodout)"
+                             + ("" if run.states is None else "; its field states carry no node IDs (give its deck)"))
+            run.states = nodal
+        elif run.states is not None:
+            run.notes.append("field states without node IDs (give the deck): no field comparison")
     try:
         run.info = run_info(p, run.name, model)
     except (FileNotFoundError, ValueError, KeyError) as e:
@@ -482,13 +490,19 @@ def _fields(c: Comparison) -> None:
                                     "(give its deck)") for r in (c.ref, c.cmp)
                    if r.states is None or r.states.ids is None]
             raise CompareError("field comparison asked for, but " + "; ".join(why))
-        c.notes.append("field comparison: field states with node IDs are needed in both runs (crashlite "
-                       "results with their decks)")
+        c.notes.append("field comparison: field states with node IDs (or history nodes) are needed in both runs")
         return
     end = min(float(sr.time[-1]), float(sk.time[-1]))
+    asked = c.options.field_nodes is not None or bool(c.options.times)
     times = list(c.options.times) if c.options.times else [end]
     for t in times:
-        c.fields.append(compare_fields(sr, sk, float(t), c.options.field_nodes, c.options.component))
+        try:
+            c.fields.append(compare_fields(sr, sk, float(t), c.options.field_nodes, c.options.component))
+        except CompareError as e:
+            if asked:  # what was asked for cannot be compared: say so, never a NaN figure
+                raise
+            c.notes.append(f"field comparison: {e}")  # not asked for: the rest is still compared
+            return
     f = c.fields[-1]
     if len(f.only_ref) or len(f.only_cmp):
         c.mismatches["field node"] = {"only_ref": _id_list(f.only_ref), "only_cmp": _id_list(f.only_cmp),

@@ -69,6 +69,42 @@ def load_states(path, deck=None) -> FieldStates | None:
     return FieldStates(t, x, ids, cells, str(p))
 
 
+def history_states(history, deck=None) -> FieldStates | None:
+    """Field states of the history nodes of a run (nodout of a crashlite
+    or LS-DYNA run: ``load(path)``), for node-field comparisons of runs
+    without field states, e.g. firewall intrusion from LS-DYNA ASCII
+    output. Coordinates are the first state's coordinates (or the deck's)
+    plus the displacements, so differences keep the displacements'
+    precision (nodout has 5 digits). None without nodout displacements."""
+    try:
+        t = np.asarray(history.read("nodout", "time"), float)
+        ids = np.asarray(history.read("nodout", "ids"), np.int64)
+        u = np.stack([np.asarray(history.read("nodout", f"{a}_displacement"), float) for a in "xyz"], axis=2)
+    except (KeyError, ValueError, TypeError):
+        return None
+    if len(t) == 0 or len(ids) == 0 or u.shape[:2] != (len(t), len(ids)):
+        return None
+    x0 = None
+    try:
+        c = np.stack([np.asarray(history.read("nodout", f"{a}_coordinate"), float)[0] for a in "xyz"], axis=1)
+        if np.all(np.isfinite(c)):
+            x0 = c - u[0]
+    except (KeyError, ValueError, TypeError, IndexError):
+        pass
+    if x0 is None and deck is not None:
+        from .. import read_deck
+
+        model = deck if hasattr(deck, "nodes") else read_deck(deck)
+        all_ids = np.asarray(model.nodes.ids, np.int64)
+        if np.all(np.isin(ids, all_ids)):
+            x0 = np.asarray(model.nodes.xyz, float)[_index(all_ids, ids)]
+    if x0 is None:
+        x0 = np.zeros((len(ids), 3))  # displacements only: comparisons hold, pictures show displacements
+    if not np.all(np.isfinite(u)):
+        return None
+    return FieldStates(t, x0[None, :, :] + u, ids, [], f"{getattr(history, 'source', '')} (history nodes)")
+
+
 def read_cells(path) -> list[np.ndarray]:
     """Connectivity rows of a legacy VTK file's CELLS block."""
     lines = Path(path).read_text().splitlines()

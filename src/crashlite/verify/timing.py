@@ -26,8 +26,13 @@ class RunInfo:
     cycles: int | None = None
     end_time: float | None = None  # simulated time [time unit of the run]
     cpu_time: float | None = None  # [s]
-    wall_time: float | None = None  # [s]
+    wall_time: float | None = None  # the run time compared [s]: crashlite: its time loop
     source: str = ""
+    # start-up outside the compared time (crashlite: building the arrays, first forces, Numba
+    # compilation) and the compilation in it [s]; None where the source does not tell it apart
+    setup_time: float | None = None
+    compile_time: float | None = None
+    total_wall_time: float | None = None  # wall time of the whole run [s]
 
     @property
     def n_elements(self) -> int:
@@ -39,9 +44,9 @@ class RunInfo:
 
 def elements_of_model(model) -> dict[str, int]:
     """Element counts of a crashlite Model by LS-DYNA element type."""
-    counts = {"shell": len(model.shells), "solid": len(model.solids), "beam": len(model.beams),
-              "discrete": len(model.discretes), "mass": len(model.masses)}
-    return {k: int(v) for k, v in counts.items() if v}
+    from ..solver.results import element_counts
+
+    return element_counts(model)
 
 
 def run_info(source, name: str | None = None, deck=None) -> RunInfo:
@@ -51,10 +56,7 @@ def run_info(source, name: str | None = None, deck=None) -> RunInfo:
     from ..solver.results import Results
 
     if isinstance(source, Results):
-        info = source.info or {}
-        ri = RunInfo(name or "run", dict(info.get("elements", {})), float(source.dt), int(source.cycles),
-                     float(source.time[-1]) if len(source.time) else None,
-                     info.get("cpu_time"), float(source.wall_time), "results")
+        ri = _from_results(source, name or "run", "results")
     else:
         p = Path(source)
         npz = p / "results.npz" if p.is_dir() else p
@@ -73,17 +75,35 @@ def run_info(source, name: str | None = None, deck=None) -> RunInfo:
     return ri
 
 
+def _from_results(res, name: str, source: str) -> RunInfo:
+    """The run time compared is the time loop (``loop_time``); results of
+    crashlite versions that did not record it give their whole wall time."""
+    looped = res.loop_time > 0 or res.cpu_time > 0
+    return RunInfo(name, dict((res.info or {}).get("elements") or {}),
+                   float(res.time_step[-1]) if res.recorded("time_step") else float(res.dt), int(res.cycles),
+                   float(res.time[-1]) if len(res.time) else None,
+                   float(res.cpu_time) if looped else None,
+                   float(res.loop_time) if looped else float(res.wall_time), source,
+                   float(res.setup_time) if looped else None, float(res.compile_time) if looped else None,
+                   float(res.wall_time))
+
+
 def _from_npz(path: Path, name: str) -> RunInfo:
+    """Only the few entries needed (the field states stay on disk)."""
+    from types import SimpleNamespace
+
     with np.load(path) as z:
         keys = set(z.files)
-        elements = {k[len("info_elements_"):]: int(z[k]) for k in keys if k.startswith("info_elements_")}
         t = z["time"] if "time" in keys else np.zeros(0)
-        dt = float(z["time_step"][-1]) if "time_step" in keys and z["time_step"].size else (
-            float(z["dt"]) if "dt" in keys else None)
-        return RunInfo(name, elements, dt, int(z["cycles"]) if "cycles" in keys else None,
-                       float(t[-1]) if len(t) else None,
-                       float(z["cpu_time"]) if "cpu_time" in keys else None,
-                       float(z["wall_time"]) if "wall_time" in keys else None, str(path))
+        steps = z["time_step"] if "time_step" in keys else np.zeros(0)
+        res = SimpleNamespace(
+            info={"elements": {k[len("info_elements_"):]: int(z[k]) for k in keys if k.startswith("info_elements_")}},
+            time=t, dt=float(z["dt"]) if "dt" in keys else (float(steps[-1]) if steps.size else 0.0),
+            cycles=int(z["cycles"]) if "cycles" in keys else 0,
+            recorded=lambda name: name == "time_step" and steps.size == t.size and steps.size > 0, time_step=steps,
+            **{k: float(z[k]) if k in keys else 0.0
+               for k in ("wall_time", "loop_time", "cpu_time", "setup_time", "compile_time")})
+    return _from_results(res, name, str(path))
 
 
 _NUM = r"([-+]?\d+(?:\.\d*)?(?:[EeDd][-+]?\d+)?)"
@@ -133,7 +153,8 @@ def reduction(reference: float | None, value: float | None) -> float | None:
 def timing_table(runs: list[RunInfo], reference: int = 0) -> list[dict]:
     """One row per run: elements (total, % of the reference, by type), time
     step, cycles, CPU and wall time and their reductions against
-    ``runs[reference]`` in %."""
+    ``runs[reference]`` in % (for crashlite runs the time loop; the
+    start-up, ``setup_time``, is listed but not compared)."""
     if not runs:
         raise ValueError("timing_table: no runs")
     ref = runs[reference]
@@ -143,6 +164,8 @@ def timing_table(runs: list[RunInfo], reference: int = 0) -> list[dict]:
         rows.append({"name": r.name, "elements": r.n_elements, "elements_by_type": dict(r.elements),
                      "element_share_percent": share, "time_step": r.time_step, "cycles": r.cycles,
                      "end_time": r.end_time, "cpu_time": r.cpu_time, "wall_time": r.wall_time,
+                     "setup_time": r.setup_time, "compile_time": r.compile_time,
+                     "total_wall_time": r.total_wall_time,
                      "cpu_reduction_percent": reduction(ref.cpu_time, r.cpu_time),
                      "wall_reduction_percent": reduction(ref.wall_time, r.wall_time),
                      "speedup": (ref.wall_time / r.wall_time if ref.wall_time and r.wall_time else None)})

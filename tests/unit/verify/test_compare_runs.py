@@ -126,3 +126,43 @@ def test_a_nearly_constant_reference_is_compared_but_not_rated():
     (total,) = [p for p in c.group("energy") if p.name == "total energy"]
     assert total.rating is None and "not rated" in total.note
     assert abs(total.deviation["value_deviation_percent"]) < 1e-3
+
+
+def test_node_fields_without_common_nodes_are_noted_unless_asked_for():
+    """Field states with disjoint node IDs: not asked for, the curves are
+    still compared and the field comparison is a note; asked for (times or
+    nodes), a clear error, never a NaN figure."""
+    from crashlite.verify.fields import FieldStates
+
+    x = np.zeros((2, 2, 3))
+    x[1, :, 0] = -10.0
+    a, b = run("a"), run("b")
+    a.states = FieldStates(np.array([0.0, 0.1]), x, np.array([1, 2]), [], "a")
+    b.states = FieldStates(np.array([0.0, 0.1]), x, np.array([3, 4]), [], "b")
+    c = compare(a, b)
+    assert not c.fields and c.pairs
+    assert "field comparison: no node is in both runs: 2 only in the reference, 2 only in the comparison" in c.notes
+    with pytest.raises(CompareError, match="no node is in both runs"):
+        compare(a, b, Options(times=[0.1]))
+    b.states.ids = np.array([2, 3])
+    (f,) = compare(a, b).fields
+    assert f.ids.tolist() == [2] and f.figures["max_difference"] == 0.0
+
+
+def test_field_from_history_nodes_of_a_run_without_field_states():
+    """history_states: first state's coordinates (or the deck's) plus the
+    displacements; values by hand."""
+    from crashlite.verify.fields import history_states
+
+    t = np.array([0.0, 0.5, 1.0])
+    ux = np.array([[0.0, 0.0], [-1.0, -2.0], [-3.0, -4.0]])
+    zero = np.zeros_like(ux)
+    nod = {"time": t, "ids": np.array([7, 9]), "x_displacement": ux, "y_displacement": zero,
+           "z_displacement": zero, "x_coordinate": 100.0 + ux, "y_coordinate": zero + 5.0, "z_coordinate": zero}
+    s = history_states(History({"nodout": nod}, "h"))
+    assert s.ids.tolist() == [7, 9] and s.cells == [] and s.source == "h (history nodes)"
+    np.testing.assert_array_equal(s.x[0], [[100.0, 5.0, 0.0], [100.0, 5.0, 0.0]])
+    np.testing.assert_array_equal(s.at(0.75)[:, 0], [98.0, 97.0])  # half way between -1/-3 and -2/-4
+    bare = {k: v for k, v in nod.items() if "coordinate" not in k}
+    assert history_states(History({"nodout": bare}, "h")).x[2, 1].tolist() == [-4.0, 0.0, 0.0]
+    assert history_states(History({"glstat": {"time": t}}, "h")) is None

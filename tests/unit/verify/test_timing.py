@@ -47,16 +47,71 @@ def test_durations(s, text):
 
 
 def test_run_info_of_a_crashlite_run(tmp_path):
+    """results.npz carries what time accounting needs without the deck:
+    elements by type, time step, cycles, CPU and wall time of the time
+    loop, and the start-up apart."""
     from crashlite.solver import run
 
     deck = "src/crashlite/examples/pulse/pulse.k"
     res = run(deck, out=tmp_path)
     live = run_info(res, "pulse")
-    assert live.elements == {"discrete": 1}
+    assert live.elements == {"discrete": 1, "mass": 1}  # the deck's elements, as a d3hsp counts them
     assert live.cycles == res.cycles and live.time_step == res.dt
-    folder = run_info(tmp_path, deck=deck)
-    assert folder.cycles == res.cycles and folder.wall_time == pytest.approx(res.wall_time)
+    assert live.wall_time == res.loop_time and live.cpu_time == res.cpu_time  # the time loop is compared
+    assert res.loop_time + res.setup_time == pytest.approx(res.wall_time, rel=1e-12)
+    assert 0.0 <= res.compile_time <= res.setup_time and res.loop_time > 0.0
+    folder = run_info(tmp_path)  # no deck needed
+    assert folder.elements == {"discrete": 1, "mass": 1}
+    assert folder.cycles == res.cycles and folder.time_step == res.dt
+    assert (folder.wall_time, folder.cpu_time, folder.setup_time, folder.compile_time, folder.total_wall_time) == \
+        (res.loop_time, res.cpu_time, res.setup_time, res.compile_time, res.wall_time)
     assert folder.end_time == pytest.approx(res.time[-1]) and folder.end_time >= 0.12
-    assert folder.elements == {"discrete": 1, "mass": 1}  # the deck counts mass elements too
+    row = timing_table([folder])[0]
+    assert row["setup_time"] == res.setup_time and row["total_wall_time"] == res.wall_time
     with pytest.raises(FileNotFoundError, match="d3hsp"):
         run_info(tmp_path / "nowhere")
+
+
+def test_results_of_older_versions_give_their_whole_wall_time(tmp_path):
+    """A results.npz without the loop time (written before it was
+    recorded): the whole wall time is the run time, start-up unknown."""
+    import numpy as np
+
+    np.savez(tmp_path / "results.npz", time=np.array([0.0, 0.1]), cycles=40, dt=2.5e-3, wall_time=3.5)
+    ri = run_info(tmp_path, "old")
+    assert (ri.wall_time, ri.cpu_time, ri.setup_time, ri.cycles, ri.time_step, ri.elements) == \
+        (3.5, None, None, 40, 2.5e-3, {})
+
+
+def test_compilation_in_the_time_loop_is_start_up_not_run_time(tmp_path):
+    """A kernel compiled inside the time loop (here by the progress
+    callback, at its first call) is counted in setup_time and
+    compile_time, not in the loop time compared."""
+    import time
+
+    from numba import njit
+
+    from crashlite import read_deck
+    from crashlite.solver.loop import CompileClock, integrate
+    from crashlite.solver.setup import build
+
+    spent = []
+
+    def progress(t, cycle, dt, ratio):
+        if not spent:
+            t0 = time.perf_counter()
+            njit(lambda a, b: a * b + 1.0)(2.0, 3.0)  # a fresh function: compiled now
+            spent.append(time.perf_counter() - t0)
+
+    res = integrate(build(read_deck("src/crashlite/examples/pulse/pulse.k")), progress=progress)
+    assert spent and spent[0] > 0.0
+    assert res.compile_time >= 0.9 * spent[0] and res.setup_time >= 0.9 * spent[0]
+    assert res.loop_time + res.setup_time == pytest.approx(res.wall_time, rel=1e-12)
+    with CompileClock() as clock:
+        f = njit(lambda a: a + 1)
+        f(1)
+        first = clock.seconds
+        f(2)  # compiled already: nothing more
+        assert first > 0.0 and clock.seconds == first
+    njit(lambda a: a - 1)(1)  # after the clock is taken off
+    assert clock.seconds == first
