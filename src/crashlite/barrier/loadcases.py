@@ -15,7 +15,8 @@ from ..units import kmh
 from .simplified import Placement
 
 
-DTMIN = 0.05  # of the first step: a solid whose step falls below it is eroded (ERODE = 1)
+DTMIN = 1e-3  # of the first step: a solid whose step falls below it is eroded (ERODE = 1); honeycomb
+# steps fall 50x from the soft uncompacted cells to the compacted ones, so only degenerate cells go
 
 
 @dataclass(frozen=True)

@@ -492,7 +492,8 @@ class SolidGroup(ElementGroup):
         if not len(self._dt):
             return np.inf
         if self._dt_first == 0.0:
-            self._dt_first = float(self._dt.min())
+            if self.st.cmod.max() > 0.0:  # the wave speeds exist once forces have been computed
+                self._dt_first = float(self._dt.min())
         elif s.erode_dtmin > 0.0:
             small = self._dt < s.erode_dtmin * self._dt_first  # eroded ones report an infinite step
             if small.any():
