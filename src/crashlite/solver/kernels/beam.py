@@ -124,15 +124,20 @@ def update_rotations(rot, w, moment, inv_j, fixed_rot, dt_v, dt):
             continue
         kx, ky, kz = px / ang, py / ang, pz / ang
         s = np.sin(ang)
-        c = 1.0 - np.cos(ang)
-        r = np.empty((3, 3))
-        r[0, 0] = 1.0 - c * (ky * ky + kz * kz)
-        r[0, 1] = -s * kz + c * kx * ky
-        r[0, 2] = s * ky + c * kx * kz
-        r[1, 0] = s * kz + c * kx * ky
-        r[1, 1] = 1.0 - c * (kx * kx + kz * kz)
-        r[1, 2] = -s * kx + c * ky * kz
-        r[2, 0] = -s * ky + c * kx * kz
-        r[2, 1] = s * kx + c * ky * kz
-        r[2, 2] = 1.0 - c * (kx * kx + ky * ky)
-        rot[i] = r @ rot[i]
+        sh = np.sin(0.5 * ang)
+        c = 2.0 * sh * sh  # 1 − cos(ang) without cancellation at small angles
+        # Rodrigues matrix R, applied column by column: no temporary arrays per node
+        r00 = 1.0 - c * (ky * ky + kz * kz)
+        r01 = -s * kz + c * kx * ky
+        r02 = s * ky + c * kx * kz
+        r10 = s * kz + c * kx * ky
+        r11 = 1.0 - c * (kx * kx + kz * kz)
+        r12 = -s * kx + c * ky * kz
+        r20 = -s * ky + c * kx * kz
+        r21 = s * kx + c * ky * kz
+        r22 = 1.0 - c * (kx * kx + ky * ky)
+        for j in range(3):
+            a0, a1, a2 = rot[i, 0, j], rot[i, 1, j], rot[i, 2, j]
+            rot[i, 0, j] = r00 * a0 + r01 * a1 + r02 * a2
+            rot[i, 1, j] = r10 * a0 + r11 * a1 + r12 * a2
+            rot[i, 2, j] = r20 * a0 + r21 * a1 + r22 * a2
