@@ -131,6 +131,19 @@ def _normal(x, seg, s):
     return 0.0, 0.0, 0.0
 
 
+@njit(cache=True, inline="always")
+def _far(x, seg, s, px, py, pz, reach):
+    """True when p lies farther than ``reach`` outside the bounding box of
+    segment s: no point of the segment is within ``reach`` of it."""
+    for k in range(3):
+        p = px if k == 0 else (py if k == 1 else pz)
+        lo = min(x[seg[s, 0], k], x[seg[s, 1], k], x[seg[s, 2], k], x[seg[s, 3], k])
+        hi = max(x[seg[s, 0], k], x[seg[s, 1], k], x[seg[s, 2], k], x[seg[s, 3], k])
+        if p < lo - reach or p > hi + reach:
+            return True
+    return False
+
+
 # --- search -------------------------------------------------------------------------------------
 
 
@@ -312,6 +325,9 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
                 s = cand[c]
                 if alive[s] == 0:
                     continue
+                half = 0.5 * (sthick[i] + mthick[s])
+                if s != prev[i] and _far(x, seg, s, px, py, pz, half + onesided[s] * (depth[s] + 1e-2 * msize[s])):
+                    continue  # most candidates: cheaper than the closest point
                 sg = 0
                 w0, w1, w2, w3 = _closest(x, seg, s, px, py, pz)
                 n0, n1, n2, n3 = seg[s, 0], seg[s, 1], seg[s, 2], seg[s, 3]
@@ -320,7 +336,6 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
                 rz = pz - (w0 * x[n0, 2] + w1 * x[n1, 2] + w2 * x[n2, 2] + w3 * x[n3, 2])
                 d = math.sqrt(rx * rx + ry * ry + rz * rz)
                 nx, ny, nz = _normal(x, seg, s)
-                half = 0.5 * (sthick[i] + mthick[s])
                 tol = 1e-9 * msize[s]
                 sd = rx * nx + ry * ny + rz * nz
                 if onesided[s] != 0 and sd < 0.0:
