@@ -215,154 +215,158 @@ def _bc(w, a, c):
 
 
 @njit(cache=True)
-def _element(e, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, cs, ce, cx, cy, nip, rule, shrf,
-             hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy,
-             hg_energy, w, fe, me):
-    if alive[e] != 1:
-        _kill(e, fe, me)
-        return
-    nn = 3 if tri[e] == 1 else 4
-    area = _geometry(x, v, conn, e, nn, 0.5 * dt, w)
-    if area <= 0.0:
-        alive[e] = -1
-        _kill(e, fe, me)
-        return
-    _local_velocities(v, w_ang, conn, e, nn, w)
-    dx = dy = gxy = kx = ky = kxy = wx = wy = sx = sy = 0.0
-    for a in range(nn):
-        b1, b2 = w[_B1 + a], w[_B2 + a]
-        dx += b1 * w[_VX + a]
-        dy += b2 * w[_VY + a]
-        gxy += b2 * w[_VX + a] + b1 * w[_VY + a]
-        kx += b1 * w[_TY + a]
-        ky -= b2 * w[_TX + a]
-        kxy += b2 * w[_TY + a] - b1 * w[_TX + a]
-        wx += b1 * w[_VZ + a]
-        wy += b2 * w[_VZ + a]
-        sx += w[_TX + a]
-        sy += w[_TY + a]
-    gxz = wx + sy / nn
-    gyz = wy - sx / nn
-    quad = nn == 4
-    if quad and bwc == 1:
-        c = _warp_coef(w, area)
-        om = 0.5 * (gxy - 2.0 * (w[_B2] * w[_VX] + w[_B2 + 1] * w[_VX + 1] + w[_B2 + 2] * w[_VX + 2]
-                                 + w[_B2 + 3] * w[_VX + 3]))  # ½(∂v̂y/∂x − ∂v̂x/∂y): in-plane spin
-        for a in range(4):
-            c1, c2 = _bc(w, a, c)
-            ux = w[_VX + a] + om * w[_Y + a]  # in-plane velocity less the rigid spin
-            uy = w[_VY + a] - om * w[_X + a]
-            kx += c1 * ux
-            ky += c2 * uy
-            kxy += c2 * ux + c1 * uy
-    # through the thickness
-    t = thick[e]
-    m = mat_of[e]
-    p = props[m]
-    kind = mtype[m]
-    ks = shrf[e]
-    nk = nip[e]
-    r = rule[e]
-    n0 = n1 = n2 = m0 = m1 = m2 = q0 = q1 = 0.0
-    work = 0.0
-    dezs = 0.0
-    nfail = 0
-    for k in range(nk):
-        if ipfail[e, k] != 0:
-            nfail += 1
+def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, cs, ce, cx, cy, nip, rule,
+              shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq,
+              energy, hg_energy, w, fe, me):
+    """Elements e0 .. e1 - 1 (one chunk, one scratch row ``w``). One call per
+    chunk: a Numba call reference-counts each array argument, which per
+    element would cost more than a third of the element itself."""
+    for e in range(e0, e1):
+        if alive[e] != 1:
+            _kill(e, fe, me)
             continue
-        zeta = ZETA[r, nk, k]
-        wt = WEIGHT[r, nk, k]
-        z = 0.5 * zeta * t
-        d0 = (dx + z * kx) * dt
-        d1 = (dy + z * ky) * dt
-        d2 = (gxy + z * kxy) * dt
-        d3 = gyz * dt
-        d4 = gxz * dt
-        s = sig[e, k]
-        o0, o1, o2, o3, o4 = s[0], s[1], s[2], s[3], s[4]
-        ep, dez, failed = update_point(kind, p, mcurve[m], cs, ce, cx, cy, s, back[e, k], epsp[e, k],
-                                       d0, d1, d2, d3, d4, dt)
-        epsp[e, k] = ep
-        work += wt * 0.5 * ((o0 + s[0]) * d0 + (o1 + s[1]) * d1 + (o2 + s[2]) * d2
-                            + ks * ((o3 + s[3]) * d3 + (o4 + s[4]) * d4))
-        if failed:
-            ipfail[e, k] = 1
-            nfail += 1
-        dezs += wt * dez
-        n0 += wt * s[0]
-        n1 += wt * s[1]
-        n2 += wt * s[2]
-        m0 += wt * zeta * s[0]
-        m1 += wt * zeta * s[1]
-        m2 += wt * zeta * s[2]
-        q0 += wt * s[4]  # τzx
-        q1 += wt * s[3]  # τyz
-    energy[e] += area * t * work
-    if nfail == nk:
-        alive[e] = 0
-        for k in range(nk):
-            for i in range(5):
-                sig[e, k, i] = 0.0
-        _kill(e, fe, me)
-        return
-    if istupd == 1:
-        t = t * (1.0 + dezs)
-        thick[e] = t
-    # resultants per unit length: N = t Σwσ, M = t²/2 Σwζσ, Q = SHRF t Σwτ
-    n0, n1, n2 = t * n0, t * n1, t * n2
-    hm = 0.5 * t * t
-    m0, m1, m2 = hm * m0, hm * m1, hm * m2
-    qx, qy = ks * t * q0, ks * t * q1
-    # hourglass resistance at the mid-step geometry
-    h0 = h1 = h2 = h3 = h4 = 0.0
-    if quad and hg_kind[e] > 0:
-        h0, h1, h2, h3, h4 = _hourglass(e, w, area, t, dt, p[P_E], p[P_G], ks, rho[e], hg_kind[e], hg_qm[e],
-                                        hg_qb[e], hg_qw[e], sx, sy, hgq, hg_energy)
-    # forces at x(n+1)
-    area = _geometry(x, v, conn, e, nn, 0.0, w)
-    if area <= 0.0:
-        alive[e] = -1
-        _kill(e, fe, me)
-        return
-    zg4 = 0.0
-    if quad:
-        for a in range(4):
-            zg4 += w[_G + a] * w[_Z + a]
-        zg4 *= 0.25
-    inv = 1.0 / nn
-    sbwc = 0.0
-    c = 0.0
-    if quad and bwc == 1:
-        c = _warp_coef(w, area)
-        for a in range(4):
-            c1, c2 = _bc(w, a, c)
-            sbwc += area * ((m0 * c1 + m2 * c2) * w[_Y + a] - (m1 * c2 + m2 * c1) * w[_X + a])
-    for a in range(nn):
-        b1, b2 = w[_B1 + a], w[_B2 + a]
-        fx = area * (b1 * n0 + b2 * n2)
-        fy = area * (b2 * n1 + b1 * n2)
-        fz = area * (b1 * qx + b2 * qy)
-        mx = area * (-b2 * m1 - b1 * m2 - inv * qy)
-        my = area * (b1 * m0 + b2 * m2 + inv * qx)
-        if quad:
-            g = w[_G + a]
-            fx += g * h0
-            fy += g * h1
-            fz += g * h2
-            mx += g * h3 + zg4 * h1
-            my += g * h4 - zg4 * h0
-            if bwc == 1:
+        nn = 3 if tri[e] == 1 else 4
+        area = _geometry(x, v, conn, e, nn, 0.5 * dt, w)
+        if area <= 0.0:
+            alive[e] = -1
+            _kill(e, fe, me)
+            continue
+        _local_velocities(v, w_ang, conn, e, nn, w)
+        dx = dy = gxy = kx = ky = kxy = wx = wy = sx = sy = 0.0
+        for a in range(nn):
+            b1, b2 = w[_B1 + a], w[_B2 + a]
+            dx += b1 * w[_VX + a]
+            dy += b2 * w[_VY + a]
+            gxy += b2 * w[_VX + a] + b1 * w[_VY + a]
+            kx += b1 * w[_TY + a]
+            ky -= b2 * w[_TX + a]
+            kxy += b2 * w[_TY + a] - b1 * w[_TX + a]
+            wx += b1 * w[_VZ + a]
+            wy += b2 * w[_VZ + a]
+            sx += w[_TX + a]
+            sy += w[_TY + a]
+        gxz = wx + sy / nn
+        gyz = wy - sx / nn
+        quad = nn == 4
+        if quad and bwc == 1:
+            c = _warp_coef(w, area)
+            om = 0.5 * (gxy - 2.0 * (w[_B2] * w[_VX] + w[_B2 + 1] * w[_VX + 1] + w[_B2 + 2] * w[_VX + 2]
+                                     + w[_B2 + 3] * w[_VX + 3]))  # ½(∂v̂y/∂x − ∂v̂x/∂y): in-plane spin
+            for a in range(4):
                 c1, c2 = _bc(w, a, c)
-                fx += area * (m0 * c1 + m2 * c2) - 0.5 * sbwc * b2
-                fy += area * (m1 * c2 + m2 * c1) + 0.5 * sbwc * b1
-        for i in range(3):
-            fe[e, a, i] = -(fx * w[_E + i] + fy * w[_E + 3 + i] + fz * w[_E + 6 + i])
-            me[e, a, i] = -(mx * w[_E + i] + my * w[_E + 3 + i])
-    if not quad:
-        for i in range(3):
-            fe[e, 3, i] = 0.0
-            me[e, 3, i] = 0.0
+                ux = w[_VX + a] + om * w[_Y + a]  # in-plane velocity less the rigid spin
+                uy = w[_VY + a] - om * w[_X + a]
+                kx += c1 * ux
+                ky += c2 * uy
+                kxy += c2 * ux + c1 * uy
+        # through the thickness
+        t = thick[e]
+        m = mat_of[e]
+        p = props[m]
+        kind = mtype[m]
+        ks = shrf[e]
+        nk = nip[e]
+        r = rule[e]
+        n0 = n1 = n2 = m0 = m1 = m2 = q0 = q1 = 0.0
+        work = 0.0
+        dezs = 0.0
+        nfail = 0
+        for k in range(nk):
+            if ipfail[e, k] != 0:
+                nfail += 1
+                continue
+            zeta = ZETA[r, nk, k]
+            wt = WEIGHT[r, nk, k]
+            z = 0.5 * zeta * t
+            d0 = (dx + z * kx) * dt
+            d1 = (dy + z * ky) * dt
+            d2 = (gxy + z * kxy) * dt
+            d3 = gyz * dt
+            d4 = gxz * dt
+            s = sig[e, k]
+            o0, o1, o2, o3, o4 = s[0], s[1], s[2], s[3], s[4]
+            ep, dez, failed = update_point(kind, p, mcurve[m], cs, ce, cx, cy, s, back[e, k], epsp[e, k],
+                                           d0, d1, d2, d3, d4, dt)
+            epsp[e, k] = ep
+            work += wt * 0.5 * ((o0 + s[0]) * d0 + (o1 + s[1]) * d1 + (o2 + s[2]) * d2
+                                + ks * ((o3 + s[3]) * d3 + (o4 + s[4]) * d4))
+            if failed:
+                ipfail[e, k] = 1
+                nfail += 1
+            dezs += wt * dez
+            n0 += wt * s[0]
+            n1 += wt * s[1]
+            n2 += wt * s[2]
+            m0 += wt * zeta * s[0]
+            m1 += wt * zeta * s[1]
+            m2 += wt * zeta * s[2]
+            q0 += wt * s[4]  # τzx
+            q1 += wt * s[3]  # τyz
+        energy[e] += area * t * work
+        if nfail == nk:
+            alive[e] = 0
+            for k in range(nk):
+                for i in range(5):
+                    sig[e, k, i] = 0.0
+            _kill(e, fe, me)
+            continue
+        if istupd == 1:
+            t = t * (1.0 + dezs)
+            thick[e] = t
+        # resultants per unit length: N = t Σwσ, M = t²/2 Σwζσ, Q = SHRF t Σwτ
+        n0, n1, n2 = t * n0, t * n1, t * n2
+        hm = 0.5 * t * t
+        m0, m1, m2 = hm * m0, hm * m1, hm * m2
+        qx, qy = ks * t * q0, ks * t * q1
+        # hourglass resistance at the mid-step geometry
+        h0 = h1 = h2 = h3 = h4 = 0.0
+        if quad and hg_kind[e] > 0:
+            h0, h1, h2, h3, h4 = _hourglass(e, w, area, t, dt, p[P_E], p[P_G], ks, rho[e], hg_kind[e], hg_qm[e],
+                                            hg_qb[e], hg_qw[e], sx, sy, hgq, hg_energy)
+        # forces at x(n+1)
+        area = _geometry(x, v, conn, e, nn, 0.0, w)
+        if area <= 0.0:
+            alive[e] = -1
+            _kill(e, fe, me)
+            continue
+        zg4 = 0.0
+        if quad:
+            for a in range(4):
+                zg4 += w[_G + a] * w[_Z + a]
+            zg4 *= 0.25
+        inv = 1.0 / nn
+        sbwc = 0.0
+        c = 0.0
+        if quad and bwc == 1:
+            c = _warp_coef(w, area)
+            for a in range(4):
+                c1, c2 = _bc(w, a, c)
+                sbwc += area * ((m0 * c1 + m2 * c2) * w[_Y + a] - (m1 * c2 + m2 * c1) * w[_X + a])
+        for a in range(nn):
+            b1, b2 = w[_B1 + a], w[_B2 + a]
+            fx = area * (b1 * n0 + b2 * n2)
+            fy = area * (b2 * n1 + b1 * n2)
+            fz = area * (b1 * qx + b2 * qy)
+            mx = area * (-b2 * m1 - b1 * m2 - inv * qy)
+            my = area * (b1 * m0 + b2 * m2 + inv * qx)
+            if quad:
+                g = w[_G + a]
+                fx += g * h0
+                fy += g * h1
+                fz += g * h2
+                mx += g * h3 + zg4 * h1
+                my += g * h4 - zg4 * h0
+                if bwc == 1:
+                    c1, c2 = _bc(w, a, c)
+                    fx += area * (m0 * c1 + m2 * c2) - 0.5 * sbwc * b2
+                    fy += area * (m1 * c2 + m2 * c1) + 0.5 * sbwc * b1
+            for i in range(3):
+                fe[e, a, i] = -(fx * w[_E + i] + fy * w[_E + 3 + i] + fz * w[_E + 6 + i])
+                me[e, a, i] = -(mx * w[_E + i] + my * w[_E + 3 + i])
+        if not quad:
+            for i in range(3):
+                fe[e, 3, i] = 0.0
+                me[e, 3, i] = 0.0
 
 
 @njit(cache=True)
@@ -415,10 +419,9 @@ def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve
     nc = work.shape[0]
     for ch in prange(nc):
         w = work[ch]
-        for e in range(ch * n // nc, (ch + 1) * n // nc):
-            _element(e, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve_start, curve_stop, curve_x,
-                     curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp,
-                     ipfail, thick, alive, hgq, energy, hg_energy, w, fe, me)
+        _elements(ch * n // nc, (ch + 1) * n // nc, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve,
+                  curve_start, curve_stop, curve_x, curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho,
+                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, w, fe, me)
 
 
 @njit(cache=True, parallel=True)
