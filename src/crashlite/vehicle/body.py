@@ -118,9 +118,11 @@ def parts(engine_mass: float = 170.0, axle_mass: float = 73.0) -> list[PartDef]:
     for side, s in _sides():
         y0, y1 = _y(s, 410.0, 490.0)
         add(f"crash box {side}", f"crash box {side}", "DP600", 1.5, (_bx(610.0, 760.0, y0, y1, 390.0, 500.0),))
-        add(f"front rail {side}", f"front rail {side}", "DP800", 1.8, (_bx(-250.0, 610.0, y0, y1, 390.0, 500.0),))
-        add(f"rail extension {side}", f"front rail {side}", "DP600", 1.6,
-            (_hat_x(-550.0, -250.0, y0, y1, 250.0, 390.0), _px(-550.0, y0, y1, 250.0, 390.0)))
+        add(f"front rail {side}", f"front rail {side}", "DP600", 1.6, (_bx(-250.0, 610.0, y0, y1, 390.0, 500.0),))
+        # behind the firewall the rail goes on as a tall hat on the floor (the toe-board box), stiffer than
+        # the rail so that the rail folds in front of it
+        add(f"rail extension {side}", f"front rail {side}", "DP800", 2.0,
+            (_hat_x(-550.0, -250.0, y0, y1, 250.0, 500.0), _px(-550.0, y0, y1, 250.0, 500.0)))
     add("radiator support", "radiator support", "HX340LAD", 1.2, (
         _by(-680.0, 680.0, 560.0, 610.0, 700.0, 750.0), _by(-410.0, 410.0, 560.0, 610.0, 390.0, 460.0),
         _bz(500.0, 700.0, 560.0, 610.0, 410.0, 490.0), _bz(500.0, 700.0, 560.0, 610.0, -490.0, -410.0)))

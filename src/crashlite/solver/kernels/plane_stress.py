@@ -98,7 +98,7 @@ def rate_factor(p, mc, cs, ce, cx, cy, rate):
     return 1.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")  # inlined: a call per point would reference-count 8 arrays
 def update_point(mtype, p, mc, cs, ce, cx, cy, s, b, ep, d0, d1, d2, d3, d4, dt):
     """Stress update of one integration point.
 
