@@ -202,6 +202,12 @@ class LinearStatic:
         return [(m, np.unique(np.concatenate(s)), np.array(f, np.int64)) for m, s, f in merged.values()]
 
     def solve(self) -> StaticSolution:
+        """Solve for the loads given with ``load``."""
+        return self.solve_cases([self._loads])[0]
+
+    def solve_cases(self, cases) -> list[StaticSolution]:
+        """Solve several load cases on one factorisation: ``cases`` a list
+        of {node: (6,) force and moment}; one StaticSolution each."""
         notes = []
         n_all = self.n_total
         size = 6 * n_all
@@ -219,9 +225,10 @@ class LinearStatic:
                 notes.append(f"a rigid group of {len(nodes)} nodes holds a support: the group is fixed")
             fixed[members] = False
         k_full = self.stiffness_matrix()
-        f_full = np.zeros(size)
-        for node, v in self._loads.items():
-            f_full[6 * node:6 * node + 6] += v
+        f_full = np.zeros((size, len(cases)))
+        for c, loads in enumerate(cases):
+            for node, v in loads.items():
+                f_full[6 * node:6 * node + 6, c] += v
         # transformation: independent DOFs (free, not slaves) -> all DOFs
         indep = (slave_of < 0)[:, None] & ~fixed
         col = np.full((n_all, 6), -1)
@@ -261,7 +268,7 @@ class LinearStatic:
         live = diag > 1e-12 * max(float(np.abs(diag).max(initial=0.0)), 1e-300)
         if not live.all():
             dead = np.flatnonzero(~live)
-            if np.any(fr[dead] != 0):
+            if np.any(fr[dead] != 0.0):
                 raise ValueError("a load acts on a degree of freedom without stiffness")
             used = np.zeros(n_all, bool)  # nodes of elements and rigid groups
             for dofs, _ in self._blocks:
@@ -279,15 +286,20 @@ class LinearStatic:
             raise ValueError("nothing to solve: every degree of freedom is held")
         dof_node = np.repeat(np.arange(n_all), 6)[indep.ravel()][keep]
         q_live, residual = _factor_solve(kk, ff, dof_node)
-        q = np.zeros(n_q)
-        q[keep] = q_live
+        q = np.zeros((n_q, len(cases)))
+        q[keep] = q_live.reshape(len(keep), len(cases))
         u = t @ q
         react = k_full @ u - f_full
         held = fixed.any(axis=1)  # supported nodes, and the members of fixed rigid groups
         held |= (slave_of >= 0) & held[np.maximum(slave_of, 0)]
-        reaction = np.where(held[:, None], react.reshape(n_all, 6), 0.0)
-        total = f_full.reshape(n_all, 6)[:, :3].sum(axis=0) + reaction[:, :3].sum(axis=0)
-        scale = max(float(np.abs(f_full).max(initial=0.0)), 1e-300)
-        if np.abs(total).max() > 1e-6 * scale:
-            notes.append(f"loads and reactions differ by {np.abs(total).max():.3g} (not in equilibrium)")
-        return StaticSolution(u.reshape(n_all, 6), reaction, f_full.reshape(n_all, 6), len(keep), residual, notes)
+        out = []
+        for c in range(len(cases)):
+            reaction = np.where(held[:, None], react[:, c].reshape(n_all, 6), 0.0)
+            f_c = f_full[:, c].reshape(n_all, 6)
+            total = f_c[:, :3].sum(axis=0) + reaction[:, :3].sum(axis=0)
+            scale = max(float(np.abs(f_c).max(initial=0.0)), 1e-300)
+            case_notes = list(notes)
+            if np.abs(total).max() > 1e-6 * scale:
+                case_notes.append(f"loads and reactions differ by {np.abs(total).max():.3g} (not in equilibrium)")
+            out.append(StaticSolution(u[:, c].reshape(n_all, 6), reaction, f_c, len(keep), residual, case_notes))
+        return out

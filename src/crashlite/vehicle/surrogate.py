@@ -1,0 +1,404 @@
+"""Step 4 of the simplified vehicle: the spring–mass surrogate of the replaced structure.
+
+``build_surrogate`` turns a ``Cut`` and the figures of steps 1–3 into a
+deck that keeps the front FE structure up to the interface and replaces
+what lies behind it (the paper's figure 15):
+
+- the kept structure (``truncate``), every reference to the deleted
+  elements mended;
+- the *interface*: a nodal rigid body over the cut (one over the whole
+  interface, as the rigid load introduction of step 3, by default; or one
+  per assembly, ``interface="assembly"``), holding for every assembly a
+  node at the centre of its cut;
+- one linear spring per assembly (*MAT_SPRING_ELASTIC, k_i = share_i · K)
+  from that node rearwards along the *profile direction* of the assembly
+  (the mean in-plane direction of its replaced shells across the cut, the
+  axis of its beams), optionally with a viscous damper beside it;
+- the *rear body*: a nodal rigid body with the mass, CoG and inertia tensor
+  of the replaced structure (*CONSTRAINED_NODAL_RIGID_BODY_INERTIA) holding
+  the springs' rear ends, a node at the CoG, the node between the rear-axle
+  attachment points, and the history nodes of the replaced structure (so
+  nodout of the full and the simplified run compare node by node);
+- the rear-suspension / anti-rotation beam (*SECTION_BEAM ELFORM 2,
+  *MAT_ELASTIC) from the rear-axle node to the interface centre. The
+  springs carry the longitudinal stiffness and, through their spread over
+  the cut, pitch and yaw; the beam adds what axial springs cannot: shear
+  across the cut and roll. Its bending stiffness EI = k_t·L³/3 and
+  torsion GJ = k_r·L come from the replaced structure's own transverse and
+  roll stiffness at the interface (``transverse_stiffness``: the step-3
+  static model loaded across instead of along); its axial stiffness is a
+  small fraction ``beam_axial`` of K, taken from the springs so that the
+  longitudinal stiffness stays K.
+
+The total mass is the full model's: kept elements and point masses stay,
+everything replaced is the rear body's (less the beam's own small mass).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..model.mesh import Beams, Discretes, Nodes
+from ..model.model import Model
+from .cut import ELEMENT_TABLES, Cut
+from .massprops import ReplacedMass
+from .records import id_list, record
+from .truncate import Truncated, truncate
+
+STEEL_E, STEEL_NU, STEEL_RHO = 210000.0, 0.3, 7.85e-9  # MPa, -, t/mm³ (mm–t–s)
+
+
+@dataclass
+class Spring:
+    """One load-path spring of the surrogate."""
+
+    assembly: str
+    share: float  # load-path share (fraction)
+    k: float  # stiffness [force/length]
+    damping: float  # viscous constant of the damper beside it (0: none) [force·time/length]
+    front: np.ndarray  # (3,) node on the interface [length]
+    rear: np.ndarray  # (3,) node on the rear body [length]
+    direction: np.ndarray  # (3,) unit profile direction (rearwards)
+    interface_nodes: int  # cut nodes of the assembly
+    element_id: int = 0
+    part_id: int = 0
+
+
+@dataclass
+class Surrogate:
+    """The simplified vehicle (step 4) and what it was built from."""
+
+    model: Model
+    springs: list
+    stiffness: float  # K of step 3 [force/length]
+    mass: ReplacedMass
+    truncated: Truncated
+    node_ids: dict  # "cog", "axle", "interface centre" -> deck node ID
+    part_ids: dict  # "rear body", "interface", "beam", spring parts -> ID
+    beam: dict  # length, EA, EI, GJ of the anti-rotation beam
+    interface: str = "rigid"
+    notes: list = field(default_factory=list)
+
+    def write(self, path, fmt: str = "fixed") -> Path:
+        from ..keyword.writer import write_deck
+
+        return write_deck(self.model, path, fmt=fmt)[0]
+
+    def summary(self) -> dict:
+        """Every figure of the surrogate, JSON-ready."""
+        full = self.truncated
+        return {
+            "interface": self.interface,
+            "longitudinal_stiffness": self.stiffness,
+            "springs": [{"assembly": s.assembly, "share_percent": 100.0 * s.share, "stiffness": s.k,
+                         "damping": s.damping, "direction": s.direction.tolist(), "front": s.front.tolist(),
+                         "rear": s.rear.tolist(), "interface_nodes": s.interface_nodes} for s in self.springs],
+            "rear_body": {"mass": self.mass.structure.mass, "cog": self.mass.structure.cog.tolist(),
+                          "inertia": self.mass.structure.inertia.tolist()},
+            "rear_axle_point": None if self.mass.axle_points is None else self.mass.axle_points.tolist(),
+            "beam": dict(self.beam),
+            "kept": {"nodes": len(self.model.nodes), "shells": len(self.model.shells),
+                     "solids": len(self.model.solids), "parts": len(full.kept_parts)},
+            "deleted": {"parts": len(full.dropped_parts),
+                        "nodes": int((full.node_map < 0).sum())},
+            "node_ids": dict(self.node_ids), "part_ids": dict(self.part_ids), "notes": list(self.notes),
+        }
+
+
+def profile_direction(cut: Cut, pids, nodes: np.ndarray, rows: int = 2) -> tuple[np.ndarray, float]:
+    """Unit direction (rearwards) in which the replaced elements of parts
+    ``pids`` leave the cut at ``nodes``, and how much of it is along the
+    vehicle axis (|d·axis|): from the centre of the cut nodes to the centre
+    of the nodes ``rows`` element rows behind them (the member's centre
+    line, whatever its section or the angle the cut makes with it). No
+    element behind the cut: −axis."""
+    m = cut.model
+    a = cut.axis
+    xyz = m.nodes.xyz
+    conns = []
+    for table in ELEMENT_TABLES:
+        tab = getattr(m, table)
+        if len(tab):
+            conn = tab.nodes[cut.replaced[table] & np.isin(tab.pid, list(pids))]
+            conns.append(conn[:, :2] if table in ("beams", "discretes") else conn)
+    front = np.zeros(len(m.nodes), bool)
+    front[nodes] = True
+    seen = front.copy()
+    ring = front
+    for _ in range(rows):
+        nxt = np.zeros(len(m.nodes), bool)
+        for conn in conns:
+            touch = (ring[np.maximum(conn, 0)] & (conn >= 0)).any(axis=1)
+            c = conn[touch]
+            nxt[c[c >= 0]] = True
+        nxt &= ~seen
+        if not nxt.any():
+            break
+        seen |= nxt
+        ring = nxt
+    if ring is front:
+        return -a, 1.0
+    d = xyz[ring].mean(axis=0) - xyz[nodes].mean(axis=0)
+    if not np.linalg.norm(d) > 0 or d @ a >= 0:
+        return -a, 1.0
+    d = d / np.linalg.norm(d)
+    return d, float(abs(d @ a))
+
+
+def _next(ids) -> int:
+    ids = [int(i) for i in ids]
+    return max(ids, default=0) + 1
+
+
+class _Ids:
+    """Fresh IDs above every ID the model has, per kind."""
+
+    def __init__(self, m: Model):
+        el = [getattr(m, t).ids for t in ELEMENT_TABLES + ("masses", "inertias")]
+        self.node = _next(m.nodes.ids)
+        self.element = _next(np.concatenate(el)) if el else 1
+        self.part = _next(list(m.parts) + [int(r.get("pid", 0) or 0) for r in m.find("CONSTRAINED_NODAL_RIGID_BODY")])
+        self.section = _next(m.sections)
+        self.material = _next(m.materials)
+        self.set = _next([sid for (kind, sid) in m.sets if kind == "NODE"])
+
+    def take(self, kind: str, n: int = 1) -> int:
+        first = getattr(self, kind)
+        setattr(self, kind, first + n)
+        return first
+
+
+def _history_nodes(model: Model) -> np.ndarray:
+    """Node indices of *DATABASE_HISTORY_NODE (IDs and sets)."""
+    out = []
+    for rec in model.find("DATABASE_HISTORY_NODE"):
+        ids = np.concatenate([np.asarray(v) for k, v in (rec.rows or {}).items() if k.startswith("id")] or [[]])
+        ids = ids[ids > 0].astype(np.int64)
+        if "SET" in rec.options:
+            ids = np.concatenate([model.set_members("NODE", int(s)) for s in ids] or [np.zeros(0, np.int64)])
+        out.append(model.node_index(ids))
+    idx = np.concatenate(out) if out else np.zeros(0, np.int64)
+    return np.unique(idx[idx >= 0]).astype(np.int64)
+
+
+def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, mass: ReplacedMass,
+                    transverse: dict | None = None, interface: str = "rigid", spring_length: float = 100.0,
+                    damping_ratio: float = 0.0, beam_axial: float = 1e-3, keep_nodes=None) -> Surrogate:
+    """The surrogate deck (module docstring).
+
+    assemblies     name -> part IDs of the full model (the interface groups)
+    shares         name -> load-path share (step 1); assemblies without a share get no spring
+    stiffness      K of step 3 [force/length]
+    mass           step 2 (its ``axle_points`` anchor the anti-rotation beam; without them, the CoG)
+    transverse     {"shear": k_t [force/length], "roll": k_r [force·length/rad]} of the replaced
+                   structure at the interface (``transverse_stiffness``); None: the beam gets
+                   the stiffness of a steel tube carrying K axially
+    interface      "rigid" (one nodal rigid body over the cut) or "assembly" (one per assembly)
+    spring_length  length of each spring along its profile direction [length]
+    damping_ratio  ζ of the dampers, c_i = share_i · 2ζ·√(K·M) (0: springs only, as the paper)
+    beam_axial     the beam's axial stiffness as a fraction of K
+    keep_nodes     more removed nodes (indices) to move with the rear body
+    """
+    if interface not in ("rigid", "assembly"):
+        raise ValueError(f"interface must be 'rigid' or 'assembly', got {interface!r}")
+    if not stiffness > 0:
+        raise ValueError(f"the longitudinal stiffness must be positive, got {stiffness}")
+    full = cut.model
+    notes = list(cut.notes)
+    total = sum(float(shares.get(n, 0.0)) for n in assemblies)
+    unknown = sorted(set(shares) - set(assemblies))
+    if unknown:
+        raise KeyError(f"shares for assemblies without parts: {unknown}")
+    if not total > 0:
+        raise ValueError("no assembly has a load-path share")
+    groups = cut.assembly_interface(assemblies)
+    hist = _history_nodes(full)
+    ride = hist[cut.removed_nodes[hist]]
+    if keep_nodes is not None:
+        ride = np.union1d(ride, np.asarray(keep_nodes, np.int64))
+    tr = truncate(cut, keep=ride)
+    notes += tr.notes
+    m = tr.model
+    ids = _Ids(m)
+    new_xyz, new_ids = [], []
+
+    def node(p) -> int:
+        nid = ids.take("node")
+        new_xyz.append(np.asarray(p, float))
+        new_ids.append(nid)
+        return nid
+
+    # rigid groups the cut keeps may not share nodes with the interface body
+    bound = np.zeros(len(full.nodes), bool)
+    for g in cut.groups:
+        if not cut.removed_nodes[g.nodes].all():
+            bound[g.nodes] = True
+    cut_nodes = cut.interface_nodes[~bound[cut.interface_nodes]]
+    if len(cut_nodes) < len(cut.interface_nodes):
+        notes.append(f"{len(cut.interface_nodes) - len(cut_nodes)} interface node(s) of spot welds, nodal rigid "
+                     "bodies or rigid parts left out of the interface rigid body")
+    xyz = full.nodes.xyz
+    centre = xyz[cut_nodes].mean(axis=0)
+    axle = mass.axle_points
+    if axle is None:
+        axle = mass.structure.cog
+        notes.append("no rear-axle attachment points: the anti-rotation beam starts at the CoG")
+    g_id, a_id, i_id = node(mass.structure.cog), node(axle), node(centre)
+    k_beam = beam_axial * stiffness
+    k_springs = stiffness - k_beam
+    total_m = float(mass.structure.mass)
+    springs = []
+    for name in assemblies:
+        s = float(shares.get(name, 0.0)) / total
+        nodes_i = groups[name]
+        nodes_i = nodes_i[~bound[nodes_i]]
+        if s <= 0:
+            notes.append(f"assembly {name!r}: no load-path share, no spring")
+            continue
+        if not len(nodes_i):
+            raise ValueError(f"assembly {name!r} has a share of {100 * s:.1f} % but no node on the interface")
+        d, along = profile_direction(cut, assemblies[name], nodes_i)
+        front = xyz[nodes_i].mean(axis=0)
+        c = s * 2.0 * damping_ratio * np.sqrt(stiffness * total_m)
+        springs.append(Spring(name, s, s * k_springs, c, front, front + spring_length * d, d, len(nodes_i)))
+        if along < 0.9:
+            notes.append(f"assembly {name!r}: profile {np.degrees(np.arccos(min(along, 1.0))):.0f}° off the "
+                         "vehicle axis")
+    front_ids = [node(s.front) for s in springs]
+    rear_ids = [node(s.rear) for s in springs]
+    nodes = Nodes.zeros(len(new_ids))
+    nodes.ids = np.array(new_ids, np.int64)
+    nodes.xyz = np.array(new_xyz)
+    m.nodes = Nodes.concat([m.nodes, nodes])
+    index = {int(n): k for k, n in enumerate(m.nodes.ids[-len(new_ids):], start=len(m.nodes) - len(new_ids))}
+
+    def node_set(title, deck_ids) -> int:
+        sid = ids.take("set")
+        m.sets[("NODE", sid)] = id_list("SET_NODE_LIST_TITLE", sid, np.unique(np.asarray(deck_ids, np.int64)),
+                                        title=title)
+        return sid
+
+    part_ids = {}
+    # --- interface rigid bodies -------------------------------------------------------------------
+    kept_ids = lambda idx: full.nodes.ids[idx]  # noqa: E731 (full and kept models share node IDs)
+    if interface == "rigid":
+        pid = ids.take("part")
+        sid = node_set("surrogate interface", np.concatenate([kept_ids(cut_nodes), front_ids, [i_id]]))
+        m.keywords.append(record("CONSTRAINED_NODAL_RIGID_BODY", pid=pid, nsid=sid))
+        part_ids["interface"] = pid
+    else:
+        nearest = int(np.argmin([np.linalg.norm(s.front - centre) for s in springs]))
+        for k, (s, f) in enumerate(zip(springs, front_ids)):
+            own = groups[s.assembly][~bound[groups[s.assembly]]]
+            extra = [f, i_id] if k == nearest else [f]
+            pid = ids.take("part")
+            sid = node_set(f"surrogate interface {s.assembly}", np.concatenate([kept_ids(own), extra]))
+            m.keywords.append(record("CONSTRAINED_NODAL_RIGID_BODY", pid=pid, nsid=sid))
+            part_ids[f"interface {s.assembly}"] = pid
+        notes.append(f"interface per assembly: the anti-rotation beam ends on the rigid body of "
+                     f"{springs[nearest].assembly!r}, the one nearest the interface centre")
+    # --- springs and dampers ------------------------------------------------------------------------
+    sec = ids.take("section")
+    m.sections[sec] = record("SECTION_DISCRETE_TITLE", card_title="surrogate springs", secid=sec)
+    disc = Discretes.zeros(0)
+    rows = []
+    for s, f, r in zip(springs, front_ids, rear_ids):
+        for kind, value in (("spring", s.k), ("damper", s.damping)):
+            if kind == "damper" and not value > 0:
+                continue
+            mid, pid, eid = ids.take("material"), ids.take("part"), ids.take("element")
+            if kind == "spring":
+                m.materials[mid] = record("MAT_SPRING_ELASTIC_TITLE", card_title=f"spring {s.assembly}", mid=mid,
+                                          k=value)
+                s.element_id, s.part_id = eid, pid
+            else:
+                m.materials[mid] = record("MAT_DAMPER_VISCOUS_TITLE", card_title=f"damper {s.assembly}", mid=mid,
+                                          dc=value)
+            m.parts[pid] = record("PART", heading=f"surrogate {kind} {s.assembly}", pid=pid, secid=sec, mid=mid)
+            part_ids[f"{kind} {s.assembly}"] = pid
+            rows.append((eid, pid, index[f], index[r]))
+    if rows:
+        r = np.array(rows, np.int64)
+        disc = Discretes.zeros(len(r))
+        disc.ids, disc.pid = r[:, 0], r[:, 1]
+        disc.nodes = r[:, 2:4].astype(np.int32)
+        m.discretes = Discretes.concat([m.discretes, disc])
+    # --- anti-rotation / rear-suspension beam ---------------------------------------------------------
+    length = float(np.linalg.norm(centre - axle))
+    if not length > 0:
+        raise ValueError("the rear-axle point lies on the interface centre: no anti-rotation beam")
+    area = k_beam * length / STEEL_E
+    if transverse is not None:
+        ei = float(transverse["shear"]) * length**3 / 3.0
+        gj = float(transverse["roll"]) * length
+    else:  # a thin steel tube of the same axial stiffness as the springs together
+        r_t = np.sqrt(stiffness * length / STEEL_E / (2 * np.pi * 2.0))  # 2 mm wall
+        ei = STEEL_E * np.pi * r_t**3 * 2.0
+        gj = ei / (1 + STEEL_NU)
+        notes.append("no transverse stiffness given: the anti-rotation beam is a steel tube of stiffness K")
+    iss = itt = ei / STEEL_E
+    irr = gj * 2 * (1 + STEEL_NU) / STEEL_E
+    sec_b, mid_b, pid_b, eid_b = ids.take("section"), ids.take("material"), ids.take("part"), ids.take("element")
+    m.sections[sec_b] = record("SECTION_BEAM_TITLE", card_title="surrogate anti-rotation beam", secid=sec_b, elform=2,
+                               a=area, iss=iss, itt=itt, irr=irr)
+    m.materials[mid_b] = record("MAT_ELASTIC_TITLE", card_title="surrogate anti-rotation beam", mid=mid_b,
+                                ro=STEEL_RHO, e=STEEL_E, pr=STEEL_NU)
+    m.parts[pid_b] = record("PART", heading="surrogate anti-rotation beam", pid=pid_b, secid=sec_b, mid=mid_b)
+    part_ids["beam"] = pid_b
+    bm = Beams.zeros(1)
+    bm.ids[:] = eid_b
+    bm.pid[:] = pid_b
+    bm.nodes[0] = [index[a_id], index[i_id], -1]
+    m.beams = Beams.concat([m.beams, bm])
+    beam_mass = STEEL_RHO * area * length
+    # --- rear body ----------------------------------------------------------------------------------
+    pid = ids.take("part")
+    rear_members = np.concatenate([[g_id, a_id], rear_ids, full.nodes.ids[ride]])
+    sid = node_set("surrogate rear body", rear_members)
+    c, t = mass.structure.cog, mass.structure.inertia
+    m.keywords.append(record("CONSTRAINED_NODAL_RIGID_BODY_INERTIA", pid=pid, nsid=sid, xc=float(c[0]),
+                             yc=float(c[1]), zc=float(c[2]), tm=total_m - beam_mass, nodeid=g_id,
+                             ixx=float(t[0, 0]), ixy=float(t[0, 1]), ixz=float(t[0, 2]), iyy=float(t[1, 1]),
+                             iyz=float(t[1, 2]), izz=float(t[2, 2])))
+    part_ids["rear body"] = pid
+    title = next((r for r in m.keywords if getattr(r, "keyword", "") == "TITLE"), None)
+    if title is not None:
+        title["title"] = (str(title.get("title", "")) + " - simplified (surrogate)").strip(" -")[:80]
+    if len(ride):
+        notes.append(f"{len(ride)} history node(s) of the replaced structure move with the rear body")
+    beam = {"length": length, "axial_stiffness": k_beam, "EI": ei, "GJ": gj, "mass": beam_mass}
+    return Surrogate(m, springs, float(stiffness), mass, tr, {"cog": g_id, "axle": a_id, "interface centre": i_id},
+                     part_ids, beam, interface, notes)
+
+
+def transverse_stiffness(cut: Cut, support, interface_nodes=None, force: float = 1000.0,
+                         moment: float = 1.0e6) -> dict:
+    """Shear and roll stiffness of the replaced structure at the interface,
+    borne at ``support`` like step 3: the rigid interface loaded across the
+    axis (both transverse directions, the softer taken) and about it.
+    Returns {"shear": k_t [force/length], "roll": k_r [force·length/rad], "lateral", "vertical"}."""
+    from .massprops import _nodes
+    from .stiffness import build_static
+
+    a = cut.axis
+    ref = np.array([0.0, 0.0, 1.0]) if abs(a[2]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    e_lat = np.cross(ref, a)
+    e_lat /= np.linalg.norm(e_lat)
+    e_ver = np.cross(a, e_lat)
+    nodes = cut.interface_nodes if interface_nodes is None else _nodes(cut.model, interface_nodes)
+    ls, _, _ = build_static(cut.model, cut.replaced)
+    sup = _nodes(cut.model, support)
+    ls.fix(sup[ls.in_structure[sup]])
+    master = ls.add_rigid(nodes[ls.in_structure[nodes]])
+    cases = {"lateral": (e_lat * force, np.zeros(3)), "vertical": (e_ver * force, np.zeros(3)),
+             "roll": (np.zeros(3), a * moment)}
+    sols = ls.solve_cases([{master: np.concatenate(fm)} for fm in cases.values()])
+    out = {}
+    for (key, (f, _)), sol in zip(cases.items(), sols):
+        u = sol.u[master]
+        out[key] = moment / float(u[3:] @ a) if key == "roll" else force / float(u[:3] @ (f / force))
+    out["shear"] = min(out["lateral"], out["vertical"])
+    return out

@@ -1,0 +1,175 @@
+"""Step 4: truncation and the spring–mass surrogate, on tubes with known answers."""
+
+import numpy as np
+import pytest
+from _structures import E, NU, RHO, shell_model, tube_mesh
+
+from crashlite import read_deck
+from crashlite.model.mesh import Masses
+from crashlite.solver import run
+from crashlite.vehicle.cut import cut_behind
+from crashlite.vehicle.massprops import replaced_mass
+from crashlite.vehicle.records import id_list, record
+from crashlite.vehicle.stiffness import longitudinal_stiffness, structure_stiffness
+from crashlite.vehicle.surrogate import build_surrogate, transverse_stiffness
+from crashlite.vehicle.truncate import truncate
+
+B, L, T = 50.0, 500.0, 1.5  # tube side (mid-line), length, wall [mm]
+M_FRONT, M_REAR = 0.1, 0.1  # point masses at the front and rear ends [t]
+
+
+def _tube(per_side=4, n_len=20, length=L, masses=True):
+    """A tube along x (rear end x = 0, front x = length) with point masses
+    on both end rings, the rear ring as a node set "axle", history nodes at
+    both ends."""
+    xyz, quads = tube_mesh(B, length, per_side, n_len)
+    m = shell_model(xyz, quads, thickness=T)
+    rear = np.flatnonzero(np.isclose(xyz[:, 0], 0.0))
+    front = np.flatnonzero(np.isclose(xyz[:, 0], length))
+    if masses:
+        node = np.concatenate([front, rear])
+        ms = Masses.zeros(len(node))
+        ms.ids = np.arange(1, len(node) + 1) + 1000
+        ms.node = node.astype(np.int32)
+        ms.mass = np.concatenate([np.full(len(front), M_FRONT / len(front)), np.full(len(rear), M_REAR / len(rear))])
+        m.masses = ms
+    m.sets[("NODE", 1)] = id_list("SET_NODE_LIST_TITLE", 1, m.nodes.ids[rear], title="axle")
+    m.keywords.append(record("DATABASE_HISTORY_NODE_ID", rows={
+        "id": m.nodes.ids[[front[0], rear[0]]], "heading": np.array(["front", "rear"], object)}))
+    return m, front, rear
+
+
+def test_truncation_keeps_the_front_and_mends_references():
+    m, front, rear = _tube()
+    cut = cut_behind(m, x=L / 2)
+    tr = truncate(cut)
+    k = tr.model
+    assert len(k.shells) == len(m.shells) // 2
+    assert k.nodes.xyz[:, 0].min() == pytest.approx(L / 2)  # the cut ring is the rearmost
+    assert ("NODE", 1) not in k.sets  # the rear ring (axle) went with the replaced half
+    hist = k.find("DATABASE_HISTORY_NODE")[0]
+    assert hist.rows["id"].tolist() == [m.nodes.ids[front[0]]]
+    assert any("axle" in n for n in tr.notes)
+    kept = k.mass_properties().mass
+    rep = replaced_mass(cut).structure.mass
+    assert kept + rep == pytest.approx(m.mass_properties().mass, rel=1e-12)
+
+
+def _surrogate(m, shares=None, transverse=None, **kw):
+    cut = cut_behind(m, x=L / 2)
+    rm = replaced_mass(cut, axle_nodes="axle")
+    k = longitudinal_stiffness(cut, "axle")
+    asm = {"tube": [1]}
+    return cut, rm, k, build_surrogate(cut, asm, shares or {"tube": 1.0}, k.stiffness, rm, transverse, **kw)
+
+
+def test_surrogate_mass_stiffness_and_deck():
+    m, front, rear = _tube()
+    cut, rm, k, s = _surrogate(m)
+    # K of the rear half is that of the tube: E·A/l (A = 4·b·t) within the shell model's 1 %
+    assert k.stiffness == pytest.approx(E * 4 * B * T / (L / 2), rel=0.01)
+    (sp,) = s.springs
+    np.testing.assert_allclose(sp.direction, [-1.0, 0.0, 0.0], atol=1e-12)
+    assert sp.k == pytest.approx((1 - 1e-3) * k.stiffness, rel=1e-12)
+    # everything replaced is the rear body's: the total mass and CoG stay the full model's
+    nrb = s.model.find("CONSTRAINED_NODAL_RIGID_BODY_INERTIA")[0]
+    kept = s.model.mass_properties()
+    full = m.mass_properties()
+    assert kept.mass + nrb["tm"] == pytest.approx(full.mass, rel=1e-12)  # the beam's mass is in the kept model
+    cog = (kept.mass * kept.cog + nrb["tm"] * np.array([nrb["xc"], nrb["yc"], nrb["zc"]])) / (kept.mass + nrb["tm"])
+    np.testing.assert_allclose(cog, full.cog, atol=1e-3)
+    # the rear history node rides with the rear body
+    rear_id = int(m.nodes.ids[rear[0]])
+    assert rear_id in s.model.set_members("NODE", int(nrb["nsid"]))
+    # the written deck reads back to the same model, and its surrogate part is as stiff as K
+    path = s.write(_tmp() / "surrogate.k")
+    back = read_deck(path)
+    assert back == s.model
+    body = ("set", int(nrb["nsid"]))
+    iface = s.model.find("CONSTRAINED_NODAL_RIGID_BODY")[0]
+    assert "INERTIA" not in iface.options
+    ks = structure_stiffness(back, body, ("set", int(iface["nsid"])), direction=(-1.0, 0.0, 0.0))
+    assert ks.stiffness == pytest.approx(k.stiffness, rel=1e-9)
+
+
+def _tmp():
+    import tempfile
+    from pathlib import Path
+
+    return Path(tempfile.mkdtemp())
+
+
+def test_profile_direction_follows_an_inclined_tube():
+    xyz, quads = tube_mesh(B, L, 4, 20)
+    ang = np.radians(30.0)
+    rot = np.array([[np.cos(ang), 0, -np.sin(ang)], [0, 1, 0], [np.sin(ang), 0, np.cos(ang)]])
+    m = shell_model(xyz @ rot.T, quads, thickness=T)
+    rear = np.flatnonzero(np.isclose(xyz[:, 0], 0.0))
+    m.sets[("NODE", 1)] = id_list("SET_NODE_LIST_TITLE", 1, m.nodes.ids[rear], title="axle")
+    cut = cut_behind(m, x=L / 2 * np.cos(ang))
+    rm = replaced_mass(cut, axle_nodes="axle")
+    s = build_surrogate(cut, {"tube": [1]}, {"tube": 1.0}, 1000.0, rm)
+    np.testing.assert_allclose(s.springs[0].direction, -rot[:, 0], atol=0.02)
+    assert any("off the vehicle axis" in n for n in s.notes)
+
+
+def test_transverse_stiffness_of_a_clamped_tube():
+    """Shear (Timoshenko cantilever, tip free to rotate) and torsion (Bredt)
+    of the replaced half, clamped at its rear ring, within 4 %."""
+    m, _, _ = _tube(per_side=8, n_len=40, masses=False)
+    cut = cut_behind(m, x=L / 2)
+    t = transverse_stiffness(cut, "axle")
+    g = E / (2 * (1 + NU))
+    ln = L / 2
+    i = 2.0 / 3.0 * T * B**3
+    bend = 1.0 / (ln**3 / (3 * E * i) + ln / (g * 2 * B * T))
+    assert t["vertical"] == pytest.approx(bend, rel=0.04)
+    assert t["lateral"] == pytest.approx(bend, rel=0.04)
+    j = 4 * (B * B) ** 2 * T / (4 * B)
+    assert t["roll"] == pytest.approx(g * j / ln, rel=0.04)
+
+
+def _oscillator(model, rear_nodes, v0=-2000.0, end=0.006):
+    """The model with the rear nodes moving away at v0 [mm/s], the front at rest."""
+    sid = 99
+    model.sets[("NODE", sid)] = id_list("SET_NODE_LIST", sid, model.nodes.ids[rear_nodes])
+    model.keywords += [record("INITIAL_VELOCITY", nsid=sid, vx=v0), record("CONTROL_TERMINATION", endtim=end),
+                       record("CONTROL_TIMESTEP", tssfac=0.9), record("DATABASE_NODOUT", dt=2e-5),
+                       record("DATABASE_GLSTAT", dt=2e-5)]
+    return run(model, output_dt=2e-5)
+
+
+def _first_peak_time(t, v):
+    k = int(np.argmax(v[: len(v) * 3 // 4]))
+    return t[k]
+
+
+def test_surrogate_oscillates_like_the_full_tube():
+    """Two point masses joined by the tube: the rear mass set moving at v0.
+    The front mass's velocity peaks at half the period of the two-mass
+    oscillator, T/2 = π·√(μ/k) (μ = m1·m2/(m1+m2), k = E·A/l of the whole
+    tube): the full shell tube and the surrogate (front half + spring K of
+    the rear half + rear rigid body) within 4 % of it and of each other;
+    energy conserved within 1 % in both."""
+    m, front, rear = _tube()
+    m_tube = RHO * 4 * B * T * L
+    cut, rm, k, s = _surrogate(m)
+    full = _oscillator(m, np.flatnonzero(m.nodes.xyz[:, 0] < L / 2 - 1e-9))
+    sm = s.model
+    body = sm.find("CONSTRAINED_NODAL_RIGID_BODY_INERTIA")[0]
+    sur = _oscillator(sm, sm.node_index(sm.set_members("NODE", int(body["nsid"]))))
+    m1, m2 = M_FRONT + m_tube / 4, M_REAR + m_tube / 4  # the tube's mass shared by the two ends
+    mu = m1 * m2 / (m1 + m2)
+    half = np.pi * np.sqrt(mu / (E * 4 * B * T / L))
+    ids = list(full.history_nodes)
+    f_idx = ids.index(int(m.nodes.ids[front[0]]))
+    t_full = _first_peak_time(full.time, -full.node_velocity[:, f_idx, 0])
+    t_sur = _first_peak_time(sur.time, -sur.node_velocity[:, list(sur.history_nodes).index(int(m.nodes.ids[front[0]])), 0])
+    assert t_full == pytest.approx(half, rel=0.04)
+    assert t_sur == pytest.approx(half, rel=0.04)
+    assert t_sur == pytest.approx(t_full, rel=0.04)
+    for r in (full, sur):
+        assert np.all(np.abs(r.energy_ratio - 1.0) < 0.01)
+    # momentum: the rear body's velocity at the start is v0 in both
+    r_idx = list(sur.history_nodes).index(int(m.nodes.ids[rear[0]]))
+    assert sur.node_velocity[0, r_idx, 0] == pytest.approx(-2000.0, rel=1e-6)
