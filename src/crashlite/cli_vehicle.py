@@ -43,6 +43,32 @@ def _odb(args) -> int:
     return 0
 
 
+def _reduce(args) -> int:
+    from .vehicle.reduce import reduce_vehicle
+
+    t0 = time.perf_counter()
+    red = reduce_vehicle(args.deck, args.results, load_cases=args.load_case, interface=args.interface,
+                         support=args.support,
+                         axle_parts=None if args.axle_parts is None else [int(p) if p.isdigit() else p
+                                                                          for p in args.axle_parts], shares=args.shares,
+                         t_end=None if args.t_end is None else args.t_end / 1000.0 * _seconds(args.deck),
+                         interface_mode=args.interface_mode, spring_length=args.spring_length,
+                         damping_ratio=args.damping_ratio, quiet=False)
+    files = red.write(args.output, args.report, fmt=args.format)
+    s = red.summary()["model_size"]
+    print(f"wrote {files['deck']} ({s['simplified_elements']} of {s['full_elements']} elements, "
+          f"{s['element_reduction_percent']:.1f} % fewer; {s['removed_mass_percent']:.1f} % of the mass replaced), "
+          f"{files['summary']} and {files['html']} in {time.perf_counter() - t0:.1f} s")
+    return 0
+
+
+def _seconds(deck) -> float:
+    """Time units per second of a deck's unit system (from its densities)."""
+    from .vehicle.loadcases import vehicle_info
+
+    return vehicle_info(deck).units.time
+
+
 def add_commands(sub) -> None:
     """Register ``vehicle`` and its subcommands on the top-level parser."""
     fmt = argparse.ArgumentDefaultsHelpFormatter
@@ -80,3 +106,24 @@ def add_commands(sub) -> None:
     o.add_argument("--side", choices=("left", "right"), default="left", help="driver side")
     o.add_argument("--barrier-size", type=float, default=20.0, help="element size of the detailed barrier [mm]")
     o.set_defaults(func=_odb)
+    r = vsub.add_parser("reduce", formatter_class=fmt,
+                        help="the four-step simplified vehicle from a full deck and its runs")
+    r.add_argument("deck", type=Path, help="full vehicle deck (interface cross sections titled by assembly)")
+    r.add_argument("--results", type=Path, nargs="+", required=True,
+                   help="results of full runs, one per load case (crashlite folder, LS-DYNA binout or ASCII)")
+    r.add_argument("--load-case", nargs="+", default=None, help="names of the load cases, in the order of --results")
+    r.add_argument("-o", "--output", type=Path, required=True, help="simplified deck to write")
+    r.add_argument("--report", type=Path, default=None, help="folder of reduction.json/.html (default: beside -o)")
+    r.add_argument("--interface", type=float, default=None,
+                   help="x of the interface [deck length unit] (default: the plane of the cross sections)")
+    r.add_argument("--support", default=None,
+                   help="rear-axle attachment points: *SET_NODE title or ID (default: the set titled ...axle...)")
+    r.add_argument("--axle-parts", nargs="+", default=None, help="rear-axle parts (titles or IDs), for table 2")
+    r.add_argument("--shares", default="combined", help="'combined' (mean over the load cases) or a load case")
+    r.add_argument("--t-end", type=float, default=None, help="ignore section forces after this time [ms]")
+    r.add_argument("--interface-mode", choices=("rigid", "assembly"), default="rigid",
+                   help="one rigid body over the cut, or one per assembly")
+    r.add_argument("--spring-length", type=float, default=100.0, help="spring length [deck length unit]")
+    r.add_argument("--damping-ratio", type=float, default=0.0, help="damping ratio of dampers beside the springs")
+    r.add_argument("--format", choices=("fixed", "long", "i10", "free"), default="fixed")
+    r.set_defaults(func=_reduce)

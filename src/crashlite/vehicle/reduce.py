@@ -1,0 +1,223 @@
+"""The four steps of the simplified vehicle, from a full deck and its runs.
+
+``reduce_vehicle`` takes any vehicle deck whose interface cross sections
+name the assemblies (*DATABASE_CROSS_SECTION_PLANE with a title and a part
+set per assembly, as the generic car has; or ``assemblies`` given) and the
+results of one or more full runs (crashlite results folders, LS-DYNA
+binout or ASCII folders), and runs:
+
+1. load paths per load case (``loadpaths``) and the shares the surrogate
+   uses: those of one load case, or their mean over the load cases
+   (``combined_shares``), with each load case's deviation from it;
+2. mass, CoG and inertia of the replaced structure, the rear-axle point
+   (``massprops``);
+3. the longitudinal stiffness K and the transverse and roll stiffness of
+   the replaced structure (``stiffness``, ``surrogate.transverse_stiffness``);
+4. the surrogate deck (``surrogate``).
+
+``Reduction.write`` writes the simplified deck, ``reduction.json`` with
+every figure and a page ``reduction.html`` with the paper's tables 2–3
+and figures 10–12.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..model.model import Model
+from . import loadpaths as lp
+from .cut import Cut, cut_behind
+from .massprops import ReplacedMass, replaced_mass
+from .stiffness import StiffnessResult, longitudinal_stiffness
+from .surrogate import Surrogate, build_surrogate, transverse_stiffness
+
+
+@dataclass
+class Reduction:
+    """Steps 1–4 and what they found."""
+
+    deck: str
+    load_paths: list  # LoadPaths, one per load case
+    shares: dict  # assembly -> share used (fraction)
+    share_basis: str  # the load case the shares come from, or "combined"
+    share_deviation: dict  # load case -> max |share − used share|
+    cut: Cut
+    mass: ReplacedMass
+    stiffness: StiffnessResult
+    transverse: dict
+    surrogate: Surrogate
+    seconds: dict = field(default_factory=dict)  # step -> wall time [s]
+    notes: list = field(default_factory=list)
+
+    def summary(self) -> dict:
+        full = self.cut.model
+        sur = self.surrogate.model
+        n_full = sum(len(getattr(full, t)) for t in ("shells", "solids", "beams", "discretes"))
+        n_sur = sum(len(getattr(sur, t)) for t in ("shells", "solids", "beams", "discretes"))
+        return {
+            "deck": self.deck,
+            "interface": {"point": self.cut.point.tolist(), "axis": self.cut.axis.tolist(),
+                          "nodes": int(len(self.cut.interface_nodes))},
+            "step1_load_paths": [p.to_dict() for p in self.load_paths],
+            "shares_used": {"basis": self.share_basis, "shares_percent": {k: 100 * v for k, v in self.shares.items()},
+                            "max_deviation_percent_points": {k: 100 * v for k, v in self.share_deviation.items()}},
+            "step2_mass": {**self.mass.table(), "inertia": self.mass.structure.inertia.tolist()},
+            "step3_stiffness": {**self.stiffness.table(), "transverse": dict(self.transverse),
+                                "static_model": dict(self.stiffness.elements), "dofs": self.stiffness.n_dofs},
+            "step4_surrogate": self.surrogate.summary(),
+            "model_size": {"full_elements": n_full, "simplified_elements": n_sur,
+                           "element_reduction_percent": 100.0 * (1 - n_sur / n_full) if n_full else None,
+                           "full_parts": len(full.parts), "simplified_parts": len(sur.parts),
+                           "removed_mass_percent": 100.0 * self.mass.structure.mass / full.mass_properties().mass},
+            "seconds": dict(self.seconds),
+            "notes": list(self.notes),
+        }
+
+    def write(self, deck_path, report_dir=None, fmt: str = "fixed") -> dict:
+        """The simplified deck at ``deck_path``; reduction.json and
+        reduction.html in ``report_dir`` (default: beside the deck)."""
+        from ..report.build import jsonable
+
+        deck_path = Path(deck_path)
+        out = Path(report_dir) if report_dir is not None else deck_path.parent
+        out.mkdir(parents=True, exist_ok=True)
+        written = {"deck": self.surrogate.write(deck_path, fmt=fmt)}
+        (out / "reduction.json").write_text(json.dumps(jsonable(self.summary()), indent=1, allow_nan=False) + "\n")
+        written["summary"] = out / "reduction.json"
+        from .reduce_report import reduction_page
+
+        (out / "reduction.html").write_text(reduction_page(self))
+        written["html"] = out / "reduction.html"
+        return written
+
+
+def section_assemblies(model: Model, names=None) -> tuple[dict, dict, np.ndarray | None]:
+    """Assemblies of the deck's cross sections: (name -> part IDs of the
+    section's part set, name -> section ID, the common plane point or None).
+    ``names``: the section titles to use (default every titled plane section
+    with a part set)."""
+    asm, ids, points = {}, {}, []
+    for rec in model.find("DATABASE_CROSS_SECTION_PLANE"):
+        title = str(rec.get("title", "") or "").strip()
+        psid = int(rec.get("psid", 0) or 0)
+        if not title or psid <= 0 or (names is not None and title not in names):
+            continue
+        asm[title] = [int(p) for p in model.set_members("PART", psid)]
+        ids[title] = int(rec.get("csid", 0) or 0)
+        points.append([float(rec.get(a, 0.0) or 0.0) for a in ("xct", "yct", "zct")])
+    if names is not None:
+        missing = sorted(set(names) - set(asm))
+        if missing:
+            raise KeyError(f"no titled *DATABASE_CROSS_SECTION_PLANE with a part set for {missing}")
+    point = None
+    if points:
+        p = np.array(points)
+        if np.allclose(p, p[0], atol=1e-6):
+            point = p[0]
+    return asm, ids, point
+
+
+def _support(model: Model, support):
+    if isinstance(support, str) and support.strip().isdigit():
+        return ("set", int(support))
+    if support is not None:
+        return support
+    for (kind, sid), rec in model.sets.items():
+        if kind == "NODE" and "axle" in str(rec.title or "").lower():
+            return ("set", sid)
+    raise ValueError("no support given and no node set titled '... axle ...': name the rear-axle attachment "
+                     "points (a *SET_NODE title or ID)")
+
+
+def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.0, 0.0), assemblies=None,
+                   support=None, axle_parts=None, shares="combined", t_end: float | None = None,
+                   interface_mode: str = "rigid", spring_length: float = 100.0, damping_ratio: float = 0.0,
+                   quiet: bool = True) -> Reduction:
+    """Steps 1–4 (module docstring).
+
+    deck        the full vehicle deck (path or Model)
+    results     one results path (or History) per load case
+    load_cases  their names (default "load case 1", ...)
+    interface   x of the interface along ``axis`` [length] (default: the plane of the sections)
+    assemblies  name -> part IDs or titles (default: the titled cross sections and their part sets)
+    support     rear-axle attachment points: a *SET_NODE title, ("set", SID) or node indices
+                (default: the node set whose title names the axle)
+    axle_parts  parts of the rear axle (table 2's rear-axle mass)
+    shares      "combined" (mean over the load cases) or the name of one load case
+    t_end       ignore section forces after this time (e.g. the rebound)
+    """
+    from ..keyword.reader import read_deck
+
+    say = (lambda *a: None) if quiet else (lambda *a: print(*a, flush=True))
+    model = deck if isinstance(deck, Model) else read_deck(deck)
+    results = list(results) if isinstance(results, (list, tuple)) else [results]
+    names = list(load_cases) if load_cases is not None else [f"load case {k + 1}" for k in range(len(results))]
+    if len(names) != len(results):
+        raise ValueError(f"{len(names)} load-case names for {len(results)} results")
+    notes: list = []
+    seconds = {}
+    t0 = time.perf_counter()
+    sec_asm, sec_ids, plane = section_assemblies(model)
+    if assemblies is None:
+        if not sec_asm:
+            raise ValueError("the deck has no titled *DATABASE_CROSS_SECTION_PLANE with a part set: give the "
+                             "assemblies (name -> parts)")
+        assemblies = sec_asm
+    else:
+        assemblies = {n: [int(p) for p in model.part_ids_of(ps)] for n, ps in assemblies.items()}
+    missing = sorted(set(assemblies) - set(sec_ids))
+    if missing:
+        raise KeyError(f"no cross section for the assemblies {missing}: step 1 needs the section force of each")
+    # step 1
+    paths = []
+    for name, res in zip(names, results):
+        paths.append(lp.from_run(res, model, {n: sec_ids[n] for n in assemblies}, axis, name, t_end))
+        say(f"step 1 ({name}): " + ", ".join(f"{k} {100 * v:.1f} %" for k, v in paths[-1].shares().items()))
+    if shares == "combined":
+        comb = lp.combined_shares(paths)
+        used, deviation, basis = comb["shares"], comb["deviation"], "combined" if len(paths) > 1 else names[0]
+    else:
+        if shares not in names:
+            raise KeyError(f"shares {shares!r}: not a load case ({names}) nor 'combined'")
+        used = paths[names.index(shares)].shares()
+        basis = shares
+        deviation = {p.load_case: float(max(abs(p.shares().get(k, 0.0) - v) for k, v in used.items()))
+                     for p in paths}
+    seconds["step 1 load paths"] = time.perf_counter() - t0
+    # cut at the interface
+    a = np.asarray(axis, float)
+    a = a / np.linalg.norm(a)
+    if interface is not None:
+        point = float(interface) * a
+    elif plane is not None:
+        point = plane
+    else:
+        raise ValueError("the interface sections lie in different planes: give the interface position")
+    cut = cut_behind(model, point=point, axis=a)
+    # step 2
+    t0 = time.perf_counter()
+    sup = _support(model, support)
+    mass = replaced_mass(cut, axle_nodes=sup, axle_parts=axle_parts)
+    seconds["step 2 mass"] = time.perf_counter() - t0
+    say(f"step 2: replaced mass {mass.structure.mass:.6g} at {np.round(mass.structure.cog, 1).tolist()}")
+    # step 3
+    t0 = time.perf_counter()
+    k = longitudinal_stiffness(cut, sup)
+    trans = transverse_stiffness(cut, sup)
+    seconds["step 3 stiffness"] = time.perf_counter() - t0
+    say(f"step 3: K = {k.stiffness:.6g} (F {k.force:g}, u {k.displacement:.4g}); shear {trans['shear']:.4g}, "
+        f"roll {trans['roll']:.4g}")
+    # step 4
+    t0 = time.perf_counter()
+    sur = build_surrogate(cut, assemblies, used, k.stiffness, mass, trans, interface=interface_mode,
+                          spring_length=spring_length, damping_ratio=damping_ratio)
+    seconds["step 4 surrogate"] = time.perf_counter() - t0
+    say(f"step 4: {len(sur.springs)} springs, {len(sur.model.shells)} of {len(model.shells)} shells kept")
+    notes += mass.notes + k.notes
+    return Reduction(str(getattr(model, "source", "") or ""), paths, used, basis, deviation, cut, mass, k, trans,
+                     sur, seconds, notes)

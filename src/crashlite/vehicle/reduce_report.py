@@ -1,0 +1,61 @@
+"""The page of a vehicle reduction: the four steps as the paper shows them
+(figures 10–12, tables 2 and 3, the springs of figure 15)."""
+
+from __future__ import annotations
+
+from ..report.html import Raw, esc, image, num, page, table
+from . import loadpaths as lp
+
+
+def reduction_page(r) -> str:
+    """Self-contained HTML of a ``reduce.Reduction``."""
+    s = r.summary()
+    body = [f"<p>Full deck <code>{esc(r.deck or 'model')}</code>; interface at "
+            f"{esc([round(v, 2) for v in s['interface']['point']])} normal to {esc(s['interface']['axis'])}, "
+            f"{s['interface']['nodes']} interface nodes.</p>"]
+    size = s["model_size"]
+    body.append(table(["", "full", "simplified"], [
+        ["elements", size["full_elements"], size["simplified_elements"]],
+        ["parts", size["full_parts"], size["simplified_parts"]],
+        ["element reduction", "", f"{num(size['element_reduction_percent'], 3)} %"],
+        ["mass replaced", "", f"{num(size['removed_mass_percent'], 3)} %"]]))
+    body.append("<h2>Step 1: load paths through the interface</h2>")
+    for p in r.load_paths:
+        body.append(f"<h3>{esc(p.load_case)}</h3>")
+        body.append('<div class="grid">' + image(lp.plot_forces(p), "section forces")
+                    + image(lp.plot_impulses(p), "impulses") + "</div>")
+        body.append(table(["assembly", "section", "peak force", "max impulse", "share [%]"],
+                          [[a["assembly"], a["section"], num(a["max_force"]), num(a["max_impulse"]),
+                            num(a["share_percent"], 3)] for a in p.table()]))
+    body.append(image(lp.plot_shares(r.load_paths), "load-path shares"))
+    used = s["shares_used"]
+    body.append(f"<p>Shares used: <b>{esc(used['basis'])}</b>; largest deviation of each load case from them "
+                "(percentage points): " + ", ".join(f"{esc(k)} {v:.2f}" for k, v in
+                                                   used["max_deviation_percent_points"].items()) + "</p>")
+    body.append("<h2>Step 2: mass and centre of gravity of the replaced structure</h2>")
+    t2 = s["step2_mass"]
+    rows = [[k, num(v["x"], 6), num(v["y"], 6), num(v["z"], 6), num(v["mass"], 6)]
+            for k, v in t2.items() if isinstance(v, dict) and "x" in v]
+    body.append(table(["", f"CoG x [{t2['units']['length']}]", "y", "z", f"mass [{t2['units']['mass']}]"], rows))
+    body.append("<h2>Step 3: stiffness of the replaced structure</h2>")
+    t3 = s["step3_stiffness"]
+    tr = t3["transverse"]
+    body.append(table(["force", "displacement", "longitudinal stiffness", "lateral", "vertical", "roll"],
+                      [[num(t3["force"]), num(t3["displacement"]), num(t3["stiffness"], 6), num(tr["lateral"]),
+                        num(tr["vertical"]), num(tr["roll"])]]))
+    body.append(f"<p class=\"note\">Linear static model: {esc(t3['static_model'])}, {t3['dofs']} DOFs.</p>")
+    body.append("<h2>Step 4: the surrogate</h2>")
+    sur = s["step4_surrogate"]
+    body.append(table(["assembly", "share [%]", "stiffness", "damping", "direction", "interface nodes"],
+                      [[sp["assembly"], num(sp["share_percent"], 3), num(sp["stiffness"], 6), num(sp["damping"]),
+                        Raw(esc([round(v, 3) for v in sp["direction"]])), sp["interface_nodes"]]
+                       for sp in sur["springs"]]))
+    b = sur["beam"]
+    body.append(f"<p>Anti-rotation beam: length {num(b['length'])}, axial stiffness {num(b['axial_stiffness'])}, "
+                f"EI {num(b['EI'])}, GJ {num(b['GJ'])}; interface: {esc(sur['interface'])} rigid body.</p>")
+    body.append("<p>Run time of the steps: " + ", ".join(f"{esc(k)} {v:.1f} s" for k, v in s["seconds"].items())
+                + "</p>")
+    notes = s["notes"] + sur["notes"]
+    if notes:
+        body.append("<h2>Notes</h2><ul>" + "".join(f"<li>{esc(n)}</li>" for n in notes) + "</ul>")
+    return page("crashlite simplified vehicle: the four steps", body)
