@@ -1,0 +1,84 @@
+"""One design, start to end, as a worker runs it: write its deck, run it
+with crashlite's solver, take the responses.
+
+``evaluate(task)`` never raises for a design's own problem (a deck that
+does not read, a run that diverges, a response the run lacks): it returns
+a record with status "failed" and the message, so the study goes on.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import socket
+import time
+import traceback
+from dataclasses import dataclass, field
+from pathlib import Path
+
+
+@dataclass
+class Task:
+    key: str  # design key, e.g. "doe-0003"
+    values: dict  # variable -> value
+    directory: str  # design folder (on a file system the workers share)
+    template: object  # designs.DeckTemplate
+    responses: dict  # name -> ResponseSpec
+    threads: int = 1  # Numba threads of the run
+    keep: str = "all"  # "all": keep the results folder; "decks": only deck and responses
+    options: dict = field(default_factory=dict)
+
+
+def _threads(n: int) -> None:
+    try:
+        import numba
+
+        numba.set_num_threads(max(1, min(int(n), numba.config.NUMBA_NUM_THREADS)))
+    except Exception:  # noqa: BLE001 - threads are a speed setting, never a reason to fail
+        pass
+
+
+def _attempt(directory: Path) -> int:
+    """Count and record this start of the design (a rerun after a killed
+    worker or session is attempt 2, ...)."""
+    marks = directory.parent / f".{directory.name}.starts"
+    marks.parent.mkdir(parents=True, exist_ok=True)
+    with open(marks, "a") as f:
+        f.write(f"{socket.gethostname()} {os.getpid()} {time.time():.3f}\n")
+    return len(marks.read_text().splitlines())
+
+
+def evaluate(task: Task) -> dict:
+    """Run one design; returns {key, status, responses, message, ...}."""
+    t0 = time.perf_counter()
+    _threads(task.threads)
+    directory = Path(task.directory)
+    out = {"key": task.key, "values": dict(task.values), "status": "failed", "responses": {}, "message": "",
+           "host": socket.gethostname(), "pid": os.getpid(), "attempt": _attempt(directory),
+           "directory": str(directory)}
+    stage = "writing the design deck"
+    try:
+        from .. import read_deck
+        from ..solver import run
+        from .responses import evaluate_responses
+
+        deck = task.template.write(task.values, directory)
+        out["deck"] = str(deck)
+        stage = "reading the design deck"
+        model = read_deck(deck)
+        task.template.check(model, task.values)
+        stage = "running"
+        res = run(model, out=directory / "results", quiet=True)
+        out.update(cycles=int(res.cycles), end_time=float(res.time[-1]) if len(res.time) else 0.0,
+                   run_time=float(res.wall_time))
+        stage = "taking the responses"
+        out["responses"] = evaluate_responses(task.responses, res, model, task.values)
+        out["status"] = "complete"
+    except Exception as e:  # noqa: BLE001 - a design's failure is a result, not a crash of the study
+        out["message"] = f"{stage}: {type(e).__name__}: {e}"
+        out["traceback"] = traceback.format_exc(limit=8)[-4000:]
+    finally:
+        if task.keep == "decks" and (directory / "results").exists():
+            shutil.rmtree(directory / "results", ignore_errors=True)
+    out["wall_time"] = time.perf_counter() - t0
+    return out
