@@ -73,6 +73,9 @@ def build_parser() -> argparse.ArgumentParser:
     from .cli_vehicle import add_commands as vehicle_commands
 
     vehicle_commands(sub)
+    from .cli_study import add_commands as study_commands
+
+    study_commands(sub)
     return p
 
 

@@ -239,7 +239,9 @@ def _sampler(cfg: StudyConfig):
     seed = opt.seed if opt else 0
     if opt is None or opt.method in ("metamodel", "random"):
         return optuna.samplers.RandomSampler(seed=seed)
-    cons = constraints_of if cfg.constraints else None
+    from .storage import NATIVE_CONSTRAINTS
+
+    cons = constraints_of if cfg.constraints and not NATIVE_CONSTRAINTS else None
     if opt.method == "nsga2":
         return optuna.samplers.NSGAIISampler(population_size=opt.population, seed=seed, constraints_func=cons)
     return optuna.samplers.TPESampler(seed=seed, constraints_func=cons, multivariate=True,

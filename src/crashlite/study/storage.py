@@ -74,6 +74,15 @@ def make_storage(url: str):
         raise StudyError(f"cannot open the study storage {url!r}: {type(e).__name__}: {e}") from None
 
 
+def _native() -> bool:
+    from optuna.trial import Trial
+
+    return hasattr(Trial, "set_constraint")
+
+
+NATIVE_CONSTRAINTS = _native()
+
+
 def constraints_of(trial) -> list[float]:
     """optuna constraints_func: the violations stored with the trial."""
     return list(trial.user_attrs.get("constraints", []))
@@ -251,6 +260,9 @@ class StudyStore:
                 info["message"] = f"objective not finite: {values}"
             else:
                 self.storage.set_trial_user_attr(trial._trial_id, "constraints", cons)
+                if NATIVE_CONSTRAINTS:  # optuna >= 5: the samplers read the trial's own constraints
+                    for i, c in enumerate(cons):
+                        trial.set_constraint(f"c{i}", c)
         if status != "complete" and not info.get("message"):
             info["message"] = "failed without a message"
         self.storage.set_trial_user_attr(trial._trial_id, "result", info)
