@@ -35,6 +35,8 @@ class SerialExecutor:
     def __exit__(self, *exc):
         return False
 
+    started = True
+
     def submit(self, fn, arg):
         f = Future()
         f._crashlite_call = (fn, arg)  # run lazily, one at a time, in wait()
@@ -80,6 +82,10 @@ class DaskExecutor:
         self.dashboard = dashboard
         self.client = None
         self.cluster = None
+
+    @property
+    def started(self) -> bool:
+        return self.client is not None
 
     def __enter__(self):
         import dask

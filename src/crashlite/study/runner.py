@@ -275,8 +275,8 @@ def run_study(cfg: StudyConfig, executor=None, progress: Progress | None = None,
         designs = store.designs()
         progress.load(designs)
         sources = _plan(cfg, store, designs)
-        owned = executor is None
         executor = executor or make_executor(cfg.execution)
+        owned = not executor.started  # start (and close) it here unless the caller did
         if owned:
             executor.__enter__()
         try:
