@@ -62,6 +62,28 @@ def _reduce(args) -> int:
     return 0
 
 
+def _verify(args) -> int:
+    from .vehicle.verification import verify_vehicle
+
+    v = verify_vehicle(args.full, args.simplified, args.deck_full, args.deck_simplified, load_case=args.load_case,
+                       crash_boxes=args.crash_boxes, firewall=args.firewall, reference=args.reference,
+                       engine=args.engine, cfc=args.cfc)
+    files = v.write(args.output)
+    f = v.figures
+    fw = f.get("firewall_intrusion") or {}
+    print(f"{f['load_case']}: energy ratings {f['energy_ratings_deceleration_phase']}, crash-box internal energy "
+          f"{_pc(f['crash_box_internal_energy_deviation_percent'])}, firewall intrusion max "
+          f"{_pc(fw.get('max_deviation_percent'))} mean {_pc(fw.get('mean_deviation_percent'))}, time reduction "
+          f"{_pc(f['time_reduction_percent'])}; wrote {files['html']} and {files['summary']}")
+    for n in v.notes:
+        print(f"note: {n}")
+    return 0
+
+
+def _pc(v) -> str:
+    return "–" if v is None else f"{v:.2f} %"
+
+
 def _seconds(deck) -> float:
     """Time units per second of a deck's unit system (from its densities)."""
     from .vehicle.loadcases import vehicle_info
@@ -127,3 +149,19 @@ def add_commands(sub) -> None:
     r.add_argument("--damping-ratio", type=float, default=0.0, help="damping ratio of dampers beside the springs")
     r.add_argument("--format", choices=("fixed", "long", "i10", "free"), default="fixed")
     r.set_defaults(func=_reduce)
+    w = vsub.add_parser("verify", formatter_class=fmt,
+                        help="compare a simplified vehicle's run with the full model's (energies, crash boxes, "
+                             "firewall intrusion, engine acceleration, time)")
+    w.add_argument("full", type=Path, help="results of the full model")
+    w.add_argument("simplified", type=Path, help="results of the simplified model, same load case")
+    w.add_argument("--deck-full", type=Path, required=True, help="deck of the full run (names parts and nodes)")
+    w.add_argument("--deck-simplified", type=Path, required=True, help="deck of the simplified run")
+    w.add_argument("-o", "--output", type=Path, required=True, help="report folder (index.html, summary.json)")
+    w.add_argument("--load-case", default="US NCAP")
+    w.add_argument("--crash-boxes", nargs="+", default=["crash box left", "crash box right"], help="part titles")
+    w.add_argument("--firewall", default="firewall nodes", help="*SET_NODE title of the firewall")
+    w.add_argument("--reference", default="rear seat left",
+                   help="history node title of the passenger-cell reference (intrusion, deceleration phase)")
+    w.add_argument("--engine", default="engine top", help="history node title of the engine-top sensor")
+    w.add_argument("--cfc", type=float, default=60.0, help="SAE J211 filter class of the accelerations")
+    w.set_defaults(func=_verify)

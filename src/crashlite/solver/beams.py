@@ -133,12 +133,6 @@ def element_dt(beams: BeamSet, mass: np.ndarray, inertia: np.ndarray) -> np.ndar
     return np.nanmin(np.where(np.isfinite(dts), dts, np.nan), axis=0)
 
 
-def beam_dt(beams: BeamSet, mass: np.ndarray, inertia: np.ndarray) -> float:
-    if beams is None or not len(beams.ids):
-        return np.inf
-    return float(np.nanmin(element_dt(beams, mass, inertia)))
-
-
 def scale_beams(beams: BeamSet, mass: np.ndarray, inertia: np.ndarray, target: float) -> np.ndarray:
     """Mass scaling of the beams whose step is below ``target``: their mass
     (and rotational inertia) grows by (target/dt)², split to their nodes,

@@ -34,14 +34,30 @@ def effective_mass(s: Setup) -> np.ndarray:
     return mass
 
 
+def effective_rot_inertia(s: Setup) -> np.ndarray:
+    """(n,) nodal rotational inertias for the beams' rotation rule: a
+    rigid-body node turns with its body, whose smallest principal inertia
+    stands in [mass·length²]."""
+    inertia = s.rot_inertia.copy() if s.rot_inertia is not None else np.zeros(len(s.mass))
+    for b in s.bodies:
+        inertia[b.nodes] = float(np.linalg.eigvalsh(b.inertia_body)[0])
+    return inertia
+
+
+def beam_steps(s: Setup) -> np.ndarray:
+    """(n_beams,) critical step of each beam with the effective masses and
+    inertias of its end nodes (a beam between rigid bodies moves them)."""
+    from .beams import element_dt
+
+    return element_dt(s.beams, effective_mass(s), effective_rot_inertia(s))
+
+
 def stable_dt(s: Setup) -> float:
     """TSSFAC × the smallest critical step: 2/ω with ω² = k (1/m1 + 1/m2)
     for springs (k the steepest curve slope for non-linear ones), and
     2 / (c (1/m1 + 1/m2)) for dampers; inf without such elements."""
-    from .beams import beam_dt
-
     d = s.discrete
-    dt_beam = beam_dt(s.beams, s.mass, s.rot_inertia) if s.beams is not None else np.inf
+    dt_beam = float(np.nanmin(beam_steps(s))) if s.beams is not None and len(s.beams.ids) else np.inf
     if len(d.ids) == 0:
         return s.tssfac * dt_beam
     return s.tssfac * min(float(discrete_dt(s).min()), dt_beam)
@@ -70,8 +86,6 @@ def smallest_step(s: Setup, groups, st) -> tuple[float, str]:
     """(step, description) of the element with the smallest critical step
     (TSSFAC applied), naming it, its nodes and, for rigid-body nodes, the
     body and its effective mass there; for diagnoses."""
-    from .beams import element_dt
-
     ids = s.node_ids if s.node_ids is not None else np.arange(len(s.mass))
     body_of = {int(i): b for b in s.bodies for i in b.nodes}
     mass = effective_mass(s)
@@ -99,7 +113,7 @@ def smallest_step(s: Setup, groups, st) -> tuple[float, str]:
         lowest(discrete_dt(s), "DISCRETE", d.ids, lambda e: (d.n1[e], d.n2[e]))
     if s.beams is not None and len(s.beams.ids):
         b = s.beams
-        lowest(element_dt(b, s.mass, s.rot_inertia), "BEAM", b.ids, lambda e: (b.n1[e], b.n2[e]))
+        lowest(beam_steps(s), "BEAM", b.ids, lambda e: (b.n1[e], b.n2[e]))
     for g in groups:
         if hasattr(g, "critical_dt") and hasattr(g, "_dt") and len(g.ids):
             g.critical_dt(st)

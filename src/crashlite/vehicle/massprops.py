@@ -139,14 +139,10 @@ def _given_inertia(part) -> tuple[float, np.ndarray, np.ndarray] | None:
     return float(part["tm"]), c, tensor
 
 
-def replaced_mass(cut: Cut, axle_nodes=None, axle_parts=None) -> ReplacedMass:
-    """Mass, CoG and inertia (about the CoG) of the structure ``cut`` replaces.
-
-    axle_nodes  node indices, or ("set", SID) / a *SET_NODE title of the
-                rear-axle attachment points: their mean position is the
-                rear-axle point of table 2 (None: not computed)
-    axle_parts  part IDs or titles of the rear axle (None: not computed)
-    """
+def replaced_rows(cut: Cut) -> tuple[list, list, list, list]:
+    """Raw moments of everything ``cut`` replaces, row by row: (element
+    Moments per table and *PART_INERTIA bodies, their weights (bool masks
+    of the replaced rows, None: all), point-mass Moments, notes)."""
     model = cut.model
     notes = []
     moments = element_moments(model)
@@ -166,9 +162,8 @@ def replaced_mass(cut: Cut, axle_nodes=None, axle_parts=None) -> ReplacedMass:
             given.append(mk.point_moments(g[1][None], np.array([g[0]]), g[2][None]))
             if n_rep < n_all:
                 notes.append(f"part {pid} (*PART_INERTIA) lies across the interface: counted whole")
-    elems = [moments[t] for t in moments]
-    masks = [cut.replaced[t] for t in moments]
-    elements = mk.combine(*elems, *given, weights_mask=masks + [None] * len(given))
+    elems = [moments[t] for t in moments] + given
+    masks = [cut.replaced[t] for t in moments] + [None] * len(given)
     lumped_m = []
     ms = model.masses
     if len(ms):
@@ -185,10 +180,49 @@ def replaced_mass(cut: Cut, axle_nodes=None, axle_parts=None) -> ReplacedMass:
             if np.any(it.csid[sel] != 0):
                 notes.append("*ELEMENT_INERTIA in a local system taken as global")
             lumped_m.append(mk.point_moments(pos, it.mass[sel], tensor))
-    lumped = mk.combine(*lumped_m)
-    structure = elements + lumped
     if any("INERTIA" in r.options for r in model.find("CONSTRAINED_NODAL_RIGID_BODY")):
         notes.append("*CONSTRAINED_NODAL_RIGID_BODY_INERTIA mass and inertia are not counted (node masses are)")
+    return elems, masks, lumped_m, notes
+
+
+def split_replaced(cut: Cut, far_point) -> tuple[MassProperties, MassProperties]:
+    """The replaced mass shared between the interface and a point behind it
+    (the rear-axle point) as a two-node bar lumps its mass: each element
+    and point mass goes to the far share by ξ, its distance behind the
+    interface over the far point's (clipped to [0, 1]), to the interface
+    share by 1 − ξ. Each share keeps its own CoG and inertia, so the two
+    together have exactly the mass, CoG and inertia of the whole.
+    Returns (interface share, far share)."""
+    elems, masks, lumped, _ = replaced_rows(cut)
+    span = float((cut.point - np.asarray(far_point, float)) @ cut.axis)
+    if not span > 0:
+        raise ValueError("the far point of the mass split must lie behind the interface")
+    rows = elems + lumped
+    weights = list(masks) + [None] * len(lumped)
+    near_w, far_w = [], []
+    for mo, w in zip(rows, weights):
+        with np.errstate(invalid="ignore", divide="ignore"):
+            c = np.where(mo.mass[:, None] > 0, mo.first / mo.mass[:, None], 0.0)
+        xi = np.clip(((cut.point - c) @ cut.axis) / span, 0.0, 1.0)
+        base = np.ones(len(mo.mass)) if w is None else np.asarray(w, float)
+        near_w.append(base * (1.0 - xi))
+        far_w.append(base * xi)
+    return mk.combine(*rows, weights_mask=near_w), mk.combine(*rows, weights_mask=far_w)
+
+
+def replaced_mass(cut: Cut, axle_nodes=None, axle_parts=None) -> ReplacedMass:
+    """Mass, CoG and inertia (about the CoG) of the structure ``cut`` replaces.
+
+    axle_nodes  node indices, or ("set", SID) / a *SET_NODE title of the
+                rear-axle attachment points: their mean position is the
+                rear-axle point of table 2 (None: not computed)
+    axle_parts  part IDs or titles of the rear axle (None: not computed)
+    """
+    model = cut.model
+    elems, masks, lumped_m, notes = replaced_rows(cut)
+    elements = mk.combine(*elems, weights_mask=masks)
+    lumped = mk.combine(*lumped_m)
+    structure = elements + lumped
     out = ReplacedMass(structure, elements, lumped, notes=notes + list(cut.notes))
     if axle_nodes is not None:
         idx = _nodes(model, axle_nodes)

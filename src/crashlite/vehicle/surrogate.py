@@ -41,10 +41,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.mesh import Beams, Discretes, Nodes
+from ..model.mesh import Beams, Discretes, Inertias, Nodes
 from ..model.model import Model
 from .cut import ELEMENT_TABLES, Cut
-from .massprops import ReplacedMass
+from .massprops import ReplacedMass, split_replaced
 from .records import id_list, record
 from .truncate import Truncated, truncate
 
@@ -81,6 +81,7 @@ class Surrogate:
     beam: dict  # length, EA, EI, GJ of the anti-rotation beam
     interface: str = "rigid"
     notes: list = field(default_factory=list)
+    mass_shares: dict = field(default_factory=dict)  # "interface", "rear body" -> MassProperties
 
     def write(self, path, fmt: str = "fixed") -> Path:
         from ..keyword.writer import write_deck
@@ -96,8 +97,8 @@ class Surrogate:
             "springs": [{"assembly": s.assembly, "share_percent": 100.0 * s.share, "stiffness": s.k,
                          "damping": s.damping, "direction": s.direction.tolist(), "front": s.front.tolist(),
                          "rear": s.rear.tolist(), "interface_nodes": s.interface_nodes} for s in self.springs],
-            "rear_body": {"mass": self.mass.structure.mass, "cog": self.mass.structure.cog.tolist(),
-                          "inertia": self.mass.structure.inertia.tolist()},
+            "mass_shares": {k: {"mass": v.mass, "cog": v.cog.tolist(), "inertia": v.inertia.tolist()}
+                            for k, v in self.mass_shares.items()},
             "rear_axle_point": None if self.mass.axle_points is None else self.mass.axle_points.tolist(),
             "beam": dict(self.beam),
             "kept": {"nodes": len(self.model.nodes), "shells": len(self.model.shells),
@@ -184,9 +185,31 @@ def _history_nodes(model: Model) -> np.ndarray:
     return np.unique(idx[idx >= 0]).astype(np.int64)
 
 
+def _whole_vehicle_sets(full: Model, cut: Cut, m: Model, new_ids: np.ndarray, notes: list) -> None:
+    """Node sets that held the whole replaced structure (the vehicle's
+    nodes for an initial velocity, a wall, gravity) take the surrogate's
+    new nodes too, so the rear body moves and is treated as the structure
+    it stands for."""
+    removed = full.nodes.ids[cut.removed_nodes]
+    if not len(removed):
+        return
+    for (kind, sid), rec in full.sets.items():
+        if kind != "NODE" or ("NODE", sid) not in m.sets:
+            continue
+        members = full.set_members("NODE", sid)
+        if np.isin(removed, members).all():
+            now = m.set_members("NODE", sid)
+            head = {k: v for k, v in rec.values.items() if k != "sid"}
+            m.sets[("NODE", sid)] = id_list("SET_NODE_LIST" + ("_TITLE" if rec.title is not None else ""), sid,
+                                            np.union1d(now, new_ids), title=rec.title, **head)
+            notes.append(f"*SET_NODE {sid}{' (' + rec.title + ')' if rec.title else ''} held the whole replaced "
+                         "structure: it holds the surrogate's nodes too")
+
+
 def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, mass: ReplacedMass,
                     transverse: dict | None = None, interface: str = "rigid", spring_length: float = 100.0,
-                    damping_ratio: float = 0.0, beam_axial: float = 1e-3, keep_nodes=None) -> Surrogate:
+                    damping_ratio: float = 0.0, beam_axial: float = 1e-3, keep_nodes=None,
+                    mass_split: str = "axle") -> Surrogate:
     """The surrogate deck (module docstring).
 
     assemblies     name -> part IDs of the full model (the interface groups)
@@ -201,7 +224,13 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
     damping_ratio  ζ of the dampers, c_i = share_i · 2ζ·√(K·M) (0: springs only, as the paper)
     beam_axial     the beam's axial stiffness as a fraction of K
     keep_nodes     more removed nodes (indices) to move with the rear body
+    mass_split     "axle": the replaced mass shared between the interface body and the rear
+                   body as a bar between the interface and the rear-axle point lumps it
+                   (``massprops.split_replaced``), each share with its own CoG and inertia;
+                   "cog": all of it on the rear body at the CoG (the paper)
     """
+    if mass_split not in ("axle", "cog"):
+        raise ValueError(f"mass_split must be 'axle' or 'cog', got {mass_split!r}")
     if interface not in ("rigid", "assembly"):
         raise ValueError(f"interface must be 'rigid' or 'assembly', got {interface!r}")
     if not stiffness > 0:
@@ -246,10 +275,14 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
     if axle is None:
         axle = mass.structure.cog
         notes.append("no rear-axle attachment points: the anti-rotation beam starts at the CoG")
-    g_id, a_id, i_id = node(mass.structure.cog), node(axle), node(centre)
+    near, far = None, mass.structure
+    if mass_split == "axle" and mass.axle_points is not None:
+        near, far = split_replaced(cut, mass.axle_points)
+    g_id, a_id, i_id = node(far.cog), node(axle), node(centre)
+    f_id = node(near.cog) if near is not None else None
     k_beam = beam_axial * stiffness
     k_springs = stiffness - k_beam
-    total_m = float(mass.structure.mass)
+    total_m = float(far.mass)
     springs = []
     for name in assemblies:
         s = float(shares.get(name, 0.0)) / total
@@ -281,19 +314,21 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
                                         title=title)
         return sid
 
+    _whole_vehicle_sets(full, cut, m, np.array(new_ids, np.int64), notes)
     part_ids = {}
     # --- interface rigid bodies -------------------------------------------------------------------
     kept_ids = lambda idx: full.nodes.ids[idx]  # noqa: E731 (full and kept models share node IDs)
     if interface == "rigid":
         pid = ids.take("part")
-        sid = node_set("surrogate interface", np.concatenate([kept_ids(cut_nodes), front_ids, [i_id]]))
+        extra = [i_id] + ([f_id] if f_id is not None else [])
+        sid = node_set("surrogate interface", np.concatenate([kept_ids(cut_nodes), front_ids, extra]))
         m.keywords.append(record("CONSTRAINED_NODAL_RIGID_BODY", pid=pid, nsid=sid))
         part_ids["interface"] = pid
     else:
         nearest = int(np.argmin([np.linalg.norm(s.front - centre) for s in springs]))
         for k, (s, f) in enumerate(zip(springs, front_ids)):
             own = groups[s.assembly][~bound[groups[s.assembly]]]
-            extra = [f, i_id] if k == nearest else [f]
+            extra = ([f, i_id] + ([f_id] if f_id is not None else [])) if k == nearest else [f]
             pid = ids.take("part")
             sid = node_set(f"surrogate interface {s.assembly}", np.concatenate([kept_ids(own), extra]))
             m.keywords.append(record("CONSTRAINED_NODAL_RIGID_BODY", pid=pid, nsid=sid))
@@ -358,7 +393,16 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
     pid = ids.take("part")
     rear_members = np.concatenate([[g_id, a_id], rear_ids, full.nodes.ids[ride]])
     sid = node_set("surrogate rear body", rear_members)
-    c, t = mass.structure.cog, mass.structure.inertia
+    c, t = far.cog, far.inertia
+    if near is not None:  # the interface's share: a mass with its inertia on the interface body
+        it = Inertias.zeros(1)
+        it.ids[:] = ids.take("element")
+        it.node[:] = index[f_id]
+        it.mass[:] = near.mass
+        it.tensor[0] = near.inertia[[0, 0, 0, 1, 1, 2], [0, 1, 2, 1, 2, 2]]
+        m.inertias = Inertias.concat([m.inertias, it])
+        notes.append(f"{100 * near.mass / mass.structure.mass:.1f} % of the replaced mass on the interface body "
+                     f"(shared along the axis to the rear axle), the rest on the rear body")
     m.keywords.append(record("CONSTRAINED_NODAL_RIGID_BODY_INERTIA", pid=pid, nsid=sid, xc=float(c[0]),
                              yc=float(c[1]), zc=float(c[2]), tm=total_m - beam_mass, nodeid=g_id,
                              ixx=float(t[0, 0]), ixy=float(t[0, 1]), ixz=float(t[0, 2]), iyy=float(t[1, 1]),
@@ -370,8 +414,12 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
     if len(ride):
         notes.append(f"{len(ride)} history node(s) of the replaced structure move with the rear body")
     beam = {"length": length, "axial_stiffness": k_beam, "EI": ei, "GJ": gj, "mass": beam_mass}
-    return Surrogate(m, springs, float(stiffness), mass, tr, {"cog": g_id, "axle": a_id, "interface centre": i_id},
-                     part_ids, beam, interface, notes)
+    node_ids = {"cog": g_id, "axle": a_id, "interface centre": i_id}
+    if f_id is not None:
+        node_ids["interface mass"] = f_id
+    return Surrogate(m, springs, float(stiffness), mass, tr, node_ids,
+                     part_ids, beam, interface, notes,
+                     {"rear body": far, **({"interface": near} if near is not None else {})})
 
 
 def transverse_stiffness(cut: Cut, support, interface_nodes=None, force: float = 1000.0,

@@ -12,6 +12,8 @@ from crashlite.model.mesh import Masses
 from crashlite.solver import run
 from crashlite.vehicle.records import id_list, record
 from crashlite.vehicle.reduce import reduce_vehicle, section_assemblies
+from crashlite.vehicle.verification import verify_vehicle
+from crashlite.verify.rating import iso_rating
 
 B, L = 50.0, 500.0
 T = {"rail left": 1.5, "rail right": 1.0}
@@ -44,6 +46,7 @@ def _two_rails():
     ids = m.nodes.ids
     m.sets[("NODE", 1)] = id_list("SET_NODE_LIST_TITLE", 1, ids[rear], title="rear axle attachment")
     m.sets[("NODE", 2)] = id_list("SET_NODE_LIST_TITLE", 2, ids, title="everything")
+    m.sets[("NODE", 3)] = id_list("SET_NODE_LIST_TITLE", 3, ids[front], title="firewall nodes")
     m.sets[("PART", 1)] = id_list("SET_PART_LIST_TITLE", 1, [1], title="assembly rail left")
     m.sets[("PART", 2)] = id_list("SET_PART_LIST_TITLE", 2, [2], title="assembly rail right")
     m.keywords += [
@@ -56,7 +59,8 @@ def _two_rails():
                                                  "heading": np.array(["rear", "front"], object)}),
         record("CONTROL_TERMINATION", endtim=END), record("CONTROL_TIMESTEP", tssfac=0.9),
         record("DATABASE_SECFORC", dt=5e-5), record("DATABASE_RWFORC", dt=5e-5), record("DATABASE_NODOUT", dt=5e-5),
-        record("DATABASE_GLSTAT", dt=5e-5)]
+        record("DATABASE_GLSTAT", dt=5e-5), record("DATABASE_MATSUM", dt=5e-5),
+        record("DATABASE_BINARY_D3PLOT", dt=END / 12)]
     return m, rear, front
 
 
@@ -69,7 +73,7 @@ def reduced(tmp_path_factory):
     red = reduce_vehicle(full_deck, [d / "full"], load_cases=["wall"])
     files = red.write(d / "simplified.k")
     sur = run(files["deck"], out=d / "simplified")
-    return m, full, red, files, sur
+    return m, full, red, files, sur, d
 
 
 def test_sections_name_the_assemblies():
@@ -81,7 +85,7 @@ def test_sections_name_the_assemblies():
 
 @pytest.mark.slow
 def test_reduction_figures(reduced):
-    m, full, red, files, _ = reduced
+    m, full, red, files, _, _ = reduced
     s = red.shares
     assert s["rail left"] + s["rail right"] == pytest.approx(1.0)
     assert s["rail left"] > s["rail right"]  # the thicker rail carries more
@@ -102,19 +106,50 @@ def test_reduction_figures(reduced):
 
 @pytest.mark.slow
 def test_surrogate_run_matches_the_full_run(reduced):
-    """Peak wall force and the rear body's velocity change within 3 %,
-    energy conserved within 1 %: the rails stay elastic, so the surrogate
-    (front halves + springs k_i = share_i·K + rear rigid body) should carry
-    the impact as the full model does."""
-    _, full, _, _, sur = reduced
-    f_full = full.wall_force[:, 0, 0].max()
-    f_sur = sur.wall_force[:, 0, 0].max()
-    assert f_sur == pytest.approx(f_full, rel=0.03)
-    k_f = list(full.history_nodes).index(int(full.history_nodes[0]))
-    dv_full = full.node_velocity[0, k_f, 0] - full.node_velocity[-1, k_f, 0]
-    k_s = list(sur.history_nodes).index(int(full.history_nodes[0]))
-    dv_sur = sur.node_velocity[0, k_s, 0] - sur.node_velocity[-1, k_s, 0]
-    assert dv_full > 0.5 * V0
-    assert dv_sur == pytest.approx(dv_full, rel=0.03)
+    """The wall impulse and the rear body's velocity change within 3 %, its
+    velocity history rated ≥ 0.9 (ISO/TS 18571), energy conserved within
+    1 %: the rails stay elastic, so the surrogate (front halves + springs
+    k_i = share_i·K + rear rigid body) carries the impact as the full
+    model does (the peak wall force, a single sample of a ringing signal,
+    is not compared)."""
+    _, full, _, _, sur, _ = reduced
+    imp = [np.trapezoid(r.wall_force[:, 0, 0], r.time) for r in (full, sur)]
+    assert imp[1] == pytest.approx(imp[0], rel=0.03)
+    rear = int(full.history_nodes[0])
+    v = [r.node_velocity[:, list(r.history_nodes).index(rear), 0] for r in (full, sur)]
+    assert v[0][0] - v[0][-1] > 1.5 * V0  # it rebounds
+    assert v[1][0] - v[1][-1] == pytest.approx(v[0][0] - v[0][-1], rel=0.03)
+    assert iso_rating(full.time, v[0], sur.time, v[1]).overall >= 0.9
     for r in (full, sur):
         assert np.all(np.abs(r.energy_ratio - 1.0) < 0.01)
+
+
+@pytest.mark.slow
+def test_verification_figures(reduced):
+    """The figures of ``verify_vehicle`` against their direct computation;
+    the front ring's compression towards the rear body (the "intrusion"
+    here) within 5 % of the full model's at every node."""
+    m, full, red, files, sur, d = reduced
+    v = verify_vehicle(d / "full", d / "simplified", d / "full.k", files["deck"], load_case="wall",
+                       crash_boxes=("rail left", "rail right"), reference="rear", engine="front")
+    f = v.figures
+    t_stop = f["deceleration_phase_end"]
+    k = list(full.history_nodes).index(f["reference_node"])
+    assert full.node_velocity[np.searchsorted(full.time, t_stop), k, 0] <= 0.0 < full.node_velocity[0, k, 0]
+    e_full = np.interp(t_stop, full.time, full.part_internal.sum(axis=1))
+    e_sur = np.interp(t_stop, sur.time, sur.part_internal[:, np.isin(sur.part_ids, [1, 2])].sum(axis=1))
+    cb = f["crash_box_internal_energy"]
+    assert cb["full"] == pytest.approx(e_full, rel=1e-6) and cb["simplified"] == pytest.approx(e_sur, rel=1e-6)
+    assert f["crash_box_internal_energy_deviation_percent"] == pytest.approx(100 * (e_sur - e_full) / e_full)
+    assert f["firewall_intrusion"]["max_intrusion_full"] > 0.1  # mm: the rails are compressed
+    assert f["firewall_intrusion_max_deviation_percent"] < 5.0
+    assert f["energy_rating_min"] > 0.9  # kinetic and internal; the total is conserved, not rated:
+    assert f["energies"]["total"]["rating"] is None and f["energies"]["total"]["max_difference_percent"] < 1.0
+    assert f["time"]["elements_simplified"] < f["time"]["elements_full"]
+    out = v.write(d / "verify")
+    summary = json.loads(out["summary"].read_text())
+    for key in ("crash_box_internal_energy_deviation_percent", "firewall_intrusion_max_deviation_percent",
+                "firewall_intrusion_mean_deviation_percent", "energy_ratings_deceleration_phase",
+                "time_reduction_percent"):
+        assert key in summary
+    assert "data:image/png;base64" in out["html"].read_text()

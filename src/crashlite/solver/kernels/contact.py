@@ -262,6 +262,8 @@ def find_candidates(x, snode, sside, seg, mside, grow):
         return cptr, np.zeros(0, np.int64)
     lo, hi = np.empty((nm, 3)), np.empty((nm, 3))
     segment_boxes(x, seg, grow, lo, hi)
+    if not (np.isfinite(lo).all() and np.isfinite(hi).all()):
+        raise FloatingPointError("non-finite coordinates in the contact search: the run diverged")
     h = max(float(np.median((hi - lo).max(axis=1))), 1e-12 * float(np.abs(hi).max() + np.abs(lo).max()), 1e-300)
     while True:
         org, ncell, total = _grid(x, snode, lo, hi, h)

@@ -1,0 +1,253 @@
+"""Verification of a simplified vehicle against its full model (the paper's section 4).
+
+``verify_vehicle`` compares two runs of the same load case (crashlite
+results folders; LS-DYNA output where it has the quantities) on what the
+paper checks, each figure under a self-explaining key:
+
+- global energies (total, kinetic, internal): ISO/TS 18571 rating and the
+  deviation at the end of the *deceleration phase* (from the start to the
+  time the full model's cell reference node stops moving forward);
+- internal energy of the crash boxes (parts by title, summed), rating and
+  deviation in % at the end of the deceleration phase (paper: ≈ 1 %);
+- firewall intrusion: displacement of every firewall node along the vehicle
+  axis relative to a passenger-cell reference node, at the field state of
+  the full model's largest intrusion; per-node |difference| relative to the
+  full model's largest intrusion, max and mean in % (paper: < 5 %), with a
+  contour picture;
+- the engine-top acceleration along the axis, CFC 60: rating and peak;
+- the computational time of both runs and its reduction in %.
+
+The generic comparison of ``crashlite.verify.compare`` (every common
+energy, part, section, wall and node curve) comes along in ``comparison``.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..model.model import Model
+from ..verify.curves import make_pair, relative_percent
+from ..verify.errors import CompareError
+from ..verify.fields import load_states
+from ..verify.filters import filter_signal
+from ..verify.timing import reduction, run_info
+
+FLAT = 0.02  # an energy curve varying less than this share of its magnitude (the total) is not rated
+ENERGY_KEYS = (("total_energy", "total"), ("kinetic_energy", "kinetic"), ("internal_energy", "internal"))
+
+
+@dataclass
+class VehicleVerification:
+    """The figures (``figures``, JSON-ready) and the curves behind them."""
+
+    names: tuple  # (full, simplified)
+    figures: dict
+    pairs: list  # CurvePair: energies, crash boxes, engine top
+    intrusion: dict | None = None  # ids, y, z, full, simplified, difference [length]
+    notes: list = field(default_factory=list)
+
+    def write(self, directory) -> dict:
+        """summary.json and index.html in ``directory``."""
+        from ..report.build import jsonable
+        from .verification_report import verification_page
+
+        out = Path(directory)
+        out.mkdir(parents=True, exist_ok=True)
+        (out / "summary.json").write_text(json.dumps(jsonable({**self.figures, "notes": self.notes}), indent=1,
+                                                     allow_nan=False) + "\n")
+        (out / "index.html").write_text(verification_page(self))
+        return {"summary": out / "summary.json", "html": out / "index.html"}
+
+
+def _model(deck) -> Model | None:
+    if deck is None or isinstance(deck, Model):
+        return deck
+    from ..keyword.reader import read_deck
+
+    return read_deck(deck)
+
+
+def history_node(model: Model, heading: str) -> int:
+    """Deck node ID of the *DATABASE_HISTORY_NODE_ID row with ``heading``."""
+    for rec in model.find("DATABASE_HISTORY_NODE"):
+        heads = (rec.rows or {}).get("heading")
+        if heads is None:
+            continue
+        for nid, h in zip(rec.rows["id"], heads):
+            if str(h).strip().lower() == heading.strip().lower():
+                return int(nid)
+    raise KeyError(f"no history node titled {heading!r} in the deck")
+
+
+def _node_set(model: Model, title: str) -> np.ndarray:
+    for (kind, sid), rec in model.sets.items():
+        if kind == "NODE" and str(rec.title or "").strip().lower() == title.strip().lower():
+            return model.set_members("NODE", sid)
+    raise KeyError(f"no *SET_NODE titled {title!r} in the deck")
+
+
+def _read(h, cat, q):
+    try:
+        return np.asarray(h.read(cat, q))
+    except (KeyError, ValueError, TypeError):
+        return None
+
+
+def _window(t, y, t_end):
+    keep = t <= t_end * (1 + 1e-9)
+    return t[keep], y[keep]
+
+
+def _deceleration_end(h, node: int, axis: int) -> float:
+    """Time the node stops moving forward (its velocity along the axis turns ≤ 0), or the last time."""
+    t = _read(h, "nodout", "time")
+    ids = list(np.asarray(h.read("nodout", "ids")).astype(np.int64))
+    if node not in ids:
+        raise CompareError(f"{getattr(h, 'source', 'run')}: node {node} is not a history node")
+    v = np.asarray(h.read("nodout", f"{'xyz'[axis]}_velocity"))[:, ids.index(node)]
+    sign = np.sign(v[0]) or 1.0
+    stop = np.flatnonzero(sign * v <= 0.0)
+    return float(t[stop[0]]) if len(stop) else float(t[-1])
+
+
+def _part_sum(h, model: Model, titles) -> tuple[np.ndarray, np.ndarray]:
+    pids = model.part_ids_of(list(titles))
+    t = _read(h, "matsum", "time")
+    ids = np.asarray(h.read("matsum", "ids")).astype(np.int64)
+    ie = np.asarray(h.read("matsum", "internal_energy"))
+    cols = [int(np.flatnonzero(ids == p)[0]) for p in pids if np.any(ids == p)]
+    if len(cols) != len(pids):
+        raise CompareError(f"{getattr(h, 'source', 'run')}: no internal energy of part(s) "
+                           f"{sorted(set(pids.tolist()) - set(ids.tolist()))}")
+    return t, ie[:, cols].sum(axis=1)
+
+
+def _acceleration(h, node: int, axis: int, cfc: float | None):
+    t = _read(h, "nodout", "time")
+    ids = list(np.asarray(h.read("nodout", "ids")).astype(np.int64))
+    k = ids.index(node)
+    a = _read(h, "nodout", f"{'xyz'[axis]}_acceleration")
+    a = np.gradient(np.asarray(h.read("nodout", f"{'xyz'[axis]}_velocity"))[:, k], t) if a is None else a[:, k]
+    return filter_signal(t, a, cfc) if cfc else (t, a)
+
+
+def _intrusion(ref_path, cmp_path, decks, firewall: np.ndarray, reference: int, axis: int, t_end: float):
+    """Firewall intrusion (rearwards, relative to the reference node) of both
+    runs at the reference run's field state of largest intrusion up to t_end."""
+    states = [load_states(p, d) for p, d in zip((ref_path, cmp_path), decks)]
+    if any(s is None for s in states):
+        raise CompareError("firewall intrusion needs field states of both runs (*DATABASE_BINARY_D3PLOT)")
+    out = []
+    for s in states:
+        idx = {int(n): k for k, n in enumerate(s.ids)}
+        missing = [int(n) for n in np.append(firewall, reference) if int(n) not in idx]
+        if missing:
+            raise CompareError(f"{s.source}: firewall or reference node(s) {missing[:10]} not in the field states")
+        fw = np.array([idx[int(n)] for n in firewall])
+        u = s.x[:, fw, axis] - s.x[0, fw, axis]
+        u_ref = s.x[:, idx[int(reference)], axis] - s.x[0, idx[int(reference)], axis]
+        out.append((s, fw, -(u - u_ref[:, None])))
+    (s_r, fw_r, i_r), (s_c, _, _) = out
+    usable = np.flatnonzero(s_r.time <= t_end * (1 + 1e-9))
+    k = int(usable[np.argmax(i_r[usable].max(axis=1))])
+    t = float(s_r.time[k])
+    s, fw, _ = out[1]
+    x_c = s.at(t)
+    x0 = s.x[0]
+    idx_c = {int(n): j for j, n in enumerate(s.ids)}
+    j_ref = idx_c[int(reference)]
+    i_c = -((x_c[fw, axis] - x0[fw, axis]) - (x_c[j_ref, axis] - x0[j_ref, axis]))
+    full = i_r[k]
+    scale = float(full.max())
+    if not scale > 0:
+        raise CompareError("the firewall of the full model does not intrude: no relative deviation")
+    diff = np.abs(i_c - full)
+    y, z = s_r.x[0, fw_r, 1], s_r.x[0, fw_r, 2]
+    figs = {"time": t, "max_intrusion_full": scale, "max_intrusion_simplified": float(i_c.max()),
+            "max_intrusion_deviation_percent": relative_percent(scale, float(i_c.max())),
+            "max_deviation_percent": 100.0 * float(diff.max()) / scale,
+            "mean_deviation_percent": 100.0 * float(diff.mean()) / scale,
+            "nodes": int(len(firewall)), "reference_node": int(reference)}
+    return figs, {"ids": np.asarray(firewall), "y": y, "z": z, "full": full, "simplified": i_c, "difference": diff}
+
+
+def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str = "US NCAP",
+                   crash_boxes=("crash box left", "crash box right"), firewall: str = "firewall nodes",
+                   reference: str = "rear seat left", engine: str = "engine top", cfc: float = 60.0,
+                   axis: int = 0, names=("full", "simplified")) -> VehicleVerification:
+    """Compare the simplified run with the full one (module docstring).
+    ``full``, ``simplified``: results folders; the decks name the parts,
+    the firewall node set and the history nodes (by their titles)."""
+    from ..results import load
+
+    decks = (_model(full_deck), _model(simplified_deck))
+    hist = (load(full), load(simplified))
+    notes = []
+    ref_node = history_node(decks[0], reference)
+    t_stop = _deceleration_end(hist[0], ref_node, axis)
+    figures: dict = {"load_case": load_case, "names": list(names),
+                     "deceleration_phase_end": t_stop, "reference_node": ref_node}
+    pairs = []
+    energies = {}
+    for key, label in ENERGY_KEYS:
+        c = [(_read(h, "glstat", "time"), _read(h, "glstat", key)) for h in hist]
+        if any(y is None for _, y in c):
+            notes.append(f"{label} energy: not in both runs")
+            continue
+        tr, yr = _window(*c[0], t_stop)
+        flat = float(np.ptp(yr)) <= FLAT * float(np.max(np.abs(yr)))
+        p = make_pair("energy", f"{label} energy", "energy", tr, yr, *_window(*c[1], t_stop), rate=not flat)
+        if flat:
+            p.note = f"not rated: varies by less than {100 * FLAT:g} % (conserved); see its deviation"
+        pairs.append(p)
+        energies[label] = {"rating": None if p.rating is None else p.rating.overall,
+                           "deviation_at_end_percent": p.deviation.get("value_deviation_percent"),
+                           "max_difference_percent": 100.0 * p.deviation["max_abs_difference"] / float(np.abs(yr).max()),
+                           "note": p.note}
+    figures["energy_ratings_deceleration_phase"] = {k: v["rating"] for k, v in energies.items()}
+    figures["energies"] = energies
+    rated = [v for v in figures["energy_ratings_deceleration_phase"].values() if v is not None]
+    figures["energy_rating_min"] = min(rated) if rated else None
+    cb = [_part_sum(h, d, crash_boxes) for h, d in zip(hist, decks)]
+    p = make_pair("part", "crash boxes internal energy", "energy", *_window(*cb[0], t_stop), *_window(*cb[1], t_stop))
+    pairs.append(p)
+    e_full = float(np.interp(t_stop, *cb[0]))
+    e_sim = float(np.interp(t_stop, *cb[1]))
+    figures["crash_box_internal_energy"] = {
+        "parts": list(crash_boxes), "full": e_full, "simplified": e_sim,
+        "deviation_percent": relative_percent(e_full, e_sim),
+        "max_full": float(cb[0][1].max()), "max_simplified": float(cb[1][1].max()),
+        "max_deviation_percent": relative_percent(float(cb[0][1].max()), float(cb[1][1].max())),
+        "rating": None if p.rating is None else p.rating.overall}
+    figures["crash_box_internal_energy_deviation_percent"] = figures["crash_box_internal_energy"]["deviation_percent"]
+    try:
+        eng = history_node(decks[0], engine)
+        acc = [_acceleration(h, eng, axis, cfc) for h in hist]
+        p = make_pair("node_acceleration", f"{engine} acceleration (CFC {cfc:g})", "acceleration",
+                      *_window(*acc[0], t_stop), *_window(*acc[1], t_stop))
+        pairs.append(p)
+        figures["engine_top_acceleration"] = {"node": eng, "cfc": cfc, "peak_full": p.deviation.get("peak_ref"),
+                                              "peak_simplified": p.deviation.get("peak_cmp"),
+                                              "peak_deviation_percent": p.deviation.get("peak_deviation_percent"),
+                                              "rating": None if p.rating is None else p.rating.overall}
+    except (KeyError, ValueError, CompareError) as e:
+        notes.append(f"engine acceleration not compared: {e}")
+    intrusion = None
+    try:
+        fw = _node_set(decks[0], firewall)
+        figs, intrusion = _intrusion(full, simplified, decks, fw, ref_node, axis, t_stop)
+        figures["firewall_intrusion"] = figs
+        figures["firewall_intrusion_max_deviation_percent"] = figs["max_deviation_percent"]
+        figures["firewall_intrusion_mean_deviation_percent"] = figs["mean_deviation_percent"]
+    except (KeyError, CompareError) as e:
+        notes.append(f"firewall intrusion not compared: {e}")
+    info = [run_info(p, n, d) for p, n, d in zip((full, simplified), names, decks)]
+    figures["time"] = {"full": info[0].as_dict(), "simplified": info[1].as_dict(),
+                       "reduction_percent": reduction(info[0].wall_time, info[1].wall_time),
+                       "elements_full": info[0].n_elements, "elements_simplified": info[1].n_elements}
+    figures["time_reduction_percent"] = figures["time"]["reduction_percent"]
+    return VehicleVerification(tuple(names), figures, pairs, intrusion, notes)

@@ -1,0 +1,68 @@
+"""The page of a simplified-vehicle verification (the paper's figures 20–22, 26)."""
+
+from __future__ import annotations
+
+from ..report.html import esc, image, num, page, table
+from ..report.plots import _pyplot, pair_plot, png
+
+
+def intrusion_plot(intr: dict, names: tuple) -> bytes:
+    """Firewall intrusion of both runs and their difference over the firewall (y, z)."""
+    plt = _pyplot()
+    fig, axes = plt.subplots(1, 3, figsize=(12.0, 3.4), sharey=True)
+    lo = float(min(intr["full"].min(), intr["simplified"].min()))
+    hi = float(max(intr["full"].max(), intr["simplified"].max()))
+    scale = float(intr["full"].max())
+    for ax, (title, values, kw) in zip(axes, (
+            (f"{names[0]}: intrusion", intr["full"], {"vmin": lo, "vmax": hi, "cmap": "viridis"}),
+            (f"{names[1]}: intrusion", intr["simplified"], {"vmin": lo, "vmax": hi, "cmap": "viridis"}),
+            ("|difference| / max intrusion [%]", 100.0 * intr["difference"] / scale,
+             {"vmin": 0.0, "vmax": 10.0, "cmap": "magma_r"}))):
+        sc = ax.scatter(intr["y"], intr["z"], c=values, s=9, **kw)
+        fig.colorbar(sc, ax=ax, shrink=0.85)
+        ax.set_title(title, fontsize=9)
+        ax.set_xlabel("y", fontsize=8)
+        ax.set_aspect("equal")
+        ax.tick_params(labelsize=7)
+    axes[0].set_ylabel("z", fontsize=8)
+    return png(fig)
+
+
+def verification_page(v) -> str:
+    f = v.figures
+    names = v.names
+    body = [f"<p>Load case <b>{esc(f['load_case'])}</b>: {esc(names[1])} against {esc(names[0])}; deceleration "
+            f"phase 0 – {num(f['deceleration_phase_end'])} (the reference node {f['reference_node']} of the "
+            f"{esc(names[0])} model stops moving forward).</p>"]
+    rows = []
+    for k, e in f.get("energies", {}).items():
+        rows.append([f"{k} energy", num(e["rating"], 3), num(e["deviation_at_end_percent"], 3)])
+    cb = f["crash_box_internal_energy"]
+    rows.append(["crash boxes internal energy", num(cb["rating"], 3), num(cb["deviation_percent"], 3)])
+    eng = f.get("engine_top_acceleration")
+    if eng:
+        rows.append([f"engine top acceleration (CFC {num(eng['cfc'])}), peak", num(eng["rating"], 3),
+                     num(eng["peak_deviation_percent"], 3)])
+    body.append("<h2>Figures</h2>")
+    body.append(table(["quantity", "ISO/TS 18571 rating", "deviation [%]"], rows))
+    fw = f.get("firewall_intrusion")
+    if fw:
+        body.append(table(["firewall intrusion", names[0], names[1], "max |Δ| [%]", "mean |Δ| [%]"], [[
+            f"at {num(fw['time'])}, {fw['nodes']} nodes", num(fw["max_intrusion_full"]),
+            num(fw["max_intrusion_simplified"]), num(fw["max_deviation_percent"], 3),
+            num(fw["mean_deviation_percent"], 3)]]))
+        if v.intrusion is not None:
+            body.append(image(intrusion_plot(v.intrusion, names), "firewall intrusion"))
+    t = f["time"]
+    body.append("<h2>Computational time</h2>")
+    body.append(table(["run", "elements", "cycles", "time step", "time loop [s]", "reduction"], [
+        [names[0], t["elements_full"], num(t["full"]["cycles"]), num(t["full"]["time_step"]),
+         num(t["full"]["wall_time"]), ""],
+        [names[1], t["elements_simplified"], num(t["simplified"]["cycles"]), num(t["simplified"]["time_step"]),
+         num(t["simplified"]["wall_time"]),
+         "–" if t["reduction_percent"] is None else f"{t['reduction_percent']:.1f} %"]]))
+    body.append("<h2>Curves</h2><div class=\"grid\">"
+                + "".join(image(pair_plot(p, names), p.name) for p in v.pairs) + "</div>")
+    if v.notes:
+        body.append("<h2>Notes</h2><ul>" + "".join(f"<li>{esc(n)}</li>" for n in v.notes) + "</ul>")
+    return page(f"crashlite simplified vehicle verification: {f['load_case']}", body)
