@@ -71,9 +71,9 @@ class Constraint:
         """Normalised violations, ≤ 0 when met (optuna's convention)."""
         out = []
         if self.upper is not None:
-            out.append((value - self.upper) / max(abs(self.upper), 1e-300))
+            out.append((value - self.upper) / (abs(self.upper) or 1.0))
         if self.lower is not None:
-            out.append((self.lower - value) / max(abs(self.lower), 1e-300))
+            out.append((self.lower - value) / (abs(self.lower) or 1.0))
         return out
 
     def text(self) -> str:
