@@ -80,6 +80,27 @@ def _verify(args) -> int:
     return 0
 
 
+def _interface(args) -> int:
+    import json
+
+    from . import read_deck
+    from .report.build import jsonable
+    from .vehicle.interface import propose_interface
+
+    p = propose_interface(read_deck(args.deck), args.results, threshold=args.threshold, allowed=args.allowed / 100.0,
+                          step=args.step)
+    print(f"{'x':>9} {'yielded behind':>15} {'p99 ratio':>10} {'mass replaced':>14} {'elements replaced':>18}")
+    for c in p.candidates:
+        mark = "  <- proposed" if p.x is not None and c["x"] == p.x else ""
+        print(f"{c['x']:9.1f} {c['yielded_percent_behind']:14.1f}% {c['p99_yield_ratio_behind']:10.2f} "
+              f"{c['replaced_mass_percent']:13.1f}% {c['replaced_elements_percent']:17.1f}%{mark}")
+    for n in p.notes:
+        print(f"note: {n}")
+    if args.json is not None:
+        args.json.write_text(json.dumps(jsonable(p.summary()), indent=1) + "\n")
+    return 0
+
+
 def _pc(v) -> str:
     return "–" if v is None else f"{v:.2f} %"
 
@@ -165,3 +186,12 @@ def add_commands(sub) -> None:
     w.add_argument("--engine", default="engine top", help="history node title of the engine-top sensor")
     w.add_argument("--cfc", type=float, default=60.0, help="SAE J211 filter class of the accelerations")
     w.set_defaults(func=_verify)
+    f = vsub.add_parser("interface", formatter_class=fmt,
+                        help="propose the interface: the foremost plane with the structure behind it elastic")
+    f.add_argument("deck", type=Path, help="full vehicle deck")
+    f.add_argument("--results", type=Path, required=True, help="crashlite results of a full run with field states")
+    f.add_argument("--threshold", type=float, default=1.0, help="strain / yield strain that counts as yielded")
+    f.add_argument("--allowed", type=float, default=1.0, help="share of the shells behind allowed to yield [%%]")
+    f.add_argument("--step", type=float, default=None, help="candidate spacing [length] (default 4 elements)")
+    f.add_argument("--json", type=Path, default=None, help="write the candidates as JSON")
+    f.set_defaults(func=_interface)

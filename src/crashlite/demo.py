@@ -23,7 +23,20 @@ def example_deck(name: str = "tube") -> Path:
 
 
 def main(argv: list[str] | None = None) -> int:
-    out = Path(argv[0]) if argv else Path("out/demo")
+    """``[OUT] [--skip-vehicle]``: the stages in order; the last (the
+    simplified vehicle on the generic car) takes a few minutes."""
+    args = list(argv or [])
+    skip_vehicle = "--skip-vehicle" in args
+    args = [a for a in args if a != "--skip-vehicle"]
+    out = Path(args[0]) if args else Path("out/demo")
+    rc = decks(out)
+    if rc == 0 and not skip_vehicle:
+        rc = vehicle(out)
+    return rc
+
+
+def decks(out: Path) -> int:
+    """Stages 1–6: decks in and out, the solver on closed-form cases, the barrier."""
     deck = example_deck()
     print(f"== 1. Read an LS-DYNA keyword deck: {deck.name}\n")
     print("(the very first run compiles crashlite's Numba kernels: about a minute; "
@@ -148,6 +161,26 @@ def barrier(out: Path) -> int:
     print(f"  {res.cycles} cycles of {res.dt * 1e3:.3g} ms in {res.wall_time:.2f} s; energy ratio "
           f"{ratio.min():.4f}..{ratio.max():.4f}; results in {folder / 'out'}/")
     return 0 if np.all(np.abs(ratio - 1.0) < 0.02) else 1
+
+
+def vehicle(out: Path, mesh_size: float = 60.0, end_time: float = 0.07) -> int:
+    """The paper's four-step simplified vehicle (section 2.2) on the generic
+    car in US NCAP, verified against the full car (section 4)."""
+    from .vehicle.workflow import us_ncap_study
+
+    print(f"\n== 7. The simplified vehicle (paper sections 2.2 and 4): generic car, {mesh_size:g} mm shells\n")
+    st = us_ncap_study(out / "vehicle", mesh_size=mesh_size, end_time=end_time)
+    f = st.verification.figures
+    fw = f.get("firewall_intrusion") or {}
+    ratings = ", ".join(f"{k} {v:.3f}" for k, v in f["energy_ratings_deceleration_phase"].items() if v is not None)
+    print(f"  energy ratings over the deceleration phase: {ratings}")
+    print(f"  crash-box internal energy deviation {f['crash_box_internal_energy_deviation_percent']:+.2f} %; "
+          f"firewall intrusion {fw.get('max_intrusion_full', float('nan')):.0f} mm, deviation max "
+          f"{fw.get('max_deviation_percent', float('nan')):.1f} %, mean {fw.get('mean_deviation_percent', float('nan')):.1f} %")
+    t = f["time"]
+    print(f"  time loop {t['full']['wall_time']:.1f} s -> {t['simplified']['wall_time']:.1f} s "
+          f"({t['reduction_percent']:.0f} % less); reports: {st.out / 'reduction.html'}, {st.out / 'verify' / 'index.html'}")
+    return 0
 
 
 if __name__ == "__main__":

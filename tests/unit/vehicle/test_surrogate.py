@@ -173,3 +173,30 @@ def test_surrogate_oscillates_like_the_full_tube():
     # momentum: the rear body's velocity at the start is v0 in both
     r_idx = list(sur.history_nodes).index(int(m.nodes.ids[rear[0]]))
     assert sur.node_velocity[0, r_idx, 0] == pytest.approx(-2000.0, rel=1e-6)
+
+
+def test_interface_proposal_finds_the_elastic_rear(tmp_path):
+    """Field states of a tube whose front 200 mm is shortened by 10 % while
+    the rest only translates: every shell ahead of x = 300 yields, none
+    behind; the proposal is the foremost candidate plane at or behind 300,
+    and each candidate's replaced share is that of the elements behind it."""
+    from crashlite.vehicle.interface import propose_interface, yield_ratio
+
+    m, _, _ = _tube(per_side=4, n_len=20, masses=False)
+    m.materials[1] = record("MAT_PLASTIC_KINEMATIC", mid=1, ro=RHO, e=E, pr=NU, sigy=200.0, etan=0.0, beta=0.0)
+    x0 = m.nodes.xyz
+    x1 = x0.copy()
+    front = x0[:, 0] > 300.0
+    x1[front, 0] = 300.0 + 0.9 * (x0[front, 0] - 300.0)
+    x1[:, 0] -= 50.0  # the whole tube moves on: no strain from that
+    np.savez(tmp_path / "results.npz", states_time=np.array([0.0, 0.01]), states_x=np.stack([x0, x1]),
+             node_ids=m.nodes.ids)
+    r = yield_ratio(m, tmp_path)
+    centre = x0[m.shells.nodes].mean(axis=1)[:, 0]
+    assert np.all(r[centre > 300.0] == pytest.approx(0.1 / (200.0 / E), rel=1e-6))
+    assert np.all(r[centre < 300.0] < 1e-9)
+    p = propose_interface(m, tmp_path, step=50.0)
+    assert p.x == pytest.approx(300.0)
+    behind = next(c for c in p.candidates if c["x"] == pytest.approx(p.x))
+    assert behind["yielded_percent_behind"] == 0.0
+    assert behind["replaced_elements_percent"] == pytest.approx(100.0 * np.mean(centre < 300.0))
