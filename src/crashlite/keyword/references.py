@@ -68,27 +68,31 @@ def _records(model: Model):
     yield from (k for k in model.keywords if isinstance(k, Record))
 
 
+def head_references(rec: Record):
+    """(field, ID) of every positive ID the head cards of ``rec`` name
+    (its own ID field excepted)."""
+    own = rec.spec.id_field
+    for c in rec.spec.layout(rec.options).head:
+        for f in c.fields:
+            if f.name == own or f.kind != INT or f.ref is None:
+                continue
+            v = rec.values.get(f.name)
+            if isinstance(v, int) and v > 0:
+                yield f, v
+
+
 def check_references(model: Model, problems: Collector, bulk=()) -> None:
     """Report undefined IDs; ``bulk``: the mesh records (element part IDs)."""
     ids = defined_ids(model)
     node_ids = model.nodes.ids
     for rec in _records(model):
         lay = rec.spec.layout(rec.options)
-        own = rec.spec.id_field
-        for c in lay.head:
-            for f in c.fields:
-                if f.name == own or f.kind != INT or f.ref is None:
-                    continue
-                v = rec.values.get(f.name)
-                if not isinstance(v, int) or v <= 0:
-                    continue
-                if f.ref == "node":
-                    if not np.isin(v, node_ids):
-                        problems.error(*rec.where(f.name), rec.name, f.name.upper(),
-                                       f"node {v} is not defined")
-                elif f.ref in _WHAT and v not in ids.get(f.ref, set()):
-                    problems.error(*rec.where(f.name), rec.name, f.name.upper(),
-                                   f"{_WHAT[f.ref]} {v} is not defined")
+        for f, v in head_references(rec):
+            if f.ref == "node":
+                if not np.isin(v, node_ids):
+                    problems.error(*rec.where(f.name), rec.name, f.name.upper(), f"node {v} is not defined")
+            elif f.ref in _WHAT and v not in ids.get(f.ref, set()):
+                problems.error(*rec.where(f.name), rec.name, f.name.upper(), f"{_WHAT[f.ref]} {v} is not defined")
         if rec.rows:
             for f in lay.row_fields:
                 if f.ref is None or f.kind != INT or f.name not in rec.rows:

@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..keyword.references import head_references
 from ..keyword.schema import INT, Record
 from ..model.model import Model
 from .cut import ELEMENT_TABLES, Cut
@@ -157,16 +158,11 @@ def _prune_record(rec, gone: dict, m: Model, notes: list):
     if not isinstance(rec, Record):
         return rec
     lay = rec.spec.layout(rec.options)
-    own = rec.spec.id_field
-    for c in lay.head:
-        for f in c.fields:
-            if f.name == own or f.kind != INT or f.ref is None:
-                continue
-            v = rec.values.get(f.name)
-            if isinstance(v, int) and v > 0 and f.ref in gone and np.isin(v, gone[f.ref]):
-                notes.append(f"*{rec.name}{_title(rec)} names deleted {f.ref.replace('_', ' ')} {v} ({f.name.upper()}): "
-                             "deleted")
-                return None
+    for f, v in head_references(rec):
+        if f.ref in gone and np.isin(v, gone[f.ref]):
+            notes.append(f"*{rec.name}{_title(rec)} names deleted {f.ref.replace('_', ' ')} {v} ({f.name.upper()}): "
+                         "deleted")
+            return None
     if rec.keyword.startswith("CONTACT_"):
         for side, typ in (("ssid", "sstyp"), ("msid", "mstyp")):
             kind = _CONTACT_SIDE.get(int(rec.get(typ, 0) or 0))
