@@ -102,14 +102,19 @@ def _window(t, y, t_end):
     return t[keep], y[keep]
 
 
-def _deceleration_end(h, node: int, axis: int) -> float:
-    """Time the node stops moving forward (its velocity along the axis turns ≤ 0), or the last time."""
+def _deceleration_end(h, node: int, axis: int, cfc: float = 60.0) -> float:
+    """Time the node stops moving forward (its CFC-filtered velocity along
+    the axis turns ≤ 0: a sheet node's ringing is no stop), or the last time."""
     t = _read(h, "nodout", "time")
     ids = list(np.asarray(h.read("nodout", "ids")).astype(np.int64))
     if node not in ids:
         raise CompareError(f"{getattr(h, 'source', 'run')}: node {node} is not a history node")
     v = np.asarray(h.read("nodout", f"{'xyz'[axis]}_velocity"))[:, ids.index(node)]
     sign = np.sign(v[0]) or 1.0
+    try:
+        t, v = filter_signal(t, v, cfc)
+    except ValueError:
+        pass  # too few samples to filter: the raw velocity
     stop = np.flatnonzero(sign * v <= 0.0)
     return float(t[stop[0]]) if len(stop) else float(t[-1])
 
