@@ -77,8 +77,10 @@ class Walls:
             ew += float(np.einsum("ij,ij->", impulse, wall_mid - 0.5 * (self._before[k] + v_after)))
             v_nodes = self.velocity[k]
             for body, nodes in self.body_nodes[k]:
-                ew += self._push_body(k, body, nodes, st.x, dt)
-                place(body)
+                taken = self._push_body(k, body, nodes, st.x, dt)
+                if taken is not None:  # the body was pushed: its nodes follow
+                    ew += taken
+                    place(body)
             ew += 0.5 * w.mass * (v_nodes**2 - self.velocity[k] ** 2)
         return ew
 
@@ -101,22 +103,23 @@ class Walls:
             over = (pl >= 0) & (pl <= w.len_l) & (pm >= 0) & (pm <= w.len_m)
         return gap, np.tile(w.normal, (len(nodes), 1)), over
 
-    def _push_body(self, k, body, nodes, x, dt, passes: int = 20) -> float:
+    def _push_body(self, k, body, nodes, x, dt, passes: int = 20) -> float | None:
         """Impulses on ``body`` at its ``nodes`` against wall k over the next
-        step; returns the kinetic energy taken (body and wall together)."""
+        step; returns the kinetic energy taken (body and wall together), or
+        None when no node of the body reaches the wall (nothing changed)."""
         w = self.walls[k]
         gap, normals, over = self._gaps(k, x, nodes, dt)
         moving = w.mass > 0 and w.radius == 0
         wall_v = self.velocity[k] if w.radius == 0 else 0.0
         arm = x[nodes] - body.cog
-        rot = body.rot
-        inv_i = rot @ np.linalg.inv(body.inertia_body) @ rot.T  # world-frame inverse inertia
         # velocity each point must not fall below along its normal: it lands on the wall
         target = wall_v * (normals @ w.normal) - gap / dt if w.radius == 0 else -gap / dt
         vel_n = body.velocity @ normals.T + np.einsum("ij,ij->i", np.cross(body.omega(), arm), normals)
         active = over & (vel_n < target)
         if not active.any():
-            return 0.0
+            return None
+        rot = body.rot
+        inv_i = rot @ np.linalg.inv(body.inertia_body) @ rot.T  # world-frame inverse inertia
         ke0 = body.kinetic_now()
         rxn = np.cross(arm, normals)
         eff = 1.0 / body.mass + np.einsum("ij,jk,ik->i", rxn, inv_i, rxn)
