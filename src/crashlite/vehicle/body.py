@@ -156,16 +156,16 @@ def parts(engine_mass: float = 170.0, axle_mass: float = 73.0) -> list[PartDef]:
         add(f"sill {side}", f"door sill {side}", "DP800", 1.8,
             (_bx(-2000.0, -250.0, *_y(s, 640.0, 760.0), 150.0, 300.0),))
         f0, f1 = _y(s, 110.0, 640.0)
-        add(f"floor {side}", f"floor {side}", "DC04", 0.8, (_pz(250.0, -2000.0, -250.0, f0, f1),))
+        add(f"floor {side}", f"floor {side}", "HX340LAD", 1.0, (_pz(250.0, -2000.0, -250.0, f0, f1),))
         l0, l1 = _y(s, 410.0, 490.0)
-        add(f"floor longitudinal {side}", f"floor {side}", "DP600", 1.5, (
+        add(f"floor longitudinal {side}", f"floor {side}", "DP800", 1.8, (
             _hat_x(-2000.0, -250.0, l0, l1, 250.0, 150.0), _px(-250.0, l0, l1, 150.0, 250.0),
             _px(-2000.0, l0, l1, 150.0, 250.0)))
         ya, yb = s * 110.0, s * 640.0
         add(f"seat cross members {side}", f"floor {side}", "DP600", 1.5, tuple(
             Tube(1, ya, yb, ((xa, 250.0), (xa, 300.0), (xb, 300.0), (xb, 250.0)), closed=False)
             for xa, xb in ((-1230.0, -1150.0), (-1700.0, -1600.0))))
-    add("tunnel", "tunnel", "HX340LAD", 1.2, (
+    add("tunnel", "tunnel", "DP600", 1.5, (
         Tube(0, -2000.0, -250.0, ((110.0, 250.0), (110.0, 460.0), (-110.0, 460.0), (-110.0, 250.0)), closed=False),
         _px(-2000.0, -110.0, 110.0, 350.0, 460.0)))
     add("exhaust", "exhaust", "X2CrTi12", 1.2, (_bx(-1950.0, -80.0, -40.0, 40.0, 300.0, 350.0),))
