@@ -29,13 +29,16 @@ class Task:
     options: dict = field(default_factory=dict)
 
 
-def _threads(n: int) -> None:
+def _threads(n: int) -> int | None:
+    """Set the Numba threads of this process; the count before (None: unchanged)."""
     try:
         import numba
 
+        before = numba.get_num_threads()
         numba.set_num_threads(max(1, min(int(n), numba.config.NUMBA_NUM_THREADS)))
+        return before
     except Exception:  # noqa: BLE001 - threads are a speed setting, never a reason to fail
-        pass
+        return None
 
 
 def _attempt(directory: Path) -> int:
@@ -51,7 +54,7 @@ def _attempt(directory: Path) -> int:
 def evaluate(task: Task) -> dict:
     """Run one design; returns {key, status, responses, message, ...}."""
     t0 = time.perf_counter()
-    _threads(task.threads)
+    before = _threads(task.threads)  # restored at the end: a serial study runs in the caller's process
     directory = Path(task.directory)
     out = {"key": task.key, "values": dict(task.values), "status": "failed", "responses": {}, "message": "",
            "host": socket.gethostname(), "pid": os.getpid(), "attempt": _attempt(directory),
@@ -80,5 +83,7 @@ def evaluate(task: Task) -> dict:
     finally:
         if task.keep == "decks" and (directory / "results").exists():
             shutil.rmtree(directory / "results", ignore_errors=True)
+        if before is not None:
+            _threads(before)
     out["wall_time"] = time.perf_counter() - t0
     return out
