@@ -53,7 +53,7 @@ def _reduce(args) -> int:
                                                                           for p in args.axle_parts], shares=args.shares,
                          t_end=None if args.t_end is None else args.t_end / 1000.0 * _seconds(args.deck),
                          interface_mode=args.interface_mode, spring_length=args.spring_length,
-                         damping_ratio=args.damping_ratio, quiet=False)
+                         damping_ratio=args.damping_ratio, mass_split=args.mass_split, quiet=False)
     files = red.write(args.output, args.report, fmt=args.format)
     s = red.summary()["model_size"]
     print(f"wrote {files['deck']} ({s['simplified_elements']} of {s['full_elements']} elements, "
@@ -168,6 +168,8 @@ def add_commands(sub) -> None:
                    help="one rigid body over the cut, or one per assembly")
     r.add_argument("--spring-length", type=float, default=100.0, help="spring length [deck length unit]")
     r.add_argument("--damping-ratio", type=float, default=0.0, help="damping ratio of dampers beside the springs")
+    r.add_argument("--mass-split", choices=("axle", "cog"), default="axle",
+                   help="replaced mass shared between interface and rear body along the axis, or all at its CoG")
     r.add_argument("--format", choices=("fixed", "long", "i10", "free"), default="fixed")
     r.set_defaults(func=_reduce)
     w = vsub.add_parser("verify", formatter_class=fmt,

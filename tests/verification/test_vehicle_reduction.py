@@ -13,7 +13,7 @@ from crashlite.vehicle.verification import history_node
 from crashlite.vehicle.workflow import us_ncap_study
 from crashlite.verify.filters import filter_signal
 
-MESH, END = 60.0, 0.05  # mm, s (the 38 mm, 80 ms figures: README)
+MESH, END = 38.0, 0.08  # mm, s: the coarse car of the tests, the whole crash (about 5 min on 2 cores)
 
 
 @pytest.fixture(scope="module")
@@ -26,21 +26,24 @@ def _results(st, name):
 
 
 @pytest.mark.slow
-def test_full_car_crash_is_sound(study):
-    """The full run: energy error < 3 %, hourglass < 10 % of the internal
-    energy, the cell brought to a stop within the run, the front structure
-    (bumper, crash boxes, rails, radiator support) taking most of the
-    energy. (The 60 mm car is stiffer than the 38 mm one, whose pulse is
-    the plausible one: 53-61 g, 420-440 mm, README.)"""
+def test_full_car_is_a_plausible_us_ncap_crash(study):
+    """The full run against the generic car's bounds: passenger-cell
+    deceleration (rear seats, CFC 60) peak 30–60 g, dynamic crush
+    400–750 mm, the cell stopped within the run, energy error < 3 %,
+    hourglass < 10 % of the internal energy, the front structure (bumper,
+    crash boxes, rails, radiator support) taking most of the energy."""
     r = _results(study, "full")
     deck = read_deck(study.out / "usncap.k")
     t = r["time"]
     ids = list(r["history_nodes"])
-    k = ids.index(history_node(deck, "rear seat left"))
-    v = r["node_velocity"][:, k, 0]
-    assert v[0] == pytest.approx(kmh(56.0), rel=1e-6)
-    tf, vf = filter_signal(t, v, 60.0)
-    assert vf.min() < 0.0  # stopped (and rebounding) before the end
+    for seat in ("rear seat left", "rear seat right"):
+        k = ids.index(history_node(deck, seat))
+        v = r["node_velocity"][:, k, 0]
+        assert v[0] == pytest.approx(kmh(56.0), rel=1e-6)
+        tf, a = filter_signal(t, np.gradient(v, t), 60.0)
+        assert 30.0 < -a.min() / 9810.0 < 60.0
+        assert 400.0 < r["node_displacement"][:, k, 0].max() < 750.0
+        assert filter_signal(t, v, 60.0)[1].min() < 0.0  # stopped (and rebounding) before the end
     tot = r["kinetic"] + r["internal"] + r["hourglass"] + r["sliding"]
     assert np.abs(tot / tot[0] - 1.0).max() < 0.03
     assert r["hourglass"][-1] < 0.1 * r["internal"][-1]
@@ -66,13 +69,16 @@ def test_reduction_conserves_mass_and_builds_the_surrogate(study):
 
 @pytest.mark.slow
 def test_simplified_car_follows_the_full_car(study):
-    """Coarse-mesh bounds (the 38 mm figures are in the README): energies
-    rated ≥ 0.85 over the deceleration phase, crash-box energy within 25 %,
+    """Issue 8's bounds that the generic car meets at the default interface
+    (x = −600 mm): kinetic and internal energy rated ≥ 0.9 over the
+    deceleration phase, crash-box internal energy within 2 % (paper: 1 %);
     both runs conserve energy within 3 %, the simplified one runs in less
-    time; summary.json carries the figures under their keys."""
+    time; summary.json carries the figures under their keys. (The firewall
+    intrusion is not within 5 % here: the floor behind the interface
+    yields, README.)"""
     f = json.loads((study.out / "verify" / "summary.json").read_text())
-    assert f["energy_rating_min"] >= 0.85
-    assert abs(f["crash_box_internal_energy_deviation_percent"]) < 25.0
+    assert f["energy_rating_min"] >= 0.9
+    assert abs(f["crash_box_internal_energy_deviation_percent"]) < 2.0
     assert f["firewall_intrusion"]["max_intrusion_full"] > 10.0  # mm
     assert f["time"]["simplified"]["wall_time"] < f["time"]["full"]["wall_time"]
     r = _results(study, "simplified")

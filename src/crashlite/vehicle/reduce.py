@@ -137,7 +137,7 @@ def _support(model: Model, support):
 def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.0, 0.0), assemblies=None,
                    support=None, axle_parts=None, shares="combined", t_end: float | None = None,
                    interface_mode: str = "rigid", spring_length: float = 100.0, damping_ratio: float = 0.0,
-                   quiet: bool = True) -> Reduction:
+                   mass_split: str = "axle", quiet: bool = True) -> Reduction:
     """Steps 1–4 (module docstring).
 
     deck        the full vehicle deck (path or Model)
@@ -150,6 +150,7 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     axle_parts  parts of the rear axle (table 2's rear-axle mass)
     shares      "combined" (mean over the load cases) or the name of one load case
     t_end       ignore section forces after this time (e.g. the rebound)
+    mass_split  "axle" or "cog" (``surrogate.build_surrogate``)
     """
     from ..keyword.reader import read_deck
 
@@ -215,7 +216,7 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     # step 4
     t0 = time.perf_counter()
     sur = build_surrogate(cut, assemblies, used, k.stiffness, mass, trans, interface=interface_mode,
-                          spring_length=spring_length, damping_ratio=damping_ratio)
+                          spring_length=spring_length, damping_ratio=damping_ratio, mass_split=mass_split)
     seconds["step 4 surrogate"] = time.perf_counter() - t0
     say(f"step 4: {len(sur.springs)} springs, {len(sur.model.shells)} of {len(model.shells)} shells kept")
     notes += mass.notes + k.notes
