@@ -98,7 +98,7 @@ def propose_interface(model: Model, results, threshold: float = 1.0, allowed: fl
     """Candidate planes at the multiples of ``step`` (default: four element sizes) along
     ``axis`` over the model's length; the proposal (module docstring)."""
     from .cut import cut_behind
-    from .massprops import replaced_mass
+    from .massprops import element_moments, replaced_mass
 
     a = np.asarray(axis, float)
     a = a / np.linalg.norm(a)
@@ -112,6 +112,7 @@ def propose_interface(model: Model, results, threshold: float = 1.0, allowed: fl
     lo, hi = float(centre.min()), float(centre.max())
     full_mass = model.mass_properties().mass
     n_el = sum(len(getattr(model, t)) for t in ("shells", "solids", "beams", "discretes"))
+    moments = element_moments(model)  # once: every candidate sums its own share of them
     out, proposed = [], None
     first = np.ceil(hi / step) * step - step  # candidates on multiples of the step
     for x in np.arange(first, lo, -step):
@@ -119,7 +120,7 @@ def propose_interface(model: Model, results, threshold: float = 1.0, allowed: fl
         share = float(np.mean(r[behind] >= threshold)) if behind.any() else 0.0
         cut = cut_behind(model, x=float(x), axis=a)
         n_rep = sum(int(m.sum()) for m in cut.replaced.values())
-        rep = replaced_mass(cut).structure.mass
+        rep = replaced_mass(cut, moments=moments).structure.mass
         out.append({"x": float(x), "yielded_percent_behind": 100.0 * share,
                     "max_yield_ratio_behind": float(r[behind].max()) if behind.any() else 0.0,
                     "p99_yield_ratio_behind": float(np.percentile(r[behind], 99)) if behind.any() else 0.0,

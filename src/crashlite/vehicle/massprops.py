@@ -139,13 +139,15 @@ def _given_inertia(part) -> tuple[float, np.ndarray, np.ndarray] | None:
     return float(part["tm"]), c, tensor
 
 
-def replaced_rows(cut: Cut) -> tuple[list, list, list, list]:
+def replaced_rows(cut: Cut, moments: dict | None = None) -> tuple[list, list, list, list]:
     """Raw moments of everything ``cut`` replaces, row by row: (element
     Moments per table and *PART_INERTIA bodies, their weights (bool masks
-    of the replaced rows, None: all), point-mass Moments, notes)."""
+    of the replaced rows, None: all), point-mass Moments, notes).
+    ``moments``: ``element_moments`` of the model when already at hand
+    (several cuts of one model); the given-inertia parts are zeroed in it."""
     model = cut.model
     notes = []
-    moments = element_moments(model)
+    moments = element_moments(model) if moments is None else moments
     given = []
     for pid, part in model.parts.items():
         g = _given_inertia(part)
@@ -210,22 +212,23 @@ def split_replaced(cut: Cut, far_point) -> tuple[MassProperties, MassProperties]
     return mk.combine(*rows, weights_mask=near_w), mk.combine(*rows, weights_mask=far_w)
 
 
-def replaced_mass(cut: Cut, axle_nodes=None, axle_parts=None) -> ReplacedMass:
+def replaced_mass(cut: Cut, axle_nodes=None, axle_parts=None, moments: dict | None = None) -> ReplacedMass:
     """Mass, CoG and inertia (about the CoG) of the structure ``cut`` replaces.
 
     axle_nodes  node indices, or ("set", SID) / a *SET_NODE title of the
                 rear-axle attachment points: their mean position is the
                 rear-axle point of table 2 (None: not computed)
     axle_parts  part IDs or titles of the rear axle (None: not computed)
+    moments     ``element_moments`` of the model, to reuse over several cuts
     """
     model = cut.model
-    elems, masks, lumped_m, notes = replaced_rows(cut)
+    elems, masks, lumped_m, notes = replaced_rows(cut, moments)
     elements = mk.combine(*elems, weights_mask=masks)
     lumped = mk.combine(*lumped_m)
     structure = elements + lumped
     out = ReplacedMass(structure, elements, lumped, notes=notes + list(cut.notes))
     if axle_nodes is not None:
-        idx = _nodes(model, axle_nodes)
+        idx = node_indices(model, axle_nodes)
         if not len(idx):
             raise ValueError("no rear-axle attachment nodes")
         out.axle_nodes = idx
@@ -235,7 +238,7 @@ def replaced_mass(cut: Cut, axle_nodes=None, axle_parts=None) -> ReplacedMass:
     return out
 
 
-def _nodes(model, spec) -> np.ndarray:
+def node_indices(model, spec) -> np.ndarray:
     """Node indices from indices, ("set", SID) or a *SET_NODE title."""
     if isinstance(spec, str):
         for (kind, sid), rec in model.sets.items():

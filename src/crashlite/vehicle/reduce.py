@@ -33,8 +33,8 @@ from ..model.model import Model
 from . import loadpaths as lp
 from .cut import Cut, cut_behind
 from .massprops import ReplacedMass, replaced_mass
-from .stiffness import StiffnessResult, longitudinal_stiffness
-from .surrogate import Surrogate, build_surrogate, transverse_stiffness
+from .stiffness import StiffnessResult, longitudinal_stiffness, transverse_stiffness
+from .surrogate import Surrogate, build_surrogate
 
 
 @dataclass

@@ -34,7 +34,7 @@ import numpy as np
 from ..model.model import Model
 from . import elements as el
 from .cut import ELEMENT_TABLES, Cut, rigid_part_ids
-from .massprops import _nodes
+from .massprops import node_indices
 from .statics import LinearStatic, MechanismError, StaticSolution
 
 
@@ -226,16 +226,14 @@ def build_static(model: Model, select: dict | None = None, drill: float = 1e-3) 
     return ls, counts, notes
 
 
-def structure_stiffness(model: Model, support, load_nodes, force: float = 1000.0, direction=(-1.0, 0.0, 0.0),
-                        select: dict | None = None, support_dofs=(0, 1, 2, 3, 4, 5), load_point=None,
-                        drill: float = 1e-3) -> StiffnessResult:
-    """Stiffness of the selected elements of ``model`` borne at ``support``
-    (node indices, ("set", SID) or a *SET_NODE title; ``support_dofs`` held)
-    and loaded by a rigid body tying ``load_nodes`` to a master at their
-    centroid (or ``load_point``) with ``force`` along ``direction``."""
+def borne_structure(model: Model, support, load_nodes, select: dict | None = None,
+                    support_dofs=(0, 1, 2, 3, 4, 5), load_point=None, drill: float = 1e-3):
+    """The static model of the selected elements held at ``support`` with a
+    rigid body (its master returned) over ``load_nodes``:
+    (LinearStatic, master, element counts, notes)."""
     ls, counts, notes = build_static(model, select, drill)
-    sup = _nodes(model, support)
-    ld = _nodes(model, load_nodes)
+    sup = node_indices(model, support)
+    ld = node_indices(model, load_nodes)
     outside = ~ls.in_structure[sup]
     if outside.all():
         raise ValueError("no support node is a node of the structure")
@@ -245,17 +243,31 @@ def structure_stiffness(model: Model, support, load_nodes, force: float = 1000.0
     if not len(ld):
         raise ValueError("no load node is a node of the structure")
     ls.fix(sup[~outside], support_dofs)
-    dvec = np.asarray(direction, float).reshape(3)
-    dvec = dvec / np.linalg.norm(dvec)
-    master = ls.add_rigid(ld, load_point)
-    ls.load(master, force * dvec)
+    return ls, ls.add_rigid(ld, load_point), counts, notes
+
+
+def solve_named(ls: LinearStatic, model: Model, cases: list) -> list:
+    """``ls.solve_cases`` with a mechanism's nodes named by their deck IDs."""
     try:
-        sol = ls.solve()
+        return ls.solve_cases(cases)
     except MechanismError as e:
         ids = model.nodes.ids[e.nodes[e.nodes < len(model.nodes)]]
         if not len(ids):
             raise
         raise MechanismError(f"{e} (deck node IDs {ids[:10].tolist()})", e.nodes) from None
+
+
+def structure_stiffness(model: Model, support, load_nodes, force: float = 1000.0, direction=(-1.0, 0.0, 0.0),
+                        select: dict | None = None, support_dofs=(0, 1, 2, 3, 4, 5), load_point=None,
+                        drill: float = 1e-3) -> StiffnessResult:
+    """Stiffness of the selected elements of ``model`` borne at ``support``
+    (node indices, ("set", SID) or a *SET_NODE title; ``support_dofs`` held)
+    and loaded by a rigid body tying ``load_nodes`` to a master at their
+    centroid (or ``load_point``) with ``force`` along ``direction``."""
+    ls, master, counts, notes = borne_structure(model, support, load_nodes, select, support_dofs, load_point, drill)
+    dvec = np.asarray(direction, float).reshape(3)
+    dvec = dvec / np.linalg.norm(dvec)
+    (sol,) = solve_named(ls, model, [{master: np.concatenate([force * dvec, np.zeros(3)])}])
     u = float(sol.u[master, :3] @ dvec)
     if not u > 0:
         raise ValueError(f"the load point moves {u:.3g} along the load: the structure is not stable under it")
@@ -272,8 +284,32 @@ def longitudinal_stiffness(cut: Cut, support, force: float = 1000.0, direction=N
     title), loaded through its interface nodes (default: all of the cut)
     with ``force`` along ``direction`` (default −axis, rearwards)."""
     d = -cut.axis if direction is None else direction
-    nodes = cut.interface_nodes if interface_nodes is None else _nodes(cut.model, interface_nodes)
+    nodes = cut.interface_nodes if interface_nodes is None else node_indices(cut.model, interface_nodes)
     res = structure_stiffness(cut.model, support, nodes, force, d, select=cut.replaced, support_dofs=support_dofs,
                               drill=drill)
     res.notes = list(cut.notes) + res.notes
     return res
+
+
+def transverse_stiffness(cut: Cut, support, interface_nodes=None, force: float = 1000.0,
+                         moment: float = 1.0e6) -> dict:
+    """Shear and roll stiffness of the replaced structure at the interface,
+    borne at ``support`` like step 3: the rigid interface loaded across the
+    axis (both transverse directions, the softer taken) and about it.
+    Returns {"shear": k_t [force/length], "roll": k_r [force·length/rad], "lateral", "vertical"}."""
+    a = cut.axis
+    ref = np.array([0.0, 0.0, 1.0]) if abs(a[2]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    e_lat = np.cross(ref, a)
+    e_lat /= np.linalg.norm(e_lat)
+    e_ver = np.cross(a, e_lat)
+    nodes = cut.interface_nodes if interface_nodes is None else node_indices(cut.model, interface_nodes)
+    ls, master, _, _ = borne_structure(cut.model, support, nodes, cut.replaced)
+    cases = {"lateral": (e_lat * force, np.zeros(3)), "vertical": (e_ver * force, np.zeros(3)),
+             "roll": (np.zeros(3), a * moment)}
+    sols = solve_named(ls, cut.model, [{master: np.concatenate(fm)} for fm in cases.values()])
+    out = {}
+    for (key, (f, _)), sol in zip(cases.items(), sols):
+        u = sol.u[master]
+        out[key] = moment / float(u[3:] @ a) if key == "roll" else force / float(u[:3] @ (f / force))
+    out["shear"] = min(out["lateral"], out["vertical"])
+    return out

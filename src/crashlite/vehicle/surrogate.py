@@ -25,7 +25,7 @@ what lies behind it (the paper's figure 15):
   the cut, pitch and yaw; the beam adds what axial springs cannot: shear
   across the cut and roll. Its bending stiffness EI = k_t·L³/3 and
   torsion GJ = k_r·L come from the replaced structure's own transverse and
-  roll stiffness at the interface (``transverse_stiffness``: the step-3
+  roll stiffness at the interface (``stiffness.transverse_stiffness``: the step-3
   static model loaded across instead of along); its axial stiffness is a
   small fraction ``beam_axial`` of K, taken from the springs so that the
   longitudinal stiffness stays K.
@@ -217,7 +217,7 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
     stiffness      K of step 3 [force/length]
     mass           step 2 (its ``axle_points`` anchor the anti-rotation beam; without them, the CoG)
     transverse     {"shear": k_t [force/length], "roll": k_r [force·length/rad]} of the replaced
-                   structure at the interface (``transverse_stiffness``); None: the beam gets
+                   structure at the interface (``stiffness.transverse_stiffness``); None: the beam gets
                    the stiffness of a steel tube carrying K axially
     interface      "rigid" (one nodal rigid body over the cut) or "assembly" (one per assembly)
     spring_length  length of each spring along its profile direction [length]
@@ -420,33 +420,3 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
     return Surrogate(m, springs, float(stiffness), mass, tr, node_ids,
                      part_ids, beam, interface, notes,
                      {"rear body": far, **({"interface": near} if near is not None else {})})
-
-
-def transverse_stiffness(cut: Cut, support, interface_nodes=None, force: float = 1000.0,
-                         moment: float = 1.0e6) -> dict:
-    """Shear and roll stiffness of the replaced structure at the interface,
-    borne at ``support`` like step 3: the rigid interface loaded across the
-    axis (both transverse directions, the softer taken) and about it.
-    Returns {"shear": k_t [force/length], "roll": k_r [force·length/rad], "lateral", "vertical"}."""
-    from .massprops import _nodes
-    from .stiffness import build_static
-
-    a = cut.axis
-    ref = np.array([0.0, 0.0, 1.0]) if abs(a[2]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    e_lat = np.cross(ref, a)
-    e_lat /= np.linalg.norm(e_lat)
-    e_ver = np.cross(a, e_lat)
-    nodes = cut.interface_nodes if interface_nodes is None else _nodes(cut.model, interface_nodes)
-    ls, _, _ = build_static(cut.model, cut.replaced)
-    sup = _nodes(cut.model, support)
-    ls.fix(sup[ls.in_structure[sup]])
-    master = ls.add_rigid(nodes[ls.in_structure[nodes]])
-    cases = {"lateral": (e_lat * force, np.zeros(3)), "vertical": (e_ver * force, np.zeros(3)),
-             "roll": (np.zeros(3), a * moment)}
-    sols = ls.solve_cases([{master: np.concatenate(fm)} for fm in cases.values()])
-    out = {}
-    for (key, (f, _)), sol in zip(cases.items(), sols):
-        u = sol.u[master]
-        out[key] = moment / float(u[3:] @ a) if key == "roll" else force / float(u[:3] @ (f / force))
-    out["shear"] = min(out["lateral"], out["vertical"])
-    return out

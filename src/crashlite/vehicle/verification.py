@@ -35,6 +35,7 @@ from ..verify.errors import CompareError
 from ..verify.fields import load_states
 from ..verify.filters import filter_signal
 from ..verify.timing import reduction, run_info
+from .massprops import node_indices
 
 FLAT = 0.02  # an energy curve varying less than this share of its magnitude (the total) is not rated
 ENERGY_KEYS = (("total_energy", "total"), ("kinetic_energy", "kinetic"), ("internal_energy", "internal"))
@@ -81,13 +82,6 @@ def history_node(model: Model, heading: str) -> int:
             if str(h).strip().lower() == heading.strip().lower():
                 return int(nid)
     raise KeyError(f"no history node titled {heading!r} in the deck")
-
-
-def _node_set(model: Model, title: str) -> np.ndarray:
-    for (kind, sid), rec in model.sets.items():
-        if kind == "NODE" and str(rec.title or "").strip().lower() == title.strip().lower():
-            return model.set_members("NODE", sid)
-    raise KeyError(f"no *SET_NODE titled {title!r} in the deck")
 
 
 def _read(h, cat, q):
@@ -243,7 +237,7 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
         notes.append(f"engine acceleration not compared: {e}")
     intrusion = None
     try:
-        fw = _node_set(decks[0], firewall)
+        fw = decks[0].nodes.ids[node_indices(decks[0], firewall)]
         figs, intrusion = _intrusion(full, simplified, decks, fw, ref_node, axis, t_stop)
         figures["firewall_intrusion"] = figs
         figures["firewall_intrusion_max_deviation_percent"] = figs["max_deviation_percent"]

@@ -10,8 +10,8 @@ from crashlite.solver import run
 from crashlite.vehicle.cut import cut_behind
 from crashlite.vehicle.massprops import replaced_mass
 from crashlite.vehicle.records import id_list, record
-from crashlite.vehicle.stiffness import longitudinal_stiffness, structure_stiffness
-from crashlite.vehicle.surrogate import build_surrogate, transverse_stiffness
+from crashlite.vehicle.stiffness import longitudinal_stiffness, structure_stiffness, transverse_stiffness
+from crashlite.vehicle.surrogate import build_surrogate
 from crashlite.vehicle.truncate import truncate
 
 B, L, T = 50.0, 500.0, 1.5  # tube side (mid-line), length, wall [mm]
