@@ -67,8 +67,13 @@ def _characterise(args) -> int:
 def _verify(args) -> int:
     from .barrier.verify import verify_barriers
 
-    s = verify_barriers(args.output, _spec(args.curves), element_size=args.size, end_time=args.end_time / 1000.0,
-                        overlaps=[o / 100.0 for o in args.overlap], progress=True)
+    curves = _spec(args.curves) if args.curves is not None else args.simplified_curves
+    s = verify_barriers(args.output, element_size=args.size, end_time=args.end_time / 1000.0,
+                        overlaps=[o / 100.0 for o in args.overlap], progress=True, curves=curves)
+    if s["calibration"] is not None:
+        c = s["calibration"]
+        print(f"simplified curves calibrated against {c['reference']} in {c['runs']} runs: misfit "
+              f"{c['misfit_start']:.3f} -> {c['misfit']:.3f}; {args.output / 'calibration' / 'curves.json'}")
     for e in s["overlaps"]:
         r = e["rating_crush_phase"]
         print(f"{e['overlap_percent']:.0f} % overlap: ISO/TS 18571 {r['overall']:.3f} ({r['grade']}) to "
@@ -124,5 +129,10 @@ def add_commands(sub) -> None:
     v.add_argument("--size", type=float, default=25.0, help="element size of the detailed barrier [mm]")
     v.add_argument("--end-time", type=float, default=45.0, help="end time [ms]")
     v.add_argument("--overlap", type=float, nargs="+", default=[100.0, 40.0], help="overlaps [%%]")
-    v.add_argument("--curves", type=Path, help="block curves of the simplified barrier (default: the paper's)")
+    v.add_argument("--simplified-curves", choices=["calibrated", "characterised", "paper"], default="calibrated",
+                   help="curves of the simplified barrier: characterised from compression tests of the detailed "
+                        "blocks and calibrated against the detailed barrier at the largest overlap (the paper's "
+                        "procedure), characterised only, or the paper's curves")
+    v.add_argument("--curves", type=Path, help="curves.json for the simplified barrier instead (from "
+                   "`barrier characterise` or a calibration)")
     v.set_defaults(func=_verify)

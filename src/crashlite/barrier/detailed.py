@@ -3,8 +3,14 @@
 Bumper and main block are meshed with 8-node solids of *MAT_HONEYCOMB
 (MAT_026), crush direction along the barrier depth (AOPT 2): the uniaxial
 crush curve LCA is the block's force–crush characteristic per face area
-against volumetric strain, lateral and shear curves are weak (the cells
-carry little across), full compaction at the curve's end. The bumper is
+against volumetric strain, full compaction at the curve's end. Across the
+cells (normal b, c and shear bc) the honeycomb is weak; the transverse
+shears ab and ca, carried by the cell walls, are stiff and strong, and
+fail at an engineering shear strain (SSEF, the walls tear where an
+impactor's edge shears the block). With weak transverse shear the columns
+of elements tilt as soon as the bumper has pushed in ahead of the block
+face, crush in their weak directions and carry half the block's force.
+The bumper is
 bonded to the block (shared nodes), the back is held. The element size is
 a parameter; its default makes the barrier cost far more to run than the
 simplified one, as the honeycomb models of the paper's reference do.
@@ -28,32 +34,45 @@ def _segments(bounds: list[float], size: float) -> np.ndarray:
     return np.array(out)
 
 
-def _honeycomb(dk: _Deck, mid: int, lca: int, lcw: int, b: Block, u: UnitSystem, d: int, modulus: float,
-               lateral: float) -> None:
+def _honeycomb(dk: _Deck, mid: int, lcid: int, b: Block, u: UnitSystem, d: int, modulus: float, lateral: float,
+               shear_modulus: float, shear_strength: float, shear_failure: float) -> None:
+    """MAT_026 of a block, crush along the depth (axis a; b, c across): the
+    uniaxial curve is the block's force–crush per face area; the cells'
+    walls make the transverse shears ab and ca stiff and strong
+    (``shear_modulus`` × the crush modulus, ``shear_strength`` × the
+    plateau stress), while across the cells (normal b and c, shear bc) the
+    honeycomb is weak (``lateral`` × the crush values). Curve ids lcid,
+    lcid + 1 (weak), lcid + 2 (transverse shear)."""
     cx, cf = b.curve.points(b.depth)
     strain, stress = cx / b.depth, cf / b.area
     e_u = float(stress[1] / strain[1])  # uncompacted crush modulus: the initial slope
     vf = 1.0 - b.curve.full
     s = u.stress
+    lcw, lct = lcid + 1, lcid + 2
+    weak, g_t = lateral * e_u * s, shear_modulus * e_u * s
     dk.kw("MAT_HONEYCOMB", [mid, b.density * u.density, modulus * s, 0.0, 20.0 * stress.max() * s, vf, 0.05, 0.0],
-          [lca, lcw, lcw, lcw, lcw, lcw, lcw, 0],
-          [e_u * s, lateral * e_u * s, lateral * e_u * s, lateral * e_u * s, lateral * e_u * s, lateral * e_u * s,
-           2.0, 1],
+          [lcid, lcw, lcw, lcw, lct, lcw, lct, 0],
+          [e_u * s, weak, weak, g_t, weak, g_t, 2.0, 1],
           [0.0, 0.0, 0.0, float(d), 0.0, 0.0],
-          [0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
-    dk.kw("DEFINE_CURVE", [lca], *[(float(a), float(f) * s) for a, f in zip(strain, stress)])
-    weak = lateral * stress[1:].min()
-    dk.kw("DEFINE_CURVE", [lcw], (0.0, weak * s), (1.0, weak * s))
+          [0.0, 1.0, 0.0, 0.0, shear_failure, 0.0, 0.0, 0.0])
+    dk.kw("DEFINE_CURVE", [lcid], *[(float(a), float(f) * s) for a, f in zip(strain, stress)])
+    low = lateral * stress[1:].min()
+    dk.kw("DEFINE_CURVE", [lcw], (0.0, low * s), (1.0, low * s))
+    tau = shear_strength * b.curve.plateau / b.area
+    dk.kw("DEFINE_CURVE", [lct], (0.0, tau * s), (1.0, tau * s))
 
 
 def detailed_barrier(spec: ODBSpec | None = None, placement: Placement | None = None, element_size: float = 20.0,
                      id_offset: int = 0, units: UnitSystem | None = None, bumper: bool = True,
-                     compacted_modulus: float = 1000.0, lateral: float = 0.05,
+                     compacted_modulus: float = 1000.0, lateral: float = 0.05, shear_modulus: float = 1.0,
+                     shear_strength: float = 0.5, shear_failure: float = 1.5,
                      title: str = "detailed ODB") -> SimplifiedBarrier:
     """Solid honeycomb barrier (mm–t–s spec, written in ``units``):
     elements of about ``element_size`` mm; ``compacted_modulus`` [MPa] of
-    the fully compacted honeycomb; ``lateral`` the lateral and shear
-    strength and stiffness as a fraction of the crush values."""
+    the fully compacted honeycomb; ``lateral`` the strength and stiffness
+    across the cells, ``shear_modulus`` and ``shear_strength`` those of the
+    transverse shears, as fractions of the crush values, ``shear_failure``
+    their failure strain (``_honeycomb``; 0: none)."""
     spec = spec or ODBSpec()
     spec.check()
     pl = placement or Placement()
@@ -115,7 +134,8 @@ def detailed_barrier(spec: ODBSpec | None = None, placement: Placement | None = 
         dk.kw("PART", [f"{title} {b.name}"], [p, p, p, 0, p])
         dk.kw("SECTION_SOLID", [p, 1])
         dk.kw("HOURGLASS", [p, 4, 0.1])
-        _honeycomb(dk, p, o + 1 + 2 * k, o + 2 + 2 * k, b, u, d, compacted_modulus, lateral)
+        _honeycomb(dk, p, o + 1 + 3 * k, b, u, d, compacted_modulus, lateral, shear_modulus, shear_strength,
+                   shear_failure)
     sid = {"front": o + 1, "back": o + 2, "parts": o + 4}
     all_nodes = np.array([r[0] for r in rows], np.int64)
     front = np.setdiff1d(all_nodes, planes["back"])

@@ -22,12 +22,14 @@ DTMIN = 1e-3  # of the first step: a solid whose step falls below it is eroded (
 @dataclass(frozen=True)
 class Impactor:
     """A rigid impactor: mass [t], speed [mm/s], overlap as a fraction of the
-    barrier width counted from ``y_min`` of the barrier, gap to the face [mm]."""
+    barrier width counted from ``y_min`` of the barrier, gap to the face [mm],
+    friction of its face (the wall's FRIC: 0 frictionless, 1 no sliding)."""
 
     mass: float = 5.0
     speed: float = kmh(64.0)
     overlap: float = 1.0
     gap: float = 1.0
+    friction: float = 0.0
 
 
 def impactor_deck(barrier_file: str, front_set: int, placement: Placement, impactor: Impactor,
@@ -42,18 +44,19 @@ def impactor_deck(barrier_file: str, front_set: int, placement: Placement, impac
     finite = impactor.overlap < 1.0
     name = "RIGIDWALL_PLANAR_MOVING_FINITE" if finite else "RIGIDWALL_PLANAR_MOVING"
     dt = output_dt or end_time / 200.0
+    fric = float(impactor.friction)
     lines = ["*KEYWORD", "*TITLE", title, "*INCLUDE", barrier_file, f"*{name}", f"{front_set},0,0,0.0",
-             f"{x0!r},0.0,0.0,{x0 + d!r},0.0,0.0,0.0"]
+             f"{x0!r},0.0,0.0,{x0 + d!r},0.0,0.0,{fric!r}"]
     if finite:
         z_lo, z_hi = (placement.z_ground + z for z in z_range)
         y_lo = placement.y_min
         # wall origin at the lower corner on the y_min side; l along +y, m = n x l
         lenl = impactor.overlap * width
         if d > 0:  # n = +x, l = +y: m = +z
-            lines[-1] = f"{x0!r},{y_lo!r},{z_lo!r},{x0 + d!r},{y_lo!r},{z_lo!r},0.0"
+            lines[-1] = f"{x0!r},{y_lo!r},{z_lo!r},{x0 + d!r},{y_lo!r},{z_lo!r},{fric!r}"
             lines.append(f"{x0!r},{y_lo + 1.0!r},{z_lo!r},{lenl!r},{z_hi - z_lo!r}")
         else:  # n = -x, l = +y: m = -z, start from the top
-            lines[-1] = f"{x0!r},{y_lo!r},{z_hi!r},{x0 + d!r},{y_lo!r},{z_hi!r},0.0"
+            lines[-1] = f"{x0!r},{y_lo!r},{z_hi!r},{x0 + d!r},{y_lo!r},{z_hi!r},{fric!r}"
             lines.append(f"{x0!r},{y_lo + 1.0!r},{z_hi!r},{lenl!r},{z_hi - z_lo!r}")
     # one value per card, comma-terminated: free format, so a long number cannot spill into the next field
     lines += [f"{impactor.mass!r},{impactor.speed!r}",

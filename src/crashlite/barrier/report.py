@@ -27,17 +27,22 @@ def characterisation_plot(chars) -> bytes:
 
 
 def _force_plot(d, s, t_c: float, overlap: float) -> bytes:
-    from .verify import _cfc
+    from .verify import rated_force
 
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(6.0, 3.4))
-    ax.plot(d.time * 1e3, _cfc(d.time, d.force) / 1e3, label=d.barrier, **REF_STYLE)
-    ax.plot(s.time * 1e3, _cfc(s.time, s.force) / 1e3, label=s.barrier, **CMP_STYLE)
+    peak = 0.0
+    for c, style in ((d, REF_STYLE), (s, CMP_STYLE)):
+        t, f = rated_force(c)
+        ax.plot(t * 1e3, f / 1e3, color=style.get("color"), lw=0.6, alpha=0.35)
+        t, f = rated_force(c, t_c)
+        ax.plot(t * 1e3, f / 1e3, label=f"{c.barrier} (rated)", **style)
+        peak = max(peak, f.max())
     ax.axvline(t_c * 1e3, color="#888", lw=0.8, ls=":")
-    peak = max(_cfc(d.time, d.force)[d.time <= t_c].max(), _cfc(s.time, s.force)[s.time <= t_c].max())
     ax.set(xlabel="time [ms]", ylabel="impactor force, CFC 60 [kN]",
            ylim=(min(0.0, ax.get_ylim()[0]), 1.6 * peak / 1e3),
-           title=f"{round(100 * overlap)} % overlap (dotted: end of the crush phase)")
+           title=f"{round(100 * overlap)} % overlap (dotted: first barrier crushed solid;\n"
+                 "faint: the whole event filtered in one)")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     return png(fig)
@@ -48,7 +53,15 @@ def write_index(out: Path, summary: dict, cases: dict) -> Path:
     body = [f"<p>Rigid impactor {num(summary['impactor']['mass_kg'])} kg at "
             f"{num(summary['impactor']['speed_km_h'])} km/h against the detailed barrier (solid honeycomb, "
             f"{num(summary['element_size_mm'])} mm elements) and the simplified barrier (non-linear discrete "
-            "beams). Every figure is in <code>summary.json</code>.</p>", "<h2>Model size and run time (table 1)</h2>"]
+            "beams). Every figure is in <code>summary.json</code>.</p>",
+            f"<p>Curves of the simplified barrier: {esc(summary['simplified_curves_source'])}.</p>"]
+    cal = summary.get("calibration")
+    if cal:
+        body.append(table(["calibration (multiplier on the characterised curve)", "value"],
+                          [[k, f"{v:.3f}"] for k, v in cal["multipliers"].items()]
+                          + [["misfit before / after", f"{cal['misfit_start']:.3f} / {cal['misfit']:.3f}"],
+                             ["simplified runs", str(cal["runs"])]]))
+    body.append("<h2>Model size and run time (table 1)</h2>")
     keys = [("nodes", "nodes"), ("solids", "solids"), ("shells", "shells"), ("beams", "discrete beams"),
             ("elements", "elements"), ("time_step_ms", "time step [ms]"), ("cycles", "cycles"),
             ("run_time_s", "run time [s]"), ("energy_ratio", "energy ratio at end"),

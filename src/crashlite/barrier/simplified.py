@@ -218,7 +218,8 @@ def simplified_barrier(spec: ODBSpec | None = None, placement: Placement | None 
         for name, nid, t in sheets:
             dk.kw("PART", [f"{title} {name}"], [pid[name], pid[name], pid[name]])
             dk.kw("SECTION_SHELL", [pid[name], 2, 1.0, 2], [t * L] * 4)
-            dk.kw("MAT_ELASTIC", [pid[name], c.density * u.density, c.modulus * u.stress, c.poisson])
+            dk.kw("MAT_PLASTIC_KINEMATIC", [pid[name], c.density * u.density, c.modulus * u.stress, c.poisson,
+                                             c.yield_stress * u.stress, 0.0, 0.0])
             for i in range(nid.shape[0] - 1):
                 for j in range(nid.shape[1] - 1):
                     shells.append((next(eid), pid[name], nid[i, j], nid[i, j + 1], nid[i + 1, j + 1],

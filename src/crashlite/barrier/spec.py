@@ -86,14 +86,18 @@ class Block:
 @dataclass(frozen=True)
 class Cladding:
     """Cladding sheets: a contact surface that allows local intrusion and
-    adds no strength (soft elastic sheet, so its time step stays above the
-    beams')."""
+    adds no strength: a soft sheet (its time step stays above the beams')
+    that yields at ``yield_stress``, so that where an impactor pushes part
+    of the face in, the sheet between pushed and held nodes flows instead
+    of stretching elastically over the whole stroke (the real sheet tears
+    there, the paper's section 2.1)."""
 
     thickness_front: float = 0.81  # bumper front sheet [mm]
     thickness_middle: float = 0.5  # sheet between bumper and main block [mm]
     density: float = 2.7e-9  # aluminium [t/mm³]
     modulus: float = 70.0  # [MPa]: 1/1000 of aluminium, by design (paper section 2.1)
     poisson: float = 0.3
+    yield_stress: float = 0.5  # [MPa]
 
 
 def _main_block() -> Block:

@@ -51,7 +51,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .solid_materials import N_SCRATCH, update_stress
+from .solid_materials import HONEYCOMB, N_SCRATCH, _to_global, _to_local, update_stress
 
 # natural coordinates of the nodes, LS-DYNA order (1-4 bottom, 5-8 top)
 XI = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
@@ -137,6 +137,34 @@ def _rotate6(w, s):
 
 
 @njit(cache=True)
+def _convect_axes(q, g00, g01, g02, g10, g11, g12, g20, g21, g22):
+    """Material axes of a honeycomb (columns a, b, c) carried by the
+    deformation: the cell axis a is a material line, a ← (I + L·Δt)·a
+    (g = L·Δt), so a sheared cell keeps crushing along its walls; b is
+    carried likewise and made orthogonal to a, c = a × b. (Turning them
+    with the spin instead would swing a by half the shear angle, and a
+    block sheared at the edge of an impactor would crush in its weak
+    directions.)"""
+    a0, a1, a2 = q[0, 0], q[1, 0], q[2, 0]
+    b0, b1, b2 = q[0, 1], q[1, 1], q[2, 1]
+    n0 = a0 + g00 * a0 + g01 * a1 + g02 * a2
+    n1 = a1 + g10 * a0 + g11 * a1 + g12 * a2
+    n2 = a2 + g20 * a0 + g21 * a1 + g22 * a2
+    r = 1.0 / math.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+    a0, a1, a2 = n0 * r, n1 * r, n2 * r
+    m0 = b0 + g00 * b0 + g01 * b1 + g02 * b2
+    m1 = b1 + g10 * b0 + g11 * b1 + g12 * b2
+    m2 = b2 + g20 * b0 + g21 * b1 + g22 * b2
+    d = m0 * a0 + m1 * a1 + m2 * a2
+    m0, m1, m2 = m0 - d * a0, m1 - d * a1, m2 - d * a2
+    r = 1.0 / math.sqrt(m0 * m0 + m1 * m1 + m2 * m2)
+    b0, b1, b2 = m0 * r, m1 * r, m2 * r
+    q[0, 0], q[1, 0], q[2, 0] = a0, a1, a2
+    q[0, 1], q[1, 1], q[2, 1] = b0, b1, b2
+    q[0, 2], q[1, 2], q[2, 2] = a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0
+
+
+@njit(cache=True)
 def _kill(e, fe, sig, sv):
     for a in range(8):
         for i in range(3):
@@ -196,13 +224,20 @@ def _element(e, x, v, dt, conn, mat_of, mtype, props, mcurve, cs, ce, cx, cy, rh
     w[_R + 7] = f * (ax + az * ay)
     w[_R + 8] = 1.0 + f * (az * az - aa)
     s = sig[e]
-    _rotate6(w, s)
-    _rotate6(w, sv[e])
     q = axes[e]
-    for j in range(3):  # material axes turn with the element
-        c0, c1, c2 = q[0, j], q[1, j], q[2, j]
-        for i in range(3):
-            q[i, j] = w[_R + 3 * i] * c0 + w[_R + 3 * i + 1] * c1 + w[_R + 3 * i + 2] * c2
+    m = mat_of[e]
+    if mtype[m] == HONEYCOMB:  # the stress keeps its components in the convected material axes
+        _to_local(q, s, 0, w, _M)
+        _convect_axes(q, l00 * inv * dt, l01 * inv * dt, l02 * inv * dt, l10 * inv * dt, l11 * inv * dt,
+                      l12 * inv * dt, l20 * inv * dt, l21 * inv * dt, l22 * inv * dt)
+        _to_global(q, w, _M, s)
+    else:
+        _rotate6(w, s)
+        for j in range(3):  # material axes turn with the element
+            c0, c1, c2 = q[0, j], q[1, j], q[2, j]
+            for i in range(3):
+                q[i, j] = w[_R + 3 * i] * c0 + w[_R + 3 * i + 1] * c1 + w[_R + 3 * i + 2] * c2
+    _rotate6(w, sv[e])
     old0 = s[0] + sv[e, 0]
     old1 = s[1] + sv[e, 1]
     old2 = s[2] + sv[e, 2]
@@ -219,7 +254,6 @@ def _element(e, x, v, dt, conn, mat_of, mtype, props, mcurve, cs, ce, cx, cy, rh
         alive[e] = -1
         _kill(e, fe, sig, sv)
         return
-    m = mat_of[e]
     p = props[m]
     wave, failed = update_stress(mtype[m], p, mcurve[m], cs, ce, cx, cy, s, w, _DE, _M, epsp, e, hist[e], q,
                                  vn / vol0[e], dt)
