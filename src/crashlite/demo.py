@@ -145,13 +145,13 @@ def barrier(out: Path) -> int:
 
     print("\n== 6. The simplified offset deformable barrier (paper section 2.1)\n")
     pl = Placement()
-    b = simplified_barrier(placement=pl, cladding=False)
+    b = simplified_barrier(placement=pl)
     folder = out / "barrier"
     main = write_impactor_case(folder, b, pl, Impactor(overlap=0.4), end_time=0.03)
     model = read_deck(main)
     print(f"  {folder / 'barrier.k'}: {len(model.discretes)} non-linear discrete beams "
           f"({int(np.sum(model.discretes.pid == 1))} main block, {int(np.sum(model.discretes.pid == 2))} bumper), "
-          f"{len(model.nodes)} nodes, {b.mass * 1e3:.1f} kg")
+          f"{b.shells} cladding shells, {len(model.nodes)} nodes, {b.mass * 1e3:.1f} kg")
     res = run(model, out=folder / "out")
     t, f = filter_signal(res.time, -res.wall_force[:, 0, 0], 60.0)
     dx = res.final_x[:, 0] - model.nodes.xyz[:, 0]
