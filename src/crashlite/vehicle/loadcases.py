@@ -197,7 +197,7 @@ def odb_deck(car, out, barrier: str = "simplified", speed_kmh: float = 64.0, ove
     recs, nodes, parts = _common(v, speed_kmh, end_time, output_dt, ground)
     recs.insert(3, record("CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID", cid=v.id_offset + 1,
                           heading="vehicle to barrier", ssid=parts, sstyp=2, msid=b.set_ids["parts"], mstyp=2,
-                          fs=0.3, fd=0.3))
+                          fs=0.3, fd=0.3, soft=1))  # soft constraint: the barrier's faces are far softer than steel
     title = f"Euro NCAP ODB {overlap * 100:g} % {side} {speed_kmh:g} km/h ({barrier} barrier)"
     text = _deck(title, [_include_name(car, out), bpath.name], recs)
     out.write_text(text)
