@@ -52,7 +52,6 @@ class Calibration:
     """Adjusted spec and the record of the search."""
 
     spec: ODBSpec
-    start: ODBSpec
     multipliers: dict
     misfit_start: float  # RMS force difference / mean reference force over the crush phase
     misfit: float
@@ -121,5 +120,5 @@ def calibrate_curves(reference, spec: ODBSpec, impactor: Impactor, end_time: flo
              options={"maxfev": max_runs, "initial_simplex": simplex, "xatol": 5e-3, "fatol": 1e-3})
     best_x, best = min(history, key=lambda h: h[1])
     multipliers = {name: float(np.clip(v, lo, hi)) for v, (name, lo, hi) in zip(best_x, PARAMETERS)}
-    return Calibration(adjusted(spec, best_x), spec, multipliers, history[0][1], best, len(history),
+    return Calibration(adjusted(spec, best_x), multipliers, history[0][1], best, len(history),
                        time.perf_counter() - t0, until, reference.name)

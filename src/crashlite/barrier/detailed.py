@@ -164,21 +164,15 @@ def detailed_barrier(spec: ODBSpec | None = None, placement: Placement | None = 
             shells += [(next(eid), p, nid[i, j], nid[i, j + 1], nid[i + 1, j + 1], nid[i + 1, j])
                        for i in range(nid.shape[0] - 1) for j in range(nid.shape[1] - 1)]
         dk.kw("ELEMENT_SHELL", *shells)
-    sheet_parts = [v for k, v in pid.items() if k.startswith("cladding")]
     sid = {"front": o + 1, "back": o + 2, "parts": o + 4}
     all_nodes = np.array([r[0] for r in rows], np.int64)
     front = np.setdiff1d(all_nodes, planes["back"])
     for key, nodes in (("front", front), ("back", planes["back"])):
         dk.kw("SET_NODE_LIST", [sid[key]], *[nodes[i:i + 8] for i in range(0, len(nodes), 8)])
-    dk.kw("SET_PART_LIST", [sid["parts"]], [pid[b.name] for b in blocks] + sheet_parts)
+    used = [b.name for b in blocks] + [k for k in pid if k.startswith("cladding")]
+    dk.kw("SET_PART_LIST", [sid["parts"]], [pid[k] for k in used])
     dk.kw("BOUNDARY_SPC_SET", [sid["back"], 0, 1, 1, 1, 1, 1, 1])
     dk.kw("END")
-    sheet_mass = 0.0
-    if cladding:
-        c = spec.cladding
-        sheet_mass = c.density * (c.thickness_middle * main.area
-                                  + (c.thickness_front * bmp.area if bmp is not None else 0.0))
-    mass = (sum(b.mass for b in blocks) + sheet_mass) * u.mass
-    used = [b.name for b in blocks] + [k for k in pid if k.startswith("cladding")]
+    mass = (sum(b.mass for b in blocks) + (spec.cladding_mass(bmp is not None) if cladding else 0.0)) * u.mass
     return SimplifiedBarrier(deck="\n".join(dk.lines) + "\n", node_ids=planes, part_ids={k: pid[k] for k in used},
                              set_ids=sid, beams=0, shells=len(shells), mass=mass, solids=len(elems))

@@ -225,8 +225,7 @@ def simplified_barrier(spec: ODBSpec | None = None, placement: Placement | None 
                     shells.append((next(eid), pid[name], nid[i, j], nid[i, j + 1], nid[i + 1, j + 1],
                                    nid[i + 1, j]))
         dk.kw("ELEMENT_SHELL", *shells)
-        shell_mass = c.density * (c.thickness_middle * main.area
-                                  + (c.thickness_front * bmp.area if bmp is not None else 0.0))
+        shell_mass = spec.cladding_mass(bmp is not None)
     else:
         shell_mass = 0.0
     dk.kw("ELEMENT_MASS", *[(next(eid), n, m) for n, m in sorted(masses.items())])

@@ -138,9 +138,14 @@ class ODBSpec:
     @property
     def mass(self) -> float:
         """Honeycomb and cladding mass [t]."""
+        return self.main.mass + self.bumper.mass + self.cladding_mass()
+
+    def cladding_mass(self, bumper: bool = True) -> float:
+        """Mass [t] of the cladding sheets: the block front, and the bumper
+        front when there is a bumper."""
         c = self.cladding
-        sheets = c.density * (self.bumper.area * c.thickness_front + self.main.area * c.thickness_middle)
-        return self.main.mass + self.bumper.mass + sheets
+        return c.density * (self.main.area * c.thickness_middle + (self.bumper.area * c.thickness_front if bumper
+                                                                   else 0.0))
 
     def check(self) -> None:
         for b in (self.main, self.bumper):
