@@ -30,8 +30,30 @@ def cells(model) -> tuple[list[np.ndarray], list[int]]:
     return rows, types
 
 
-def write_states(directory, model, times: np.ndarray, coords: np.ndarray) -> Path:
-    """``coords`` (n_states, n_nodes, 3). Returns the .pvd collection."""
+def element_field(model, ids: dict, values: dict) -> np.ndarray:
+    """(n_cells,) values in the order of ``cells``: for each element table
+    name ("shells", "solids"), ``values[name]`` at the deck IDs
+    ``ids[name]``; 0 for the elements without a value."""
+    out = []
+    for name in ("beams", "discretes", "shells", "solids"):
+        t = getattr(model, name)
+        col = np.zeros(len(t))
+        if name in ids and len(ids[name]) and len(t):
+            order = np.argsort(ids[name])
+            sorted_ids = np.asarray(ids[name])[order]
+            k = np.minimum(np.searchsorted(sorted_ids, t.ids), len(sorted_ids) - 1)
+            hit = sorted_ids[k] == t.ids
+            col[hit] = np.asarray(values[name])[order][k[hit]]
+        if name in ("beams", "discretes"):
+            col = col[np.all(t.nodes[:, :2] >= 0, axis=1)] if len(t) else col
+        out.append(col)
+    return np.concatenate(out)
+
+
+def write_states(directory, model, times: np.ndarray, coords: np.ndarray, last_cells: dict | None = None) -> Path:
+    """``coords`` (n_states, n_nodes, 3); ``last_cells``: name -> (n_cells,)
+    element values (``element_field``) written with the last state. Returns
+    the .pvd collection."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     rows, types = cells(model)
@@ -50,6 +72,11 @@ def write_states(directory, model, times: np.ndarray, coords: np.ndarray) -> Pat
                  f"CELLS {len(rows)} {size}", cell_text, f"CELL_TYPES {len(rows)}", type_text,
                  f"POINT_DATA {n}", "VECTORS displacement double",
                  "\n".join(" ".join(f"{c:.9g}" for c in p) for p in disp)]
+        if last_cells and k == len(times) - 1:
+            lines.append(f"CELL_DATA {len(rows)}")
+            for field_name, vals in last_cells.items():
+                lines += [f"SCALARS {field_name} double 1", "LOOKUP_TABLE default",
+                          "\n".join(f"{c:.9g}" for c in vals)]
         (directory / name).write_text("\n".join(lines) + "\n")
         entries.append(f'    <DataSet timestep="{t:.9g}" file="{name}"/>')
     pvd = directory / "states.pvd"

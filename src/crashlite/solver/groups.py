@@ -44,6 +44,12 @@ class ElementGroup:
         """(ne, k, 3) moments ON the nodes, or None for translational elements."""
         return None
 
+    def plastic_strain(self) -> np.ndarray | None:
+        """(ne,) effective plastic strain of each element (largest over its
+        integration points), or None for a family without one. It never
+        decreases, so at the end of a run it is the peak of the run."""
+        return None
+
     def __len__(self) -> int:
         return len(self.ids)
 

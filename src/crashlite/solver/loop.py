@@ -393,6 +393,10 @@ def _results(s, rec, groups, parts, walls, st, locals_) -> Results:
                  time_step=a("time_step", ()), cycle_number=a("cycle", ()).astype(np.int64),
                  contact_force=a("contact_force", (len(rec.contacts), 3)),
                  contact_ids=np.array([g.cid for g in rec.contacts], np.int64))
+    for g in groups:
+        eps = g.plastic_strain() if g.kind in ("shell", "solid") else None
+        if eps is not None:
+            extra[f"{g.kind}_ids"], extra[f"{g.kind}_plastic_strain"] = np.asarray(g.ids, np.int64), eps
     known = {f.name for f in fields(Results)}
     n = len(st.x)
     return Results(
@@ -443,9 +447,11 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
     if out is not None:
         res.save(Path(out))  # also when the run stopped early: the states so far are kept
         if len(res.states_time):
-            from ..results.vtk import write_states
+            from ..results.vtk import element_field, write_states
 
-            write_states(Path(out) / "states", model, res.states_time, res.states_x)
+            eps = element_field(model, {"shells": res.shell_ids, "solids": res.solid_ids},
+                                {"shells": res.shell_plastic_strain, "solids": res.solid_plastic_strain})
+            write_states(Path(out) / "states", model, res.states_time, res.states_x, {"plastic_strain": eps})
     if res.info["stopped"] and not res.info["stopped"].startswith("interrupted"):
         raise RunError(res.info["stopped"], res)
     return res

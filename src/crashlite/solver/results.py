@@ -57,6 +57,12 @@ class Results:
     wall_normal_force: np.ndarray = _empty(0)  # (n_states, n_walls) force along each wall's normal [force]
     contact_force: np.ndarray = _empty(0, 3)  # (n_states, n_contacts, 3) force on the slave side of each contact interface (rcforc) [force]
     contact_ids: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (n_contacts,) contact interface IDs
+    # effective plastic strain of each deformable shell and solid at the end (the largest over its
+    # integration points; it never decreases, so it is the peak of the run), rows by deck element ID
+    shell_ids: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
+    shell_plastic_strain: np.ndarray = _empty()  # (n_shells,)
+    solid_ids: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
+    solid_plastic_strain: np.ndarray = _empty()  # (n_solids,)
     cycles: int = 0
     dt: float = 0.0
     wall_time: float = 0.0  # whole run: set-up (with Numba compilation) and time loop [s]

@@ -466,6 +466,9 @@ class ShellGroup(ElementGroup):
     def corner_moments(self) -> np.ndarray:
         return self.st.me
 
+    def plastic_strain(self) -> np.ndarray:
+        return self.st.epsp.max(axis=1) if self.st.epsp.size else np.zeros(len(self.ids))
+
     def lumped(self, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
         return lumped(self.s, n_nodes)
 

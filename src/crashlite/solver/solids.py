@@ -483,6 +483,9 @@ class SolidGroup(ElementGroup):
     def corner_forces(self) -> np.ndarray:
         return self.st.fe
 
+    def plastic_strain(self) -> np.ndarray:
+        return self.st.epsp.copy()
+
     def lumped(self, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
         return lumped_mass(self.s, n_nodes), np.zeros(n_nodes)
 

@@ -1,11 +1,14 @@
 """Where to put the interface: the structure behind it must stay elastic.
 
-From the field states of a full run, every shell gets its largest strain
-over the run: the largest relative length change of its four edges and two
-diagonals between the first state and each later one (a membrane measure:
-folds stretch and shorten their elements far beyond it; pure bending of a
-flat element below it is missed). Divided by its material's yield strain
-σy/E it is the element's *yield ratio*; above 1 the element has yielded.
+Every shell of a full run gets a *yield ratio*: its largest strain over
+the run divided by its material's yield strain σy/E; above 1 it has
+yielded. The strain is the larger of two measures: from the field states,
+the largest relative length change of its four edges and two diagonals
+between the first state and each later one (a membrane measure: pure
+bending of a flat element is missed); and, where the run recorded it (a
+crashlite run), its effective plastic strain εp at the end of the run, the
+peak over its integration points and the run, counted as a strain of
+σy/E + εp (the uniaxial total strain at that plastic strain).
 
 ``propose_interface`` scans candidate planes normal to the vehicle axis
 from the front to the rear and proposes the foremost one behind which at
@@ -22,6 +25,7 @@ elements kept, so the share replaced is the expected time saving.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -89,7 +93,33 @@ def yield_ratio(model: Model, results) -> np.ndarray:
                          f"(e.g. {missing[:5]}): not a run of this deck")
     order = np.array([idx[int(n)] for n in model.nodes.ids])
     xs = st.x[:, order]
-    return shell_strain(xs[0], xs[1:], model.shells.nodes.astype(np.int64)) / _yield_strain(model)
+    ey = _yield_strain(model)
+    ratio = shell_strain(xs[0], xs[1:], model.shells.nodes.astype(np.int64)) / ey
+    eps = shell_plastic_strain(model, results)
+    if eps is not None:
+        plastic = eps > 0
+        ratio[plastic] = np.maximum(ratio[plastic], 1.0 + eps[plastic] / ey[plastic])
+    return ratio
+
+
+def shell_plastic_strain(model: Model, results) -> np.ndarray | None:
+    """(n_shells,) effective plastic strain of every shell of ``model`` at the
+    end of the run in the crashlite results folder ``results`` (0 for rigid
+    shells, matched by element ID), or None when the run did not record it."""
+    path = Path(results) / "results.npz" if Path(results).is_dir() else Path(results)
+    if not path.is_file():
+        return None
+    with np.load(path) as z:
+        if "shell_plastic_strain" not in z.files or not len(z["shell_ids"]):
+            return None
+        ids, eps = z["shell_ids"], z["shell_plastic_strain"]
+    out = np.zeros(len(model.shells))
+    order = np.argsort(ids)
+    k = np.searchsorted(ids[order], model.shells.ids)
+    k = np.minimum(k, len(ids) - 1)
+    hit = ids[order][k] == model.shells.ids
+    out[hit] = eps[order][k[hit]]
+    return out
 
 
 def propose_interface(model: Model, results, threshold: float = 1.0, allowed: float = 0.01,
