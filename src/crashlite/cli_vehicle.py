@@ -101,6 +101,26 @@ def _interface(args) -> int:
     return 0
 
 
+def _study(args) -> int:
+    from .vehicle.workflow import paper_study
+
+    st = paper_study(args.output, mesh_size=args.mesh_size, barrier_size=args.barrier_size,
+                     usncap_end=args.usncap_end / 1000.0, odb_end=args.odb_end / 1000.0,
+                     interface_x=args.interface_x, shares=args.shares, variants=not args.no_variants,
+                     quiet=not args.progress)
+    t = st.summary["time"]
+    print(f"time-loop reduction: US NCAP vehicle {_pc(t['us_ncap']['vehicle_reduction_percent'])}; ODB "
+          + ", ".join(f"{k.replace('_reduction_percent', '')} {_pc(v)}" for k, v in t["odb"].items()
+                      if k.endswith("_percent")))
+    for case, f in st.summary["verification"].items():
+        fw = f.get("firewall_intrusion") or {}
+        print(f"{case}: energy rating min {f['energy_rating_min']}, crash-box energy "
+              f"{_pc(f['crash_box_internal_energy_deviation_percent'])}, firewall max "
+              f"{_pc(fw.get('max_deviation_percent'))} mean {_pc(fw.get('mean_deviation_percent'))}")
+    print(f"wrote {args.output / 'index.html'} and {args.output / 'summary.json'}")
+    return 0
+
+
 def _pc(v) -> str:
     return "–" if v is None else f"{v:.2f} %"
 
@@ -197,3 +217,18 @@ def add_commands(sub) -> None:
     f.add_argument("--step", type=float, default=None, help="candidate spacing [length] (default 4 elements)")
     f.add_argument("--json", type=Path, default=None, help="write the candidates as JSON")
     f.set_defaults(func=_interface)
+    y = vsub.add_parser("study", formatter_class=fmt,
+                        help="the paper's study on the generic car: full and simplified runs in US NCAP and Euro "
+                             "NCAP ODB (detailed and simplified barrier), one surrogate, verification, time reduction")
+    y.add_argument("-o", "--output", type=Path, required=True, help="study folder")
+    y.add_argument("--mesh-size", type=float, default=38.0, help="element size of the car [mm]")
+    y.add_argument("--barrier-size", type=float, default=50.0, help="element size of the detailed barrier [mm]")
+    y.add_argument("--usncap-end", type=float, default=80.0, help="end time of the US NCAP runs [ms]")
+    y.add_argument("--odb-end", type=float, default=100.0, help="end time of the ODB runs [ms]")
+    y.add_argument("--interface-x", type=float, default=-600.0, help="x of the interface [mm]")
+    y.add_argument("--shares", default="combined", help="'combined', 'US NCAP' or 'Euro NCAP ODB'")
+    y.add_argument("--no-variants", action="store_true",
+                   help="skip the ODB runs with one simplification only (full car + simplified barrier, "
+                        "simplified car + detailed barrier)")
+    y.add_argument("--progress", action="store_true", help="show each run's progress")
+    y.set_defaults(func=_study)

@@ -78,3 +78,26 @@ def test_uniaxial_tension_ends_with_the_plastic_strain(tmp_path, solid):
     lines = sorted((tmp_path / "run" / "states").glob("state_*.vtk"))[-1].read_text().splitlines()
     k = lines.index("SCALARS plastic_strain double 1")
     assert [float(c) for c in lines[k + 2:k + 6]] == pytest.approx(eps.tolist(), rel=1e-8)
+
+
+def test_passenger_cell_summary_takes_the_cell_assemblies_only(tmp_path):
+    """The strip's yielding part as an assembly of the cell ("floor left"),
+    its strong part as one outside it: the cell summary rates the first
+    only, by the strains of the run."""
+    from crashlite.vehicle.interface import assembly_parts, cell_plastic_strain, part_plastic_strain
+
+    deck = _strip(tmp_path, False)
+    text = open(deck).read().replace("*END", "*SET_PART_LIST_TITLE\nassembly floor left\n11\n1\n"
+                                             "*SET_PART_LIST_TITLE\nassembly engine and gearbox\n12\n2\n*END")
+    open(deck, "w").write(text)
+    r = run(deck, out=tmp_path / "run", quiet=True)
+    model = read_deck(deck)
+    assert assembly_parts(model).tolist() == [1]
+    cell = cell_plastic_strain(model, tmp_path / "run")
+    assert cell["shells"] == 3 and cell["max"] == pytest.approx(r.shell_plastic_strain[:3].max())
+    assert cell["yielded_area_percent"] == pytest.approx(100.0)
+    assert list(cell["parts"]) == ["strip"]
+    parts = part_plastic_strain(model, tmp_path / "run")
+    assert parts["strong"]["max"] == 0.0 and parts["strong"]["yielded_area_percent"] == 0.0
+    with pytest.raises(KeyError, match="assembly"):
+        assembly_parts(model, ["roof"])

@@ -242,7 +242,7 @@ def _parse_row(buf, starts, ends, r, lines_per_row, card_of, index_in_card, col,
                             break
                 break
             if is_int[k]:
-                out_i[r, slot[k]] = def_i[k] if blank else iv
+                out_i[slot[k], r] = def_i[k] if blank else iv
             else:
                 out_f[r, slot[k]] = def_f[k] if blank else fv
         if st == OK:
@@ -359,12 +359,12 @@ def parse_int_rows(buf, starts, ends, width, def_i, out_i, status):
                     break
                 if seen:
                     blank_row = False
-                    out_i[r, k] = -v if neg else v
+                    out_i[k, r] = -v if neg else v
                     if v > imax:
                         st = OVERFLOW
                         break
                 else:
-                    out_i[r, k] = def_i[k]
+                    out_i[k, r] = def_i[k]
             if st == OK and e > s + nf * width:  # text past the last field
                 for i in range(s + nf * width, e):
                     if buf[i] != 32:

@@ -123,8 +123,10 @@ def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
     # Integers column-major (each field's column contiguous, element node
     # blocks taken as views), int32 while the columns cannot hold more than
     # 9 digits; floats row-major (node coordinates are then one (n, 3) block).
+    # The kernels fill one layout only, int64 (field, row), so that Numba
+    # compiles each of them once: out_i is its transpose.
     narrow = all(cards.width(f, blk.mode) <= 9 for f in fields if f.kind == INT)
-    out_i = np.zeros((nrow, len(ints)), dtype=np.int32 if narrow else np.int64, order="F")
+    ints_t = np.zeros((len(ints), nrow), dtype=np.int64)
     out_f = np.zeros((nrow, len(flts)), dtype=np.float64)
     status = np.full(nrow, FALLBACK, dtype=np.int8)
     if numeric and nrow:
@@ -143,19 +145,18 @@ def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
                 np.array([float(_row_default(f)) if f.kind == FLOAT else 0.0 for f in fields]))
         widths = {w for w in width}
         if nl == 1 and not flts and len(widths) == 1:  # element cards: all-integer fast path
-            parse_int_rows(src.buf, starts, ends, width[0], args[6], out_i, status)
+            parse_int_rows(src.buf, starts, ends, width[0], args[6], ints_t, status)
             redo = np.flatnonzero(status == FALLBACK)
             if len(redo):  # free format, parameters, ...: the general kernel
                 sub = np.full(len(redo), FALLBACK, dtype=np.int8)
-                tmp_i = np.zeros((len(redo), len(ints)), dtype=out_i.dtype, order="F")
+                tmp_i = np.zeros((len(ints), len(redo)), dtype=np.int64)
                 parse_rows(src.buf, starts[redo], ends[redo], nl, *args, tmp_i, out_f[redo], sub)
-                out_i[redo] = tmp_i
+                ints_t[:, redo] = tmp_i
                 status[redo] = sub
         else:
-            parse_rows(src.buf, starts, ends, nl, *args, out_i, out_f, status)
-        if (status == OVERFLOW).any():  # free-format IDs beyond int32: parse again wide
-            out_i = np.zeros((nrow, len(ints)), dtype=np.int64, order="F")
-            parse_rows(src.buf, starts, ends, nl, *args, out_i, out_f, status)
+            parse_rows(src.buf, starts, ends, nl, *args, ints_t, out_f, status)
+        status[status == OVERFLOW] = FALLBACK  # beyond int64: the Python parser says so
+    out_i = ints_t.T
     slow = np.flatnonzero(status == FALLBACK)
     strs = {k: np.empty(nrow, dtype=object) for k, f in enumerate(fields) if f.kind == STR}
     for r in slow:
@@ -173,13 +174,13 @@ def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
             if v is None:
                 v = _row_default(f)
             if f.kind == INT:
-                if out_i.dtype == np.int32 and not -(2**31) < v < 2**31:
-                    out_i = out_i.astype(np.int64, order="F")
                 out_i[r, ints.index(k)] = v
             elif f.kind == FLOAT:
                 out_f[r, flts.index(k)] = v
             else:
                 strs[k][r] = v
+    if narrow and out_i.size and -(2**31) < out_i.min() and out_i.max() < 2**31:
+        out_i = out_i.astype(np.int32, order="F")
     keep = status != BLANK
     if not keep.all():
         out_i, out_f = out_i[keep], out_f[keep]

@@ -163,3 +163,75 @@ def propose_interface(model: Model, results, threshold: float = 1.0, allowed: fl
         notes.append(f"behind every candidate plane more than {100 * allowed:g} % of the shells reach "
                      f"{threshold:g} x their yield strain: the structure does not stay elastic anywhere")
     return InterfaceProposal(proposed, float(threshold), float(allowed), out, r, notes)
+
+
+PASSENGER_CELL = ("A-pillar", "door sill", "floor", "tunnel", "door", "roof", "B-pillars", "rear floor")
+
+
+def part_plastic_strain(model: Model, results, yield_strain: float = 0.002) -> dict:
+    """Effective plastic strain of every shell part at the end of a
+    crashlite run (``shell_plastic_strain``): part title -> largest, 95th
+    percentile, area-weighted mean and the share of its area beyond
+    ``yield_strain`` (0.2 %: the offset that defines a proof stress)."""
+    from ..solver.shells import element_areas
+
+    eps = shell_plastic_strain(model, results)
+    if eps is None:
+        raise ValueError(f"{results}: the run did not record the shells' plastic strain (a crashlite run does)")
+    s = model.shells
+    tri = (s.nodes[:, 3] == s.nodes[:, 2]).astype(np.int8)
+    area = element_areas(model.nodes.xyz, s.nodes.astype(np.int64), tri)
+    out = {}
+    for pid in np.unique(s.pid):
+        m = s.pid == pid
+        e, a = eps[m], area[m]
+        title = str(model.parts.get(int(pid), {}).get("heading", "") or f"part {int(pid)}")
+        out[title] = {"part": int(pid), "max": float(e.max()), "p95": float(np.percentile(e, 95)),
+                      "mean": float((e * a).sum() / a.sum()) if a.sum() > 0 else 0.0,
+                      "yielded_area_percent": 100.0 * float(a[e > yield_strain].sum() / a.sum()) if a.sum() > 0
+                      else 0.0, "shells": int(m.sum())}
+    return out
+
+
+def assembly_parts(model: Model, names=PASSENGER_CELL) -> np.ndarray:
+    """Part IDs of the assemblies ``names`` (their sides included) from the
+    part sets titled "assembly <name>" (as the generic car writes them)."""
+    want = {n.strip().lower() for n in names}
+    out = set()
+    for (kind, sid), rec in model.sets.items():
+        title = str(rec.title or "").strip().lower()
+        if kind != "PART" or not title.startswith("assembly "):
+            continue
+        name = title[len("assembly "):]
+        for side in (" left", " right"):
+            if name.endswith(side):
+                name = name[: -len(side)]
+        if name in want:
+            out.update(int(p) for p in model.set_members("PART", sid))
+    if not out:
+        raise KeyError(f"no part set titled 'assembly <name>' for any of {sorted(want)}")
+    return np.array(sorted(out), np.int64)
+
+
+def cell_plastic_strain(model: Model, results, names=PASSENGER_CELL, yield_strain: float = 0.002) -> dict:
+    """The passenger cell's plastic strain at the end of a run (issue 7's
+    "stays nearly elastic"): over all shells of the assemblies ``names``,
+    the largest, 95th and 99th percentile plastic strain, the share of
+    their area beyond ``yield_strain``, and the parts by their largest."""
+    from ..solver.shells import element_areas
+
+    eps = shell_plastic_strain(model, results)
+    if eps is None:
+        raise ValueError(f"{results}: the run did not record the shells' plastic strain (a crashlite run does)")
+    pids = assembly_parts(model, names)
+    s = model.shells
+    m = np.isin(s.pid, pids)
+    tri = (s.nodes[:, 3] == s.nodes[:, 2]).astype(np.int8)
+    area = element_areas(model.nodes.xyz, s.nodes.astype(np.int64), tri)[m]
+    e = eps[m]
+    parts = part_plastic_strain(model, results, yield_strain)
+    cell = {k: v for k, v in parts.items() if v["part"] in set(pids.tolist())}
+    return {"shells": int(m.sum()), "max": float(e.max()), "p95": float(np.percentile(e, 95)),
+            "p99": float(np.percentile(e, 99)), "yield_strain": yield_strain,
+            "yielded_area_percent": 100.0 * float(area[e > yield_strain].sum() / area.sum()),
+            "parts": dict(sorted(cell.items(), key=lambda kv: -kv[1]["max"]))}

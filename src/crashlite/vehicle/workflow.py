@@ -13,6 +13,7 @@ folder and report under one folder:
 
 from __future__ import annotations
 
+import json
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -67,3 +68,129 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
     ver.write(out / "verify")
     seconds["verification"] = time.perf_counter() - t0
     return Study(out, red, ver, seconds)
+
+
+@dataclass
+class PaperStudy:
+    """Both load cases of the paper, one surrogate (``paper_study``)."""
+
+    out: Path
+    reduction: object  # reduce.Reduction
+    verifications: dict  # "US NCAP", "Euro NCAP ODB" -> verification.VehicleVerification
+    runs: dict  # run name -> {"deck", "results", "loop_time", "cycles", "elements"}
+    summary: dict  # time reductions and the verification figures (summary.json)
+
+
+ODB_RUNS = {  # run name -> (vehicle, barrier)
+    "odb full car, detailed barrier": ("full", "detailed"),
+    "odb full car, simplified barrier": ("full", "simplified"),
+    "odb simplified car, detailed barrier": ("simplified", "detailed"),
+    "odb simplified car, simplified barrier": ("simplified", "simplified"),
+}
+
+
+def _slug(name: str) -> str:
+    return name.replace(",", "").replace(" ", "_")
+
+
+def paper_study(out, mesh_size: float = 38.0, barrier_size: float = 50.0, usncap_end: float = 0.08,
+                odb_end: float = 0.1, interface_x: float = -600.0, shares: str = "combined",
+                variants: bool = True, quiet: bool = True, say=print, **reduce_options) -> PaperStudy:
+    """The paper's whole verification on the generic car, in one folder:
+
+    1. full runs: US NCAP (56 km/h, rigid wall) and Euro NCAP ODB (64 km/h,
+       40 %) against the detailed barrier (honeycomb solids of
+       ``barrier_size`` mm);
+    2. one reduction at ``interface_x`` from both runs (``shares``:
+       "combined", the mean of the load cases' shares, or one load case's
+       name), its deviation from each load case's own shares reported;
+    3. simplified runs: US NCAP, and ODB against the simplified barrier;
+       with ``variants`` also the two ODB runs with one simplification
+       each (full car + simplified barrier, simplified car + detailed
+       barrier), which tell the time each simplification saves (the
+       paper's figures 25–27);
+    4. verification of each load case (full against simplified, full car
+       + detailed barrier against simplified car + simplified barrier),
+       and the time reductions, in ``summary.json`` and ``index.html``.
+    """
+    from ..solver import run
+    from ..verify.timing import reduction as time_reduction
+    from ..verify.timing import run_info
+    from .generic import generic_vehicle
+    from .loadcases import odb_deck, usncap_deck
+    from .reduce import reduce_vehicle
+    from .verification import verify_vehicle
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    v = generic_vehicle(mesh_size, interface_x=interface_x)
+    car = v.write(out / "car.k")
+    say(f"  generic car: {v.shells} shells, {v.mass:.0f} kg at {mesh_size:g} mm; detailed barrier "
+        f"{barrier_size:g} mm; US NCAP {usncap_end * 1e3:g} ms, ODB {odb_end * 1e3:g} ms")
+    runs: dict = {}
+
+    def go(name: str, deck: Path) -> Path:
+        folder = out / "runs" / _slug(name)
+        r = run(deck, out=folder, quiet=quiet)
+        runs[name] = {"deck": deck, "results": folder, "loop_time": r.loop_time, "cycles": r.cycles,
+                      "elements": int(sum((r.info.get("elements") or {}).values()))}
+        say(f"  {name}: {r.cycles} cycles, time loop {r.loop_time:.1f} s")
+        return folder
+
+    def odb(vehicle_deck: Path, barrier: str, name: str) -> Path:
+        return odb_deck(vehicle_deck, out / f"{_slug(name)}.k", barrier=barrier, end_time=odb_end,
+                        element_size=barrier_size)
+
+    decks = {"usncap full": usncap_deck(car, out / "usncap_full.k", end_time=usncap_end)}
+    go("usncap full", decks["usncap full"])
+    first = "odb full car, detailed barrier"
+    decks[first] = odb(car, "detailed", first)
+    go(first, decks[first])
+    red = reduce_vehicle(car, [runs["usncap full"]["results"], runs[first]["results"]],
+                         load_cases=["US NCAP", "Euro NCAP ODB"], interface=interface_x, axle_parts=["rear axle"],
+                         shares=shares, **reduce_options)
+    simplified = out / "simplified.k"
+    red.write(simplified, out)
+    s = red.summary()
+    say(f"  steps 1-4 ({s['shares_used']['basis']} shares): K = {red.stiffness.stiffness:.5g} N/mm, "
+        f"{s['model_size']['simplified_elements']} of {s['model_size']['full_elements']} elements kept")
+    decks["usncap simplified"] = usncap_deck(simplified, out / "usncap_simplified.k", end_time=usncap_end)
+    go("usncap simplified", decks["usncap simplified"])
+    for name, (vehicle, barrier) in ODB_RUNS.items():
+        if name == first or (not variants and vehicle != barrier):
+            continue
+        decks[name] = odb(car if vehicle == "full" else simplified, barrier, name)
+        go(name, decks[name])
+    ver = {"US NCAP": verify_vehicle(runs["usncap full"]["results"], runs["usncap simplified"]["results"],
+                                     decks["usncap full"], decks["usncap simplified"], load_case="US NCAP")}
+    last = "odb simplified car, simplified barrier"
+    ver["Euro NCAP ODB"] = verify_vehicle(runs[first]["results"], runs[last]["results"], decks[first], decks[last],
+                                          load_case="Euro NCAP ODB", names=("full + detailed barrier",
+                                                                            "simplified + simplified barrier"))
+    for name, vv in ver.items():
+        vv.write(out / "verify" / _slug(name.lower()))
+    loop = {k: run_info(r["results"], k, r["deck"]).wall_time for k, r in runs.items()}
+    times = {"us_ncap": {"full_s": loop["usncap full"], "simplified_s": loop["usncap simplified"],
+                         "vehicle_reduction_percent": time_reduction(loop["usncap full"], loop["usncap simplified"])},
+             "odb": {"full_car_detailed_barrier_s": loop[first], "simplified_car_simplified_barrier_s": loop[last],
+                     "combined_reduction_percent": time_reduction(loop[first], loop[last])}}
+    if variants:
+        times["odb"].update({
+            "full_car_simplified_barrier_s": loop["odb full car, simplified barrier"],
+            "simplified_car_detailed_barrier_s": loop["odb simplified car, detailed barrier"],
+            "barrier_reduction_percent": time_reduction(loop[first], loop["odb full car, simplified barrier"]),
+            "vehicle_reduction_percent": time_reduction(loop[first], loop["odb simplified car, detailed barrier"])})
+    summary = {"mesh_size": mesh_size, "barrier_element_size": barrier_size, "interface_x": interface_x,
+               "shares": s["shares_used"], "time": times,
+               "runs": {k: {"loop_time_s": r["loop_time"], "cycles": r["cycles"], "elements": r["elements"]}
+                        for k, r in runs.items()},
+               "verification": {k: vv.figures for k, vv in ver.items()}}
+    from ..report.build import jsonable
+
+    (out / "summary.json").write_text(json.dumps(jsonable(summary), indent=1, allow_nan=False) + "\n")
+    from .study_report import study_page
+
+    links = {"reduction (steps 1-4)": "reduction.html",
+             **{f"verification {k}": f"verify/{_slug(k.lower())}/index.html" for k in ver}}
+    (out / "index.html").write_text(study_page(jsonable(summary), links))
+    return PaperStudy(out, red, ver, runs, summary)

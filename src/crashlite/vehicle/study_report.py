@@ -1,0 +1,61 @@
+"""The page of the paper study (``workflow.paper_study``): computational
+time of every run and the reduction of each simplification (the paper's
+figures 25–27), the figures of both load-case verifications, links to
+their pages and to the reduction page."""
+
+from __future__ import annotations
+
+from ..report.html import esc, image, num, page, table
+from ..report.plots import _pyplot, png
+
+
+def time_plot(runs: dict) -> bytes:
+    """Horizontal bars: the time loop of every run [s]."""
+    plt = _pyplot()
+    names = list(runs)
+    secs = [runs[n]["loop_time_s"] for n in names]
+    fig, ax = plt.subplots(figsize=(8.0, 0.45 * len(names) + 1.0))
+    bars = ax.barh(range(len(names)), secs, color=["#4c72b0" if "full" in n and "simplified" not in n
+                                                    else "#55a868" for n in names])
+    ax.set_yticks(range(len(names)), names, fontsize=8)
+    ax.invert_yaxis()
+    ax.set_xlabel("time loop [s]", fontsize=8)
+    ax.bar_label(bars, [f"{s:.1f} s" for s in secs], fontsize=7, padding=2)
+    ax.tick_params(labelsize=7)
+    return png(fig)
+
+
+def _pct(value) -> str:
+    return "–" if value is None else f"{value:.1f} %"
+
+
+def study_page(summary: dict, links: dict) -> str:
+    t = summary["time"]
+    body = [f"<p>Generic car at {num(summary['mesh_size'])} mm, detailed barrier at "
+            f"{num(summary['barrier_element_size'])} mm, interface at x = {num(summary['interface_x'])}; one "
+            f"surrogate for both load cases ({esc(summary['shares']['basis'])} load-path shares).</p>"]
+    rows = [["US NCAP: simplified vehicle", _pct(t["us_ncap"]["vehicle_reduction_percent"]), "65 %"]]
+    odb = t["odb"]
+    if "vehicle_reduction_percent" in odb:
+        rows += [["ODB: simplified barrier (full car)", _pct(odb["barrier_reduction_percent"]), ""],
+                 ["ODB: simplified vehicle (detailed barrier)", _pct(odb["vehicle_reduction_percent"]), ""]]
+    rows.append(["ODB: both simplified", _pct(odb["combined_reduction_percent"]), "92 %"])
+    body += ["<h2>Computational time</h2>", table(["simplification", "time-loop reduction", "paper"], rows),
+             image(time_plot(summary["runs"]), "time loop of every run")]
+    rows = []
+    for case, f in summary["verification"].items():
+        fw = f.get("firewall_intrusion") or {}
+        eng = f.get("engine_top_acceleration") or {}
+        rows.append([case, num(f.get("energy_rating_min"), 3), num(f["crash_box_internal_energy_deviation_percent"], 3),
+                     num(fw.get("max_deviation_percent"), 3), num(fw.get("mean_deviation_percent"), 3),
+                     num(eng.get("rating"), 3)])
+    body += ["<h2>Verification</h2>",
+             table(["load case", "energy rating (min)", "crash-box energy [%]", "firewall max |Δ| [%]",
+                    "firewall mean |Δ| [%]", "engine top rating"], rows)]
+    dev = summary["shares"].get("max_deviation_percent_points") or {}
+    if dev:
+        body.append(table(["load case", "largest share deviation from the surrogate's [points]"],
+                          [[k, num(v, 3)] for k, v in dev.items()]))
+    body.append("<h2>Pages</h2><ul>" + "".join(f'<li><a href="{esc(href)}">{esc(label)}</a></li>'
+                                              for label, href in links.items()) + "</ul>")
+    return page("crashlite simplified vehicle: US NCAP and Euro NCAP ODB", body)
