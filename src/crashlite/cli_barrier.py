@@ -69,7 +69,8 @@ def _verify(args) -> int:
 
     curves = _spec(args.curves) if args.curves is not None else args.simplified_curves
     s = verify_barriers(args.output, element_size=args.size, end_time=args.end_time / 1000.0,
-                        overlaps=[o / 100.0 for o in args.overlap], progress=True, curves=curves)
+                        overlaps=[o / 100.0 for o in args.overlap], progress=True, curves=curves,
+                        calibration_runs=args.calibration_runs)
     if s["calibration"] is not None:
         c = s["calibration"]
         print(f"simplified curves calibrated against {c['reference']} in {c['runs']} runs: misfit "
@@ -135,4 +136,5 @@ def add_commands(sub) -> None:
                         "procedure), characterised only, or the paper's curves")
     v.add_argument("--curves", type=Path, help="curves.json for the simplified barrier instead (from "
                    "`barrier characterise` or a calibration)")
+    v.add_argument("--calibration-runs", type=int, default=80, help="most simplified runs of the calibration")
     v.set_defaults(func=_verify)

@@ -45,12 +45,13 @@ def test_adjusted_clips_to_the_bounds_and_keeps_peak_over_plateau():
 @pytest.mark.slow
 def test_simplified_matches_detailed_at_both_overlaps(tmp_path):
     """Detailed barrier of 60 mm solids. The simplified curves are
-    characterised from the detailed blocks and calibrated on the 100 % case;
+    characterised from the detailed blocks and calibrated on the 100 % case
+    (in at most 40 runs);
     the CFC 60 impactor force over the crush phase then rates ≥ 0.80 by
     ISO/TS 18571 at 100 % and at 40 % overlap (which is not calibrated on).
     Energy is conserved within 1 % in every run; the simplified barrier has
     its 1080 beams; summary.json, pages and the calibrated curves are written."""
-    s = verify_barriers(tmp_path, element_size=60.0)
+    s = verify_barriers(tmp_path, element_size=60.0, calibration_runs=40)
     out = Path(tmp_path)
     assert json.loads((out / "summary.json").read_text())["overlaps"][0]["rating_crush_phase"]["overall"] == \
         pytest.approx(s["overlaps"][0]["rating_crush_phase"]["overall"])

@@ -151,7 +151,8 @@ def rate_pair(ref: Case, cmp: Case, t1: float | None = None) -> dict:
 
 def verify_barriers(directory, spec: ODBSpec | None = None, element_size: float = 25.0, end_time: float = 0.045,
                     overlaps=(1.0, 0.4), impactor: Impactor | None = None, progress: bool = False,
-                    report: bool = True, curves: "str | ODBSpec" = "calibrated") -> dict:
+                    report: bool = True, curves: "str | ODBSpec" = "calibrated",
+                    calibration_runs: int = 80) -> dict:
     """Run the impactor on both barriers at each overlap into ``directory``
     and write the reports; returns the summary (also ``summary.json``).
 
@@ -162,7 +163,8 @@ def verify_barriers(directory, spec: ODBSpec | None = None, element_size: float 
     (``characterise``, same element size), or "calibrated": characterised
     and then adjusted to the detailed barrier's response at the largest
     overlap (``calibrate``), which the other overlaps then verify;
-    "paper" takes ``spec``'s own curves, and an ODBSpec its curves."""
+    "paper" takes ``spec``'s own curves, and an ODBSpec its curves;
+    ``calibration_runs``: the most simplified runs the calibration makes."""
     spec = spec or ODBSpec()
     imp = impactor or Impactor()
     out = Path(directory)
@@ -188,7 +190,7 @@ def verify_barriers(directory, spec: ODBSpec | None = None, element_size: float 
             from .calibrate import calibrate_curves
 
             calibration = calibrate_curves(cases["detailed", ov], simple, imp, end_time, out / "calibration",
-                                           progress=progress)
+                                           max_runs=calibration_runs, progress=progress)
             calibration.write_curves(out / "calibration" / "curves.json")
             simple, source = calibration.spec, f"calibrated against {cases['detailed', ov].name}"
         cases["simplified", ov] = run_case("simplified", ov, out / "cases" / f"simplified_{round(100 * ov)}",
