@@ -39,11 +39,10 @@ def element_field(model, ids: dict, values: dict) -> np.ndarray:
         t = getattr(model, name)
         col = np.zeros(len(t))
         if name in ids and len(ids[name]) and len(t):
-            order = np.argsort(ids[name])
-            sorted_ids = np.asarray(ids[name])[order]
-            k = np.minimum(np.searchsorted(sorted_ids, t.ids), len(sorted_ids) - 1)
-            hit = sorted_ids[k] == t.ids
-            col[hit] = np.asarray(values[name])[order][k[hit]]
+            from ..model.mesh import index_map
+
+            k = index_map(np.asarray(ids[name]))(t.ids)
+            col = np.where(k >= 0, np.asarray(values[name])[np.maximum(k, 0)], 0.0)
         if name in ("beams", "discretes"):
             col = col[np.all(t.nodes[:, :2] >= 0, axis=1)] if len(t) else col
         out.append(col)

@@ -113,13 +113,10 @@ def shell_plastic_strain(model: Model, results) -> np.ndarray | None:
         if "shell_plastic_strain" not in z.files or not len(z["shell_ids"]):
             return None
         ids, eps = z["shell_ids"], z["shell_plastic_strain"]
-    out = np.zeros(len(model.shells))
-    order = np.argsort(ids)
-    k = np.searchsorted(ids[order], model.shells.ids)
-    k = np.minimum(k, len(ids) - 1)
-    hit = ids[order][k] == model.shells.ids
-    out[hit] = eps[order][k[hit]]
-    return out
+    from ..model.mesh import index_map
+
+    k = index_map(ids)(model.shells.ids)
+    return np.where(k >= 0, eps[np.maximum(k, 0)], 0.0)
 
 
 def propose_interface(model: Model, results, threshold: float = 1.0, allowed: float = 0.01,
@@ -168,11 +165,8 @@ def propose_interface(model: Model, results, threshold: float = 1.0, allowed: fl
 PASSENGER_CELL = ("A-pillar", "door sill", "floor", "tunnel", "door", "roof", "B-pillars", "rear floor")
 
 
-def part_plastic_strain(model: Model, results, yield_strain: float = 0.002) -> dict:
-    """Effective plastic strain of every shell part at the end of a
-    crashlite run (``shell_plastic_strain``): part title -> largest, 95th
-    percentile, area-weighted mean and the share of its area beyond
-    ``yield_strain`` (0.2 %: the offset that defines a proof stress)."""
+def _strain_and_area(model: Model, results) -> tuple[np.ndarray, np.ndarray]:
+    """(n_shells,) plastic strain at the end of the run and initial area of every shell."""
     from ..solver.shells import element_areas
 
     eps = shell_plastic_strain(model, results)
@@ -180,16 +174,28 @@ def part_plastic_strain(model: Model, results, yield_strain: float = 0.002) -> d
         raise ValueError(f"{results}: the run did not record the shells' plastic strain (a crashlite run does)")
     s = model.shells
     tri = (s.nodes[:, 3] == s.nodes[:, 2]).astype(np.int8)
-    area = element_areas(model.nodes.xyz, s.nodes.astype(np.int64), tri)
+    return eps, element_areas(model.nodes.xyz, s.nodes.astype(np.int64), tri)
+
+
+def _yielded_percent(eps: np.ndarray, area: np.ndarray, limit: float) -> float:
+    return 100.0 * float(area[eps > limit].sum() / area.sum()) if area.sum() > 0 else 0.0
+
+
+def part_plastic_strain(model: Model, results, yield_strain: float = 0.002, _ea=None) -> dict:
+    """Effective plastic strain of every shell part at the end of a
+    crashlite run (``shell_plastic_strain``): part title -> largest, 95th
+    percentile, area-weighted mean and the share of its area beyond
+    ``yield_strain`` (0.2 %: the offset that defines a proof stress)."""
+    eps, area = _ea if _ea is not None else _strain_and_area(model, results)
+    pid_of = model.shells.pid
     out = {}
-    for pid in np.unique(s.pid):
-        m = s.pid == pid
+    for pid in np.unique(pid_of):
+        m = pid_of == pid
         e, a = eps[m], area[m]
         title = str(model.parts.get(int(pid), {}).get("heading", "") or f"part {int(pid)}")
         out[title] = {"part": int(pid), "max": float(e.max()), "p95": float(np.percentile(e, 95)),
                       "mean": float((e * a).sum() / a.sum()) if a.sum() > 0 else 0.0,
-                      "yielded_area_percent": 100.0 * float(a[e > yield_strain].sum() / a.sum()) if a.sum() > 0
-                      else 0.0, "shells": int(m.sum())}
+                      "yielded_area_percent": _yielded_percent(e, a, yield_strain), "shells": int(m.sum())}
     return out
 
 
@@ -218,20 +224,13 @@ def cell_plastic_strain(model: Model, results, names=PASSENGER_CELL, yield_strai
     "stays nearly elastic"): over all shells of the assemblies ``names``,
     the largest, 95th and 99th percentile plastic strain, the share of
     their area beyond ``yield_strain``, and the parts by their largest."""
-    from ..solver.shells import element_areas
-
-    eps = shell_plastic_strain(model, results)
-    if eps is None:
-        raise ValueError(f"{results}: the run did not record the shells' plastic strain (a crashlite run does)")
+    eps, area = _strain_and_area(model, results)
     pids = assembly_parts(model, names)
-    s = model.shells
-    m = np.isin(s.pid, pids)
-    tri = (s.nodes[:, 3] == s.nodes[:, 2]).astype(np.int8)
-    area = element_areas(model.nodes.xyz, s.nodes.astype(np.int64), tri)[m]
+    m = np.isin(model.shells.pid, pids)
     e = eps[m]
-    parts = part_plastic_strain(model, results, yield_strain)
+    parts = part_plastic_strain(model, results, yield_strain, _ea=(eps, area))
     cell = {k: v for k, v in parts.items() if v["part"] in set(pids.tolist())}
     return {"shells": int(m.sum()), "max": float(e.max()), "p95": float(np.percentile(e, 95)),
             "p99": float(np.percentile(e, 99)), "yield_strain": yield_strain,
-            "yielded_area_percent": 100.0 * float(area[e > yield_strain].sum() / area.sum()),
+            "yielded_area_percent": _yielded_percent(e, area[m], yield_strain),
             "parts": dict(sorted(cell.items(), key=lambda kv: -kv[1]["max"]))}

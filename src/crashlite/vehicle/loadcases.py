@@ -118,9 +118,13 @@ def _include_name(car: Path, out: Path) -> str:
     return os.path.relpath(Path(car).resolve(), Path(out).resolve().parent)
 
 
-def _common(v: VehicleInfo, speed_kmh: float, end_time: float, output_dt: float, ground: float) -> tuple:
+def _common(v: VehicleInfo, speed_kmh: float, end_time: float, output_dt: float, ground: float,
+            erode_dtmin: float = 0.0) -> tuple:
     """Vehicle node and part sets, initial velocity, ground wall, controls,
-    outputs (records), and the node-set ID."""
+    outputs (records), and the node-set ID. ``erode_dtmin`` > 0: ERODE = 1
+    with that DTMIN (solids whose step falls below DTMIN x their first step
+    are deleted; the run stops where the whole model's step falls below
+    DTMIN x its first step)."""
     o, u = v.id_offset, v.units
     nodes, parts = o + 1, o + 2
     recs = [_node_generate(nodes, v.node_ids, "vehicle nodes (load case)"),
@@ -131,8 +135,8 @@ def _common(v: VehicleInfo, speed_kmh: float, end_time: float, output_dt: float,
     recs.append(record("RIGIDWALL_PLANAR_ID", rwid=o + 2, heading="ground", nsid=nodes, xt=cx, yt=cy, zt=z,
                        xh=cx, yh=cy, zh=z + 1.0, fric=0.3))
     t, dt = end_time * u.time, output_dt * u.time
-    recs += [record("CONTROL_TERMINATION", endtim=t),
-             record("CONTROL_TIMESTEP", tssfac=0.9),
+    recs += [record("CONTROL_TERMINATION", endtim=t, dtmin=erode_dtmin),
+             record("CONTROL_TIMESTEP", tssfac=0.9, erode=1 if erode_dtmin > 0 else 0),
              record("CONTROL_ENERGY", hgen=2, rwen=2, slnten=2, rylen=2)]
     recs += [record(f"DATABASE_{d}", dt=dt) for d in ("GLSTAT", "MATSUM", "RWFORC", "SECFORC", "NODOUT", "RCFORC")]
     recs.append(record("DATABASE_BINARY_D3PLOT", dt=5e-3 * u.time))
@@ -169,12 +173,17 @@ def usncap_deck(car, out, speed_kmh: float = 56.0, end_time: float = 0.1, gap: f
 
 def odb_deck(car, out, barrier: str = "simplified", speed_kmh: float = 64.0, overlap: float = 0.4,
              side: str = "left", end_time: float = 0.12, gap: float = 1.0, ground: float = 0.0,
-             output_dt: float = 1e-4, units: str | None = None, element_size: float = 20.0) -> Path:
+             output_dt: float = 1e-4, units: str | None = None, element_size: float = 20.0,
+             erode_dtmin: float = 0.1) -> Path:
     """Write the Euro NCAP ODB load case for vehicle deck ``car`` to ``out``
     and the barrier to ``<out stem>_barrier<suffix>`` beside it:
     ``barrier`` "simplified" (discrete beams) or "detailed" (honeycomb
     solids of ``element_size`` mm), ``overlap`` of the vehicle width on
-    ``side`` (the driver's), face ``gap`` mm ahead of the vehicle."""
+    ``side`` (the driver's), face ``gap`` mm ahead of the vehicle. With the
+    detailed barrier, honeycomb elements crushed to a step below
+    ``erode_dtmin`` x their first step, or turned inside out, are deleted
+    (ERODE = 1, DTMIN), as honeycomb barrier models are run: crushed solid
+    under a rail's edge they would otherwise stop the run (0: keep them)."""
     from ..barrier import offset_placement, simplified_barrier
     from ..barrier.detailed import detailed_barrier
 
@@ -194,7 +203,8 @@ def odb_deck(car, out, barrier: str = "simplified", speed_kmh: float = 64.0, ove
     bpath = out.with_name(f"{out.stem}_barrier{out.suffix or '.k'}")
     out.parent.mkdir(parents=True, exist_ok=True)
     b.write(bpath)
-    recs, nodes, parts = _common(v, speed_kmh, end_time, output_dt, ground)
+    recs, nodes, parts = _common(v, speed_kmh, end_time, output_dt, ground,
+                                 erode_dtmin if barrier == "detailed" else 0.0)
     recs.insert(3, record("CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID", cid=v.id_offset + 1,
                           heading="vehicle to barrier", ssid=parts, sstyp=2, msid=b.set_ids["parts"], mstyp=2,
                           fs=0.3, fd=0.3, soft=1))  # soft constraint: the barrier's faces are far softer than steel

@@ -57,6 +57,12 @@ def test_odb_offset_barrier_on_the_driver_side(car_deck, tmp_path, barrier):
     contacts = [g for g in s.groups if g.kind == "contact"]
     assert len(contacts) == 2  # vehicle self contact, vehicle to barrier
     assert s.end_time == pytest.approx(0.12)
+    # crushed-solid honeycomb elements are deleted (ERODE, DTMIN) instead of stopping the run
+    solids = [g for g in s.groups if g.kind == "solid"]
+    if barrier == "detailed":
+        assert solids[0].s.erode and solids[0].s.erode_dtmin == pytest.approx(0.1) and s.dt_min == pytest.approx(0.1)
+    else:
+        assert not solids and s.dt_min == 0.0
 
 
 def test_load_case_for_another_deck_in_other_units(deck, tmp_path):
