@@ -17,6 +17,14 @@ from dataclasses import dataclass
 import numpy as np
 
 
+def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """a × b along the last axis of (..., 3) arrays: np.cross without its
+    axis handling, which costs tens of µs on the few points of a body."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
+
+
 def rotation(phi: np.ndarray) -> np.ndarray:
     """Rotation matrix of the rotation vector ``phi`` (Rodrigues)."""
     angle = float(np.linalg.norm(phi))
@@ -56,9 +64,17 @@ class RigidBody:
         a = np.einsum("kji,jl,klm->kim", skew, np.linalg.inv(self.inertia_body), skew)
         return 1.0 / self.mass + np.linalg.eigvalsh(a)[:, -1]
 
+    def inverse_inertia_body(self) -> np.ndarray:
+        """(3, 3) inverse of ``inertia_body``, formed once per inertia."""
+        cached = getattr(self, "_inv", None)
+        if cached is None or cached[0] is not self.inertia_body:
+            cached = (self.inertia_body, np.linalg.inv(self.inertia_body))
+            self._inv = cached
+        return cached[1]
+
     def omega(self, rot: np.ndarray | None = None) -> np.ndarray:
         r = self.rot if rot is None else rot
-        return r @ np.linalg.solve(self.inertia_body, r.T @ self.momentum)
+        return r @ (self.inverse_inertia_body() @ (r.T @ self.momentum))
 
     def kinetic(self) -> float:
         """Kinetic energy at the full step: the mean of the half-step momenta
@@ -66,7 +82,7 @@ class RigidBody:
         vel, mom = self.velocity, self.momentum
         if self.prev is not None:
             vel, mom = 0.5 * (vel + self.prev[0]), 0.5 * (mom + self.prev[1])
-        w = self.rot @ np.linalg.solve(self.inertia_body, self.rot.T @ mom)
+        w = self.rot @ (self.inverse_inertia_body() @ (self.rot.T @ mom))
         return 0.5 * self.mass * float(vel @ vel) + 0.5 * float(w @ mom)
 
     def kinetic_now(self) -> float:
@@ -80,7 +96,7 @@ class RigidBody:
         fn = f[self.nodes]
         arm = x[self.nodes] - self.cog
         self.velocity += dt_v * fn.sum(axis=0) / self.mass
-        self.momentum += dt_v * np.cross(arm, fn).sum(axis=0)
+        self.momentum += dt_v * cross(arm, fn).sum(axis=0)
         if moment is not None:
             self.momentum += dt_v * moment[self.nodes].sum(axis=0)
         self.constrain()
@@ -119,7 +135,7 @@ class RigidBody:
         arm = self.r_body @ self.rot.T
         omega = self.omega()
         x[self.nodes] = self.cog + arm
-        v[self.nodes] = self.velocity + np.cross(omega, arm)
+        v[self.nodes] = self.velocity + cross(omega, arm)
         if rot is not None:
             rot[self.nodes] = self.rot
             w[self.nodes] = omega

@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from .kernels.rigidwall import cylinder_wall, planar_wall
+from .rigid import cross
 
 
 class Walls:
@@ -108,20 +109,26 @@ class Walls:
         step; returns the kinetic energy taken (body and wall together), or
         None when no node of the body reaches the wall (nothing changed)."""
         w = self.walls[k]
-        gap, normals, over = self._gaps(k, x, nodes, dt)
         moving = w.mass > 0 and w.radius == 0
         wall_v = self.velocity[k] if w.radius == 0 else 0.0
         arm = x[nodes] - body.cog
+        omega = body.omega()
+        if w.radius == 0:  # out of reach over the step: no node can land on the plane
+            reach = (np.linalg.norm(body.velocity) + np.linalg.norm(omega) * np.sqrt((arm * arm).sum(axis=1).max())
+                     + abs(wall_v)) * dt
+            if ((x[nodes] - self.point[k]) @ w.normal).min() > 2.0 * reach:
+                return None
+        gap, normals, over = self._gaps(k, x, nodes, dt)
         # velocity each point must not fall below along its normal: it lands on the wall
         target = wall_v * (normals @ w.normal) - gap / dt if w.radius == 0 else -gap / dt
-        vel_n = body.velocity @ normals.T + np.einsum("ij,ij->i", np.cross(body.omega(), arm), normals)
+        vel_n = body.velocity @ normals.T + np.einsum("ij,ij->i", cross(omega, arm), normals)
         active = over & (vel_n < target)
         if not active.any():
             return None
         rot = body.rot
-        inv_i = rot @ np.linalg.inv(body.inertia_body) @ rot.T  # world-frame inverse inertia
+        inv_i = rot @ body.inverse_inertia_body() @ rot.T  # world-frame inverse inertia
         ke0 = body.kinetic_now()
-        rxn = np.cross(arm, normals)
+        rxn = cross(arm, normals)
         eff = 1.0 / body.mass + np.einsum("ij,jk,ik->i", rxn, inv_i, rxn)
         if moving:
             eff = eff + 1.0 / w.mass
@@ -130,7 +137,7 @@ class Walls:
             largest = 0.0
             for i in np.flatnonzero(active):
                 omega = inv_i @ body.momentum
-                vn = normals[i] @ (body.velocity + np.cross(omega, arm[i]))
+                vn = normals[i] @ (body.velocity + cross(omega, arm[i]))
                 tgt = (self.velocity[k] - gap[i] / dt) if moving else target[i]
                 dj = max((tgt - vn) / eff[i], -total[i])  # accumulated impulse stays ≥ 0
                 total[i] += dj
