@@ -21,6 +21,7 @@ from pathlib import Path
 
 import numba
 
+from crashlite.vehicle.study_report import verification_lines
 from crashlite.vehicle.workflow import paper_study
 
 
@@ -55,11 +56,8 @@ def main() -> None:
     print(f"  ODB, both simplified                       {_pc(o['combined_reduction_percent'])}"
           f"   (target >= 90 %, paper 92 %)")
     print("verification (full against simplified)")
-    for case, f in st.summary["verification"].items():
-        fw = f.get("firewall_intrusion") or {}
-        print(f"  {case:<14} energy rating min {f['energy_rating_min']:.3f}, crash-box energy "
-              f"{f['crash_box_internal_energy_deviation_percent']:+.1f} %, firewall intrusion max "
-              f"{fw.get('max_deviation_percent', float('nan')):.0f} % mean {fw.get('mean_deviation_percent', float('nan')):.0f} %")
+    for line in verification_lines(st.summary):
+        print(f"  {line}")
     print(f"report: {root / 'index.html'}")
 
 

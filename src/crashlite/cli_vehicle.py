@@ -112,11 +112,10 @@ def _study(args) -> int:
     print(f"time-loop reduction: US NCAP vehicle {_pc(t['us_ncap']['vehicle_reduction_percent'])}; ODB "
           + ", ".join(f"{k.replace('_reduction_percent', '')} {_pc(v)}" for k, v in t["odb"].items()
                       if k.endswith("_percent")))
-    for case, f in st.summary["verification"].items():
-        fw = f.get("firewall_intrusion") or {}
-        print(f"{case}: energy rating min {f['energy_rating_min']}, crash-box energy "
-              f"{_pc(f['crash_box_internal_energy_deviation_percent'])}, firewall max "
-              f"{_pc(fw.get('max_deviation_percent'))} mean {_pc(fw.get('mean_deviation_percent'))}")
+    from .vehicle.study_report import verification_lines
+
+    for line in verification_lines(st.summary):
+        print(line)
     print(f"wrote {args.output / 'index.html'} and {args.output / 'summary.json'}")
     return 0
 

@@ -68,6 +68,12 @@ def test_summary_pairs_the_runs_and_reports_their_time_reductions(study):
     assert odb["names"] == ["full + detailed barrier", "simplified + simplified barrier"]
     assert odb["time"]["full"]["cycles"] == s["runs"]["odb full car, detailed barrier"]["cycles"]
     assert s["verification"]["US NCAP"]["time"]["simplified"]["cycles"] == s["runs"]["usncap simplified"]["cycles"]
+    from crashlite.vehicle.study_report import verification_lines
+
+    lines = verification_lines(s)
+    assert [ln.split(":")[0] for ln in lines] == ["US NCAP", "Euro NCAP ODB"]
+    cb = s["verification"]["US NCAP"]["crash_box_internal_energy_deviation_percent"]
+    assert f"crash-box energy {cb:.1f} %" in lines[0]
     page = (study.out / "index.html").read_text()
     for href in ("reduction.html", "verify/us_ncap/index.html", "verify/euro_ncap_odb/index.html"):
         assert f'href="{href}"' in page and (study.out / href).is_file()

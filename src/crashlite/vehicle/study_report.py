@@ -59,3 +59,15 @@ def study_page(summary: dict, links: dict) -> str:
     body.append("<h2>Pages</h2><ul>" + "".join(f'<li><a href="{esc(href)}">{esc(label)}</a></li>'
                                               for label, href in links.items()) + "</ul>")
     return page("crashlite simplified vehicle: US NCAP and Euro NCAP ODB", body)
+
+
+def verification_lines(summary: dict) -> list[str]:
+    """One text line per load case of the study's verification figures."""
+    out = []
+    for case, f in summary["verification"].items():
+        fw = f.get("firewall_intrusion") or {}
+        rating = f.get("energy_rating_min")
+        out.append(f"{case}: energy rating min {'–' if rating is None else f'{rating:.3f}'}, crash-box energy "
+                   f"{_pct(f['crash_box_internal_energy_deviation_percent'])}, firewall intrusion max "
+                   f"{_pct(fw.get('max_deviation_percent'))} mean {_pct(fw.get('mean_deviation_percent'))}")
+    return out
