@@ -23,7 +23,7 @@ class Walls:
         self.walls = walls
         self.point = [w.point.copy() for w in walls]
         self.hit = [np.zeros(len(w.nodes), np.bool_) for w in walls]
-        self._before = [np.zeros((len(w.nodes), 3)) for w in walls]
+        self._before = np.zeros((n_nodes, 3))
         self.velocity = np.array([w.velocity for w in walls], float)  # along the normal
         self.force = np.zeros((len(walls), 4))  # force on each wall (3) and the KE it took
         owner = np.full(n_nodes, -1)
@@ -39,9 +39,10 @@ class Walls:
             self.body_nodes.append([(bodies[k], np.array(v, np.int64)) for k, v in by_body.items()])
 
     def snapshot(self, v) -> None:
-        """Velocities of the wall nodes before the velocity update: the
-        energy a wall takes is the work of its impulses over the step."""
-        self._before = [v[w.nodes] for w in self.walls]
+        """Velocities before the velocity update: the energy a wall takes is
+        the work of its impulses over the step (kernels.rigidwall)."""
+        if self.walls:
+            np.copyto(self._before, v)
 
     def kinetic(self) -> float:
         return sum(0.5 * w.mass * self.velocity[k] ** 2 for k, w in enumerate(self.walls))
@@ -52,30 +53,21 @@ class Walls:
 
     def apply(self, st, t: float, dt: float, place) -> float:
         """Correct the velocities for the next step ``dt``; returns the
-        energy the walls took out of the model over the step.
-
-        A node's wall impulse J does the work J·(v_before + v_after)/2 on
-        it, the wall's reaction -J·(V_before + V_after)/2: a node resting
-        on a wall that a spring pushes into it costs no energy, a node
-        struck by a wall loses what a plastic impact loses."""
+        energy the walls took out of the model over the step (the work of
+        their impulses, kernels.rigidwall, and what the rigid bodies lost)."""
         ew = 0.0
         self.force[:] = 0.0
         for k, w in enumerate(self.walls):
             if not (w.birth <= t <= w.death):
                 continue
-            v_old = self.velocity[k]
-            v_kick = st.v[w.nodes]  # after the velocity update, before the wall
             if w.radius > 0:
-                cylinder_wall(st.x, st.v, st.mass, w.nodes, self.point[k], w.normal, w.radius, w.length,
-                              w.fric, dt, self.force[k])
+                cylinder_wall(st.x, st.v, self._before, st.mass, w.nodes, self.point[k], w.normal, w.radius,
+                              w.length, w.fric, dt, self.force[k])
             else:
-                self.velocity[k] = planar_wall(st.x, st.v, st.mass, w.nodes, self.point[k], w.normal, v_old,
-                                               w.mass, w.fric, dt, self.force[k], self.hit[k], w.edge_l,
-                                               w.edge_m, w.len_l, w.len_m)
-            v_after = st.v[w.nodes]
-            impulse = st.mass[w.nodes, None] * (v_after - v_kick)
-            wall_mid = 0.5 * (v_old + self.velocity[k]) * w.normal
-            ew += float(np.einsum("ij,ij->", impulse, wall_mid - 0.5 * (self._before[k] + v_after)))
+                self.velocity[k] = planar_wall(st.x, st.v, self._before, st.mass, w.nodes, self.point[k], w.normal,
+                                               self.velocity[k], w.mass, w.fric, dt, self.force[k], self.hit[k],
+                                               w.edge_l, w.edge_m, w.len_l, w.len_m)
+            ew += self.force[k, 3]
             v_nodes = self.velocity[k]
             for body, nodes in self.body_nodes[k]:
                 taken = self._push_body(k, body, nodes, st.x, dt)

@@ -16,7 +16,7 @@ def _call(x, v, mass, wall_v=10000.0, wall_mass=5.0, finite=True):
     nodes = np.arange(len(x))
     hit = np.zeros(len(x), np.bool_)
     ln = 100.0 if finite else 0.0
-    v_new = planar_wall(x, v, mass, nodes, np.zeros(3), np.array([1.0, 0.0, 0.0]), wall_v, wall_mass, 0.0, DT,
+    v_new = planar_wall(x, v, v.copy(), mass, nodes, np.zeros(3), np.array([1.0, 0.0, 0.0]), wall_v, wall_mass, 0.0, DT,
                         force, hit, np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0]), ln, ln)
     return v_new, force
 

@@ -15,11 +15,17 @@ from numba import njit
 
 
 @njit(cache=True, inline="always")
-def _contact_velocity(v, i, n0, n1, n2, vn, vn_new, fric, m, dt, force):
+def _contact_velocity(v, v_before, i, n0, n1, n2, vn, vn_new, fric, m, dt, force, wall_mid):
     """Set node i's normal velocity to vn_new; friction takes up to fric
     times the normal velocity change from the tangential velocity (fric ≥ 1:
-    no sliding). The momentum change goes into the wall ``force`` (3,) and
-    the kinetic energy taken out into force[3]."""
+    no sliding). The momentum change goes into the wall ``force`` (3,).
+
+    force[3] gathers the energy the wall takes over the step: the node's
+    impulse J does the work J·(v_before + v_after)/2 on it (v_before: its
+    velocity before this step's velocity update), the wall's reaction
+    -J·wall_mid (the wall's mean normal speed over the step): a node resting
+    on a wall that a spring pushes into it costs nothing, a node struck by a
+    wall loses what a plastic impact loses."""
     vt0, vt1, vt2 = v[i, 0] - vn * n0, v[i, 1] - vn * n1, v[i, 2] - vn * n2
     vt = np.sqrt(vt0 * vt0 + vt1 * vt1 + vt2 * vt2)
     keep = 1.0
@@ -31,22 +37,25 @@ def _contact_velocity(v, i, n0, n1, n2, vn, vn_new, fric, m, dt, force):
     v[i, 0] = vn_new * n0 + keep * vt0
     v[i, 1] = vn_new * n1 + keep * vt1
     v[i, 2] = vn_new * n2 + keep * vt2
-    force[0] -= m * (v[i, 0] - old0) / dt
-    force[1] -= m * (v[i, 1] - old1) / dt
-    force[2] -= m * (v[i, 2] - old2) / dt
-    force[3] += 0.5 * m * (old0 * old0 + old1 * old1 + old2 * old2
-                           - v[i, 0] * v[i, 0] - v[i, 1] * v[i, 1] - v[i, 2] * v[i, 2])
+    j0, j1, j2 = m * (v[i, 0] - old0), m * (v[i, 1] - old1), m * (v[i, 2] - old2)
+    force[0] -= j0 / dt
+    force[1] -= j1 / dt
+    force[2] -= j2 / dt
+    force[3] += (j0 * (wall_mid * n0 - 0.5 * (v_before[i, 0] + v[i, 0]))
+                 + j1 * (wall_mid * n1 - 0.5 * (v_before[i, 1] + v[i, 1]))
+                 + j2 * (wall_mid * n2 - 0.5 * (v_before[i, 2] + v[i, 2])))
 
 
 @njit(cache=True)
-def planar_wall(x, v, mass, nodes, point, normal, wall_v, wall_mass, fric, dt, force, hit,
+def planar_wall(x, v, v_before, mass, nodes, point, normal, wall_v, wall_mass, fric, dt, force, hit,
                 edge_l, edge_m, len_l, len_m):
     """Correct v of ``nodes`` against the plane through ``point`` (moving at
     ``wall_v`` along the unit ``normal``, which points to the allowed side).
 
     wall_mass 0: the wall does not move. fric: 0 frictionless, 1 no sliding,
     between: Coulomb coefficient on the normal impulse. Adds the force of the
-    nodes on the wall to ``force`` (3,); ``hit`` (len(nodes),) is scratch.
+    nodes on the wall to ``force`` (3,) and the energy it takes to force[3]
+    (``_contact_velocity``); ``hit`` (len(nodes),) is scratch.
     A finite wall (len_l > 0) is the rectangle [0, len_l] x [0, len_m] along
     the unit edges ``edge_l``, ``edge_m`` from ``point`` (its corner).
     Returns the wall's new normal velocity.
@@ -92,12 +101,13 @@ def planar_wall(x, v, mass, nodes, point, normal, wall_v, wall_mass, fric, dt, f
             gap += (x[i, j] - point[j]) * normal[j]
             vn += v[i, j] * normal[j]
         target = v_new - gap / dt  # lands on the wall at the end of the step
-        _contact_velocity(v, i, normal[0], normal[1], normal[2], vn, target, fric, mass[i], dt, force)
+        _contact_velocity(v, v_before, i, normal[0], normal[1], normal[2], vn, target, fric, mass[i], dt, force,
+                          0.5 * (wall_v + v_new))
     return v_new
 
 
 @njit(cache=True)
-def cylinder_wall(x, v, mass, nodes, tail, axis, radius, length, fric, dt, force):
+def cylinder_wall(x, v, v_before, mass, nodes, tail, axis, radius, length, fric, dt, force):
     """Keep nodes outside a stationary cylinder (axis from ``tail`` along the
     unit ``axis``, ``length`` 0: infinite): a node that would enter it this
     step gets the radial velocity that puts it on the surface."""
@@ -118,4 +128,5 @@ def cylinder_wall(x, v, mass, nodes, tail, axis, radius, length, fric, dt, force
         n = r / dist  # outward normal at the predicted point
         vn = v[i, 0] * n[0] + v[i, 1] * n[1] + v[i, 2] * n[2]
         # the outward velocity increment that lands it on the surface
-        _contact_velocity(v, i, n[0], n[1], n[2], vn, vn + (radius - dist) / dt, fric, mass[i], dt, force)
+        _contact_velocity(v, v_before, i, n[0], n[1], n[2], vn, vn + (radius - dist) / dt, fric, mass[i], dt,
+                          force, 0.0)
