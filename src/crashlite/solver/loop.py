@@ -33,8 +33,9 @@ class State:
     """The arrays every part of the loop reads and writes.
 
     x, v, f (n, 3): coordinates, half-step velocities, nodal forces;
-    rot (n, 3, 3), w (n, 3), moment (n, 3): nodal rotations, angular
-    velocities and moments (nodes with rotational inertia); mass, inv_mass,
+    rot (n, 3, 3), w (n, 3), moment (n, 3): nodal rotations (integrated
+    only when beams read them), angular velocities and moments (nodes with
+    rotational inertia); mass, inv_mass,
     rot_inertia, inv_j (n,); fixed, fixed_rot (n, 3) held DOFs; t the time
     and dt the step just taken (0 at the first force evaluation).
     """
@@ -196,6 +197,7 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock) -> Results:
     nb = bool((st.rot_inertia > 0).any())  # nodes with rotational DOFs (beams, shells)
     x, v, f = st.x, st.v, st.f
     groups = groups_of(s, n)
+    turn = nb and any(g.kind == "beam" for g in groups)  # only beams read the nodal orientations
     walls = Walls(s.walls, s.bodies, n)
     motions = Motions(s.motions, s.bodies, s.x0)
     parts = PartAccount(groups, s.bodies, n)
@@ -313,7 +315,7 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock) -> Results:
             if s.nodal_loads is not None:  # work over t .. t + dt with the half-step velocities
                 w_ext += s.nodal_loads.work(t + 0.5 * dt_step, v, st.w if nb else None, dt_step)
             update_position(x, v, dt_step)
-            if nb:
+            if turn:
                 update_rotations(st.rot, st.w, st.moment, st.inv_j, st.fixed_rot, 0.0, dt_step)
             for b in s.bodies:
                 b.drift(dt_step)

@@ -16,6 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .kernels.rigid import force_sums, place_nodes, place_rotations
+
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """a × b along the last axis of (..., 3) arrays: np.cross without its
@@ -93,13 +95,17 @@ class RigidBody:
     def kick(self, f: np.ndarray, x: np.ndarray, dt_v: float, moment: np.ndarray | None = None) -> None:
         """Change momenta by the nodal forces (and moments) over dt_v."""
         self.prev = (self.velocity.copy(), self.momentum.copy())
-        fn = f[self.nodes]
-        arm = x[self.nodes] - self.cog
-        self.velocity += dt_v * fn.sum(axis=0) / self.mass
-        self.momentum += dt_v * cross(arm, fn).sum(axis=0)
-        if moment is not None:
-            self.momentum += dt_v * moment[self.nodes].sum(axis=0)
+        sums = self._scratch()
+        force_sums(f, x, f if moment is None else moment, self.nodes, self.cog, moment is not None, sums)
+        self.velocity += dt_v * sums[:3] / self.mass
+        self.momentum += dt_v * sums[3:]
         self.constrain()
+
+    def _scratch(self) -> np.ndarray:
+        out = getattr(self, "_sums", None)
+        if out is None:
+            out = self._sums = np.zeros(6)
+        return out
 
     def constrain(self) -> None:
         """Zero the velocity along held directions and the angular velocity
@@ -132,13 +138,10 @@ class RigidBody:
               w: np.ndarray | None = None) -> None:
         """Write member node positions and velocities (and, for nodes with
         rotations, their orientation and angular velocity) from the body."""
-        arm = self.r_body @ self.rot.T
         omega = self.omega()
-        x[self.nodes] = self.cog + arm
-        v[self.nodes] = self.velocity + cross(omega, arm)
+        place_nodes(x, v, self.nodes, self.r_body, self.cog, self.rot, self.velocity, omega)
         if rot is not None:
-            rot[self.nodes] = self.rot
-            w[self.nodes] = omega
+            place_rotations(rot, w, self.nodes, self.rot, omega)
 
 
 def build_body(body_id: int, nodes: np.ndarray, x: np.ndarray, v: np.ndarray, mass: np.ndarray,

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .kernels.rigid import plane_reach
 from .kernels.rigidwall import cylinder_wall, planar_wall
 from .rigid import cross
 
@@ -103,13 +104,13 @@ class Walls:
         w = self.walls[k]
         moving = w.mass > 0 and w.radius == 0
         wall_v = self.velocity[k] if w.radius == 0 else 0.0
-        arm = x[nodes] - body.cog
         omega = body.omega()
         if w.radius == 0:  # out of reach over the step: no node can land on the plane
-            reach = (np.linalg.norm(body.velocity) + np.linalg.norm(omega) * np.sqrt((arm * arm).sum(axis=1).max())
-                     + abs(wall_v)) * dt
-            if ((x[nodes] - self.point[k]) @ w.normal).min() > 2.0 * reach:
+            gap_min, arm_max = plane_reach(x, nodes, body.cog, self.point[k], w.normal)
+            speed = np.sqrt(body.velocity @ body.velocity) + np.sqrt(omega @ omega) * arm_max + abs(wall_v)
+            if gap_min > 2.0 * speed * dt:
                 return None
+        arm = x[nodes] - body.cog
         gap, normals, over = self._gaps(k, x, nodes, dt)
         # velocity each point must not fall below along its normal: it lands on the wall
         target = wall_v * (normals @ w.normal) - gap / dt if w.radius == 0 else -gap / dt
