@@ -67,7 +67,7 @@ def _verify(args) -> int:
 
     v = verify_vehicle(args.full, args.simplified, args.deck_full, args.deck_simplified, load_case=args.load_case,
                        crash_boxes=args.crash_boxes, firewall=args.firewall, reference=args.reference,
-                       engine=args.engine, cfc=args.cfc)
+                       engine=args.engine, cfc=args.cfc, cell_frame=tuple(args.cell_frame))
     files = v.write(args.output)
     f = v.figures
     fw = f.get("firewall_intrusion") or {}
@@ -133,6 +133,8 @@ def _seconds(deck) -> float:
 
 def add_commands(sub) -> None:
     """Register ``vehicle`` and its subcommands on the top-level parser."""
+    from .vehicle.verification import CELL_FRAME
+
     fmt = argparse.ArgumentDefaultsHelpFormatter
     veh = sub.add_parser("vehicle", help="the generic compact car and its frontal load cases")
     vsub = veh.add_subparsers(dest="vehicle_command", required=True)
@@ -203,7 +205,10 @@ def add_commands(sub) -> None:
     w.add_argument("--crash-boxes", nargs="+", default=["crash box left", "crash box right"], help="part titles")
     w.add_argument("--firewall", default="firewall nodes", help="*SET_NODE title of the firewall")
     w.add_argument("--reference", default="rear seat left",
-                   help="history node title of the passenger-cell reference (intrusion, deceleration phase)")
+                   help="history node title of the passenger-cell node whose stop ends the deceleration phase")
+    w.add_argument("--cell-frame", nargs="+", default=list(CELL_FRAME), metavar="TITLE",
+                   help="history node titles of passenger-cell nodes (three or more, apart along x and y): the "
+                        "intrusion is measured in their rigid motion's frame")
     w.add_argument("--engine", default="engine top", help="history node title of the engine-top sensor")
     w.add_argument("--cfc", type=float, default=60.0, help="SAE J211 filter class of the accelerations")
     w.set_defaults(func=_verify)

@@ -1,0 +1,38 @@
+"""Intrusion in the passenger cell's frame: the cell's rigid motion
+(translation, pitch, yaw) is not intrusion, a firewall pushed back is."""
+
+import numpy as np
+import pytest
+
+from crashlite.solver.rigid import rotation
+from crashlite.vehicle.verification import _in_cell, cell_motion
+
+CELL = np.array([[-2200.0, 350.0, 350.0], [-2200.0, -350.0, 350.0], [-1490.0, 700.0, 300.0],
+                 [-1490.0, -700.0, 300.0]])  # rear seats and B-pillar sills of the generic car
+FIREWALL = np.array([[-250.0, y, z] for y in (-400.0, 0.0, 400.0) for z in (300.0, 500.0, 750.0)])
+
+
+def _moved(pitch, yaw, shift):
+    r = rotation(np.array([0.0, pitch, 0.0])) @ rotation(np.array([0.0, 0.0, yaw]))
+    c = CELL.mean(axis=0)
+    x0 = np.vstack([CELL, FIREWALL])
+    return x0, (x0 - c) @ r.T + c + shift, r
+
+
+def test_the_rigid_fit_recovers_the_cells_motion():
+    x0, x, r = _moved(0.08, -0.03, [400.0, 5.0, 30.0])
+    got, c0, c = cell_motion(x0[:4], x[:4])
+    np.testing.assert_allclose(got, r, atol=1e-12)
+    np.testing.assert_allclose((x0 - c0) @ got.T + c, x, atol=1e-9)
+
+
+def test_a_pitching_and_yawing_cell_has_no_intrusion_a_pushed_firewall_has():
+    x0, x, r = _moved(0.08, -0.03, [400.0, 5.0, 30.0])
+    frame, fw = np.arange(4), np.arange(4, len(x0))
+    np.testing.assert_allclose(_in_cell(x, x0, fw, frame, 0), 0.0, atol=1e-9)
+    # the same motion measured against one node only counts the pitch: z·θ at the top of the firewall
+    assert np.ptp(-(x[fw, 0] - x0[fw, 0]) + (x[0, 0] - x0[0, 0])) > 30.0
+    pushed = x.copy()
+    d = np.array([10.0, 25.0, 40.0] * 3)  # rearward in the cell frame, more at the top
+    pushed[fw] -= np.outer(d, r[:, 0])  # along the cell's turned x axis
+    assert _in_cell(pushed, x0, fw, frame, 0) == pytest.approx(d, abs=1e-9)
