@@ -409,3 +409,28 @@ def test_contact_options_not_run_are_refused_by_name(tmp_path):
     with pytest.raises(SetupError) as e:
         build(read_deck(d.write(tmp_path / "tie.k", 1e-4)))
     assert "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_TIEBREAK is not supported" in str(e.value)
+
+
+@pytest.mark.parametrize("start_z, vz, struck", [(8.0, 1000.0, False), (10.1, -1000.0, True)])
+def test_a_node_inside_a_solid_is_not_pushed_out_through_its_face(tmp_path, start_z, vz, struck):
+    """A node that is already 2 mm behind the top face of a fixed solid bar
+    (it came through the solid, as through a deleted element) and moves
+    out slowly takes no contact: pushed out from that depth it would gain
+    energy no contact ever stored. The same node striking the face from
+    above rebounds."""
+    d = Deck()
+    bar = d.bar(1, 4, 40.0, 10.0)
+    (node,) = d.nodes([[15.0, 5.0, start_z]])
+    d.mass(node, 1e-4)
+    d.node_set(1, [node])
+    d.fix(bar)
+    d.velocity([node], (0.0, 0.0, vz))
+    d.contact("NODES_TO_SURFACE", "1,1,4,3")
+    res, (g,), s = run(d.write(tmp_path / "inside.k", 4e-3), output_dt=1e-4)
+    if struck:
+        assert res.final_v[node - 1, 2] == pytest.approx(-vz, rel=0.02) and g.max_gap > 0.0
+    else:
+        assert res.final_v[node - 1, 2] == pytest.approx(vz, rel=1e-12) and g.max_gap == 0.0
+        assert res.final_x[node - 1, 2] > 10.0  # it left through the face untouched
+    total = res.kinetic + res.internal + res.sliding
+    assert np.max(np.abs(total - total[0])) < 0.01 * total[0]

@@ -20,8 +20,12 @@ Solid faces are one-sided (outward normal): a node behind the face is in
 contact up to ``depth`` (measured along the normal) when its closest point
 is its normal projection; such a contact wins over one in front of a face,
 and a node keeps the face it is behind while it stays there, so a node at
-a corner is not handed to the side face it grazes. Otherwise the nearest
-penetrated segment is taken.
+a corner is not handed to the side face it grazes. A node found behind a
+face it was not on, deeper than its approach over the step (and than the
+penetration it had on the face it slides over from), came through the
+solid, through a deleted element or round an edge: it takes no contact
+there (pushed out through that face, it would gain energy no contact ever
+stored). Otherwise the nearest penetrated segment is taken.
 
 Arrays (ns slave entries, nm segments, nc candidates; model units):
   x, v (n_nodes, 3) float64 coordinates at t(n+1), velocities at t(n+½)
@@ -312,6 +316,7 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
             rnode[i, a] = -1
             for k in range(3):
                 rows[i, a, k] = 0.0
+        g_prev = gap[i]  # the penetration of the last cycle
         gap[i] = 0.0
         nd = snode[i]
         px, py, pz = x[nd, 0], x[nd, 1], x[nd, 2]
@@ -346,6 +351,15 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
                     if math.sqrt(tx * tx + ty * ty + tz * tz) > 1e-2 * msize[s] or -sd > depth[s]:
                         continue
                     g = half - sd  # the depth along the normal (a node just past an edge has none)
+                    if s != prev[i] and g > g_prev + tol:
+                        # deeper behind a face it was not on than one step's approach: the node came through
+                        # the solid (a deleted element, round an edge), it did not strike this face
+                        vfx = w0 * v[n0, 0] + w1 * v[n1, 0] + w2 * v[n2, 0] + w3 * v[n3, 0]
+                        vfy = w0 * v[n0, 1] + w1 * v[n1, 1] + w2 * v[n2, 1] + w3 * v[n3, 1]
+                        vfz = w0 * v[n0, 2] + w1 * v[n1, 2] + w2 * v[n2, 2] + w3 * v[n3, 2]
+                        approach = -((v[nd, 0] - vfx) * nx + (v[nd, 1] - vfy) * ny + (v[nd, 2] - vfz) * nz) * dt
+                        if g > g_prev + 2.0 * max(approach, 0.0) + tol:
+                            continue
                     cls = _BEHIND
                 else:
                     cls = _OUTSIDE
