@@ -5,7 +5,11 @@ Each interface becomes one ContactGroup (kind "contact": its energy counts
 as sliding energy). Segments are the shells of the surface's parts (both
 sides, contact thickness = shell thickness, or SST/MST) and the exterior
 faces of their solids (faces used by one element of the surface, outward
-normals, zero thickness). Slave entries are nodes facing segments:
+normals, zero thickness); where solids may be deleted (*CONTROL_TIMESTEP
+ERODE = 1, a material failure strain) also every inner face, once for each
+of its two solids, that is surface once the solid across it is gone (as
+LS-DYNA's eroding contacts do: the honeycomb behind a deleted element
+still bears). Slave entries are nodes facing segments:
 
 - single surface: every surface node against every segment not holding it;
 - nodes to surface: the slave nodes (node set or the parts' element nodes)
@@ -95,11 +99,12 @@ class Surface:
     size: np.ndarray  # (k,) float64 √area [length]
     owner: np.ndarray  # (k,) int64 row of the element in model.shells (solid faces: model.solids)
     solid: np.ndarray  # (k,) int8 1: the owner is a solid
+    partner: np.ndarray  # (k,) int64 row in model.solids of the solid across an inner face (-1: none)
 
     @staticmethod
     def empty() -> "Surface":
         return Surface(np.zeros((0, 4), np.int64), np.zeros(0), np.zeros(0), np.zeros(0, np.int8), np.zeros(0),
-                       np.zeros(0), np.zeros(0, np.int64), np.zeros(0, np.int8))
+                       np.zeros(0), np.zeros(0, np.int64), np.zeros(0, np.int8), np.zeros(0, np.int64))
 
     def nodes(self) -> np.ndarray:
         return np.unique(self.seg)
@@ -118,7 +123,7 @@ class Surface:
 
 def concat(*surfs: Surface) -> Surface:
     return Surface(*(np.concatenate([getattr(s, f) for s in surfs]) for f in
-                     ("seg", "thick", "k", "onesided", "depth", "size", "owner", "solid")))
+                     ("seg", "thick", "k", "onesided", "depth", "size", "owner", "solid", "partner")))
 
 
 @dataclass
@@ -141,6 +146,7 @@ class Interface:
     msize: np.ndarray  # (nm,) float64
     owner: np.ndarray  # (nm,) int64 element row in model.shells or model.solids
     solid: np.ndarray  # (nm,) int8 1: owner in model.solids
+    partner: np.ndarray  # (nm,) int64 solid across an inner face, model.solids row (-1: none)
     fs: float = 0.0
     fd: float = 0.0
     dc: float = 0.0
@@ -164,8 +170,9 @@ class ContactGroup(ElementGroup):
 
     def __init__(self, c: Interface, n_nodes: int, links=()):
         self.c = c
-        # eroded elements drop their segments: (segment rows, the group's alive array, element rows in it)
-        self.links = list(links)
+        # eroded elements drop their segments, expose the inner faces of the solids beside them:
+        # (segment rows, the group's alive array, element rows in it, across), owners first
+        self.links = sorted(links, key=lambda link: link[3])
         self.alive = np.ones(len(c.seg), np.int8)
         self.cid, self.name = c.cid, c.name
         self.ids = np.zeros(0, np.int64)  # no elements: parts and element counts leave contacts out
@@ -225,8 +232,11 @@ class ContactGroup(ElementGroup):
             if dt0 > 0:
                 self.prm[kc.P_SOFT_K] = 0.5 * c.sofscl / dt0 ** 2
         self.prm[kc.P_ACTIVE] = 1.0 if c.birth <= st.t <= c.death else 0.0
-        for rows, alive, el in self.links:
-            self.alive[rows] = alive[el] == 1
+        for rows, alive, el, across in self.links:  # owners first (deck order of _links), then the ones across
+            if across:
+                self.alive[rows] &= alive[el] != 1
+            else:
+                self.alive[rows] = alive[el] == 1
         self._since += 1
         if self._since >= c.bsort or 2.0 * kc.max_displacement(st.x, self.x_sort, self.involved) > self.margin:
             self._sort(st.x)
@@ -323,9 +333,12 @@ def _node_shell_thickness(model: Model, nodes: np.ndarray, problems: list, rec) 
     return t[nodes]
 
 
-def _exterior_faces(conn: np.ndarray):
-    """(faces (k, 4) with triangles n1 n2 n3 n3, owning element (k,)) of the
-    faces used by one element of ``conn`` (degenerate faces dropped)."""
+def _exterior_faces(conn: np.ndarray, inner: bool = False):
+    """(faces (k, 4) with triangles n1 n2 n3 n3, owning element (k,), the
+    element across (k,), -1 for none) of the faces used by one element of
+    ``conn`` (degenerate faces dropped); ``inner``: also every face two
+    elements share, once for each, outward of its owner (they become
+    surface when the element across is deleted)."""
     faces = conn[:, _HEX_FACES].reshape(-1, 4)
     owner = np.repeat(np.arange(len(conn)), 6)
     keep = np.ones(len(faces), bool)
@@ -336,13 +349,37 @@ def _exterior_faces(conn: np.ndarray):
         faces[i] = d + [d[-1]] * (4 - len(d)) if keep[i] else -1
     faces, owner = faces[keep], owner[keep]
     if not len(faces):
-        return faces, owner
+        return faces, owner, np.zeros(0, np.int64)
     key = faces.copy()
     key[faces[:, 2] == faces[:, 3], 3] = -1  # a triangle's key: its three nodes
     key = np.sort(key, axis=1)
     _, inv, cnt = np.unique(key, axis=0, return_inverse=True, return_counts=True)
-    once = cnt[inv.ravel()] == 1
-    return faces[once], owner[once]
+    inv = inv.ravel()
+    once = cnt[inv] == 1
+    partner = np.full(len(faces), -1, np.int64)
+    if not inner:
+        return faces[once], owner[once], partner[once]
+    twice = np.flatnonzero(cnt[inv] == 2)
+    order = twice[np.argsort(inv[twice], kind="stable")]  # the two copies of each shared face side by side
+    a, b = order[0::2], order[1::2]
+    partner[a], partner[b] = owner[b], owner[a]
+    use = once | (partner >= 0)
+    return faces[use], owner[use], partner[use]
+
+
+def _erodes(model: Model) -> bool:
+    """Whether solids may be deleted in the run: *CONTROL_TIMESTEP ERODE = 1
+    or a solid material with a failure strain (FAIL; TSEF, SSEF of
+    MAT_026)."""
+    ts = model.find("CONTROL_TIMESTEP")
+    if ts and int(_num(ts[0], "erode", 0) or 0) == 1:
+        return True
+    for pid in np.unique(model.solids.pid):
+        part = model.parts.get(int(pid))
+        mat = model.materials.get(part.get("mid")) if part is not None else None
+        if mat is not None and any(0.0 < _num(mat, f, 0.0) < 1e20 for f in ("fail", "tsef", "ssef")):
+            return True
+    return False
 
 
 def _areas(x, seg):
@@ -378,21 +415,22 @@ def build_surface(model: Model, pids, slsfac: float, sf: float, thick: float, th
                                    np.linalg.norm(x[conn[:, 3]] - x[conn[:, 1]], axis=1)))
         k = slsfac * sf * bulk * area / np.where(diag > 0, diag, 1.0)
         out.append(Surface(conn, t, k, np.zeros(len(conn), np.int8), np.zeros(len(conn)), np.sqrt(area),
-                           np.flatnonzero(sel), np.zeros(len(conn), np.int8)))
+                           np.flatnonzero(sel), np.zeros(len(conn), np.int8), np.full(len(conn), -1, np.int64)))
     so = model.solids
     sel = np.isin(so.pid, pids)
     if sel.any():
         conn = _solid_conn(model, sel)
         vol = np.empty(len(conn))
         solid_volumes(x, conn, np.zeros((N_CHUNKS, N_WORK)), vol)
-        faces, owner = _exterior_faces(conn)
+        faces, owner, partner = _exterior_faces(conn, inner=_erodes(model))
         bulk = {int(p): _bulk(model, p, problems, rec) for p in np.unique(so.pid[sel])}
         kb = np.array([bulk[int(p)] for p in so.pid[sel][owner]]) if len(owner) else np.zeros(0)
         area = _areas(x, faces)
         v = np.maximum(vol[owner], 1e-300)
         out.append(Surface(faces, np.zeros(len(faces)), slsfac * sf * kb * area ** 2 / v,
                            np.ones(len(faces), np.int8), 0.5 * v / np.maximum(area, 1e-300), np.sqrt(area),
-                           np.flatnonzero(sel)[owner], np.ones(len(faces), np.int8)))
+                           np.flatnonzero(sel)[owner], np.ones(len(faces), np.int8),
+                           np.where(partner >= 0, np.flatnonzero(sel)[np.maximum(partner, 0)], -1)))
     return concat(*out) if out else Surface.empty()
 
 
@@ -532,7 +570,7 @@ def _interface(model: Model, rec, number: int, slsfac: float, problems: list) ->
         return None
     return Interface(cid, rec.name, nodes.astype(np.int64), side, np.asarray(t, float), np.asarray(k, float),
                      node_side, seg.seg, mside, seg.thick, seg.k, seg.onesided, seg.depth, seg.size, seg.owner,
-                     seg.solid,
+                     seg.solid, seg.partner,
                      fs=o["fs"], fd=o["fd"], dc=o["dc"], vdc=o["vdc"], fsf=o["fsf"], soft=o["soft"],
                      sofscl=o["sofscl"], dt0=o["dtstif"] if o["dtstif"] > 0 else np.inf, birth=o["birth"],
                      death=o["death"], bsort=o["bsort"])
@@ -576,9 +614,10 @@ def build_contacts(model: Model, groups, problems: list) -> list[ContactGroup]:
 
 
 def _links(model: Model, c: Interface, groups) -> list:
-    """(segment rows, alive array, element rows) tying segments to the
-    deformable shell and solid elements they come from (rigid parts never
-    erode)."""
+    """(segment rows, alive array, element rows, across) tying segments to
+    the deformable shell and solid elements they come from (rigid parts
+    never erode): across False, the segment lives while its element does;
+    True, an inner face is surface only once the solid across it is gone."""
     out = []
     for g in groups:
         kind = getattr(g, "kind", "")
@@ -587,10 +626,13 @@ def _links(model: Model, c: Interface, groups) -> list:
             continue
         is_solid = int(kind == "solid")
         rows = np.flatnonzero(c.solid == is_solid)
-        ids = (model.solids.ids if is_solid else model.shells.ids)[c.owner[rows]]
         order = np.argsort(g.ids)
-        j = np.minimum(np.searchsorted(g.ids[order], ids), len(order) - 1)
-        hit = g.ids[order][j] == ids
-        if hit.any():
-            out.append((rows[hit], alive, order[j[hit]]))
+        all_ids = model.solids.ids if is_solid else model.shells.ids
+        for across, elems in ((False, c.owner), (True, c.partner)):
+            sub = rows[elems[rows] >= 0]
+            ids = all_ids[elems[sub]]
+            j = np.minimum(np.searchsorted(g.ids[order], ids), len(order) - 1)
+            hit = g.ids[order][j] == ids
+            if hit.any():
+                out.append((sub[hit], alive, order[j[hit]], across))
     return out
