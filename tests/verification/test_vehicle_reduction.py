@@ -34,7 +34,8 @@ def test_full_car_is_a_plausible_us_ncap_crash(study):
     hourglass < 10 % of the internal energy, the front structure (bumper,
     crash boxes, rails, radiator support) taking most of the energy, 95 %
     of the passenger cell's shells below 1 % plastic strain (the floor,
-    hinge pillars and heel kick do yield: README)."""
+    hinge pillars and heel kick do yield: README), the B-pillars with under
+    1 % of their area beyond 0.2 % and nowhere 0.5 %."""
     r = _results(study, "full")
     deck = read_deck(study.out / "usncap.k")
     t = r["time"]
@@ -56,7 +57,9 @@ def test_full_car_is_a_plausible_us_ncap_crash(study):
     assert front > 0.5 * sum(ie.values())
     cell = cell_plastic_strain(read_deck(study.out / "car.k"), study.out / "full")
     assert cell["p95"] < 0.01
-    assert cell["parts"]["B-pillar left"]["max"] < 0.002  # the B-pillars stay elastic
+    for side in ("left", "right"):  # the B-pillars stay elastic but for a trace
+        pillar = cell["parts"][f"B-pillar {side}"]
+        assert pillar["yielded_area_percent"] < 1.0 and pillar["max"] < 0.005
 
 
 @pytest.mark.slow
