@@ -26,7 +26,7 @@ class Walls:
         self.hit = [np.zeros(len(w.nodes), np.bool_) for w in walls]
         self._before = np.zeros((n_nodes, 3))
         self.velocity = np.array([w.velocity for w in walls], float)  # along the normal
-        self.force = np.zeros((len(walls), 4))  # force on each wall (3) and the KE it took
+        self.force = np.zeros((len(walls), 4))  # force on each wall (3) and the energy it took over the step
         owner = np.full(n_nodes, -1)
         for k, b in enumerate(bodies):
             owner[b.nodes] = k
