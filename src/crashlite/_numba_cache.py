@@ -52,7 +52,8 @@ def configure() -> Path | None:
     except ImportError:  # pragma: no cover - numba is a dependency
         return None
     base = os.environ.get("NUMBA_CACHE_DIR")
-    base = Path(base) if base else Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "crashlite" / "numba"
+    user = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
+    base = Path(base) if base else user / "crashlite" / "numba"
     folder = base / digest()
     try:
         folder.mkdir(parents=True, exist_ok=True)
