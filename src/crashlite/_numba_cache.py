@@ -51,14 +51,14 @@ def configure() -> Path | None:
         import numba
     except ImportError:  # pragma: no cover - numba is a dependency
         return None
-    base = os.environ.get("NUMBA_CACHE_DIR")
-    user = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache")
-    base = Path(base) if base else user / "crashlite" / "numba"
-    folder = base / digest()
     try:
+        base = os.environ.get("NUMBA_CACHE_DIR")
+        base = Path(base) if base else Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "crashlite"
+        folder = (base if os.environ.get("NUMBA_CACHE_DIR") else base / "numba") / digest()
         folder.mkdir(parents=True, exist_ok=True)
-    except OSError:
-        return None  # read-only home: Numba's default (beside the sources)
+    except (OSError, RuntimeError):  # no home, or a read-only one: Numba's default (beside the sources)
+        return None
+    base = folder.parent
     numba.config.CACHE_DIR = str(folder)
     _prune(base, folder)
     return folder
