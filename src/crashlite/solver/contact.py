@@ -171,8 +171,9 @@ class ContactGroup(ElementGroup):
     def __init__(self, c: Interface, n_nodes: int, links=()):
         self.c = c
         # eroded elements drop their segments, expose the inner faces of the solids beside them:
-        # (segment rows, the group's alive array, element rows in it, across), owners first
-        self.links = sorted(links, key=lambda link: link[3])
+        # (segment rows, the group's alive array, element rows in it, across); a group's owner links
+        # come before its links across (_links), which only narrow them
+        self.links = list(links)
         self.alive = np.ones(len(c.seg), np.int8)
         self.cid, self.name = c.cid, c.name
         self.ids = np.zeros(0, np.int64)  # no elements: parts and element counts leave contacts out
@@ -232,7 +233,7 @@ class ContactGroup(ElementGroup):
             if dt0 > 0:
                 self.prm[kc.P_SOFT_K] = 0.5 * c.sofscl / dt0 ** 2
         self.prm[kc.P_ACTIVE] = 1.0 if c.birth <= st.t <= c.death else 0.0
-        for rows, alive, el, across in self.links:  # owners first (deck order of _links), then the ones across
+        for rows, alive, el, across in self.links:
             if across:
                 self.alive[rows] &= alive[el] != 1
             else:
@@ -333,7 +334,7 @@ def _node_shell_thickness(model: Model, nodes: np.ndarray, problems: list, rec) 
     return t[nodes]
 
 
-def _exterior_faces(conn: np.ndarray, inner: bool = False):
+def _solid_faces(conn: np.ndarray, inner: bool = False):
     """(faces (k, 4) with triangles n1 n2 n3 n3, owning element (k,), the
     element across (k,), -1 for none) of the faces used by one element of
     ``conn`` (degenerate faces dropped); ``inner``: also every face two
@@ -422,7 +423,7 @@ def build_surface(model: Model, pids, slsfac: float, sf: float, thick: float, th
         conn = _solid_conn(model, sel)
         vol = np.empty(len(conn))
         solid_volumes(x, conn, np.zeros((N_CHUNKS, N_WORK)), vol)
-        faces, owner, partner = _exterior_faces(conn, inner=_erodes(model))
+        faces, owner, partner = _solid_faces(conn, inner=_erodes(model))
         bulk = {int(p): _bulk(model, p, problems, rec) for p in np.unique(so.pid[sel])}
         kb = np.array([bulk[int(p)] for p in so.pid[sel][owner]]) if len(owner) else np.zeros(0)
         area = _areas(x, faces)

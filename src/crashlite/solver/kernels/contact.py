@@ -297,6 +297,14 @@ def max_displacement(x, xref, nodes):
 # --- forces -------------------------------------------------------------------------------------
 
 
+@njit(cache=True, inline="always")
+def _relative_velocity(v, nd, n0, n1, n2, n3, w0, w1, w2, w3):
+    """Velocity of node nd relative to the segment point of weights w."""
+    return (v[nd, 0] - (w0 * v[n0, 0] + w1 * v[n1, 0] + w2 * v[n2, 0] + w3 * v[n3, 0]),
+            v[nd, 1] - (w0 * v[n0, 1] + w1 * v[n1, 1] + w2 * v[n2, 1] + w3 * v[n3, 1]),
+            v[nd, 2] - (w0 * v[n0, 2] + w1 * v[n1, 2] + w2 * v[n2, 2] + w3 * v[n3, 2]))
+
+
 @njit(cache=True, parallel=True)
 def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, onesided, depth, msize, alive,
                    cptr, cand, prm, ft, prev, side, rows, rnode, gap):
@@ -354,10 +362,8 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
                     if s != prev[i] and g > g_prev + tol:
                         # deeper behind a face it was not on than one step's approach: the node came through
                         # the solid (a deleted element, round an edge), it did not strike this face
-                        vfx = w0 * v[n0, 0] + w1 * v[n1, 0] + w2 * v[n2, 0] + w3 * v[n3, 0]
-                        vfy = w0 * v[n0, 1] + w1 * v[n1, 1] + w2 * v[n2, 1] + w3 * v[n3, 1]
-                        vfz = w0 * v[n0, 2] + w1 * v[n1, 2] + w2 * v[n2, 2] + w3 * v[n3, 2]
-                        approach = -((v[nd, 0] - vfx) * nx + (v[nd, 1] - vfy) * ny + (v[nd, 2] - vfz) * nz) * dt
+                        ux, uy, uz = _relative_velocity(v, nd, n0, n1, n2, n3, w0, w1, w2, w3)
+                        approach = -(ux * nx + uy * ny + uz * nz) * dt
                         if g > g_prev + 2.0 * max(approach, 0.0) + tol:
                             continue
                     cls = _BEHIND
@@ -398,9 +404,7 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
         k = min(mk[s], sk[i])
         if soft_k > 0.0:
             k = max(k, soft_k * mstar)
-        vrx = v[nd, 0] - (bw0 * v[n0, 0] + bw1 * v[n1, 0] + bw2 * v[n2, 0] + bw3 * v[n3, 0])
-        vry = v[nd, 1] - (bw0 * v[n0, 1] + bw1 * v[n1, 1] + bw2 * v[n2, 1] + bw3 * v[n3, 1])
-        vrz = v[nd, 2] - (bw0 * v[n0, 2] + bw1 * v[n1, 2] + bw2 * v[n2, 2] + bw3 * v[n3, 2])
+        vrx, vry, vrz = _relative_velocity(v, nd, n0, n1, n2, n3, bw0, bw1, bw2, bw3)
         vn = vrx * bnx + vry * bny + vrz * bnz
         fn = k * bg
         if vdc > 0.0 and mstar > 0.0:  # LS-DYNA: VDC % of 2·min(m)·ω, ω² = k/m*
