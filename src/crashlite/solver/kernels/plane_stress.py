@@ -70,13 +70,14 @@ def curve_slope(xs, ys, start, stop, x):
 
 
 @njit(cache=True)
-def _yield(p, mc, cs, ce, cx, cy, ep):
-    """Static yield stress and its isotropic hardening slope at ε̄p."""
-    c = mc[C_LCSS]
+def _yield(props, m, mc, cs, ce, cx, cy, ep):
+    """Static yield stress and its isotropic hardening slope at ε̄p
+    (material row m)."""
+    c = mc[m, C_LCSS]
     if c >= 0:
         return curve_value(cx, cy, cs[c], ce[c], ep), curve_slope(cx, cy, cs[c], ce[c], ep)
-    h = p[P_BETA] * p[P_EP]
-    return p[P_SIGY] + h * ep, h
+    h = props[m, P_BETA] * props[m, P_EP]
+    return props[m, P_SIGY] + h * ep, h
 
 
 @njit(cache=True)
@@ -92,52 +93,61 @@ def effective_rate(d0, d1, d2, d3, d4, dt):
 
 
 @njit(cache=True)
-def rate_factor(p, mc, cs, ce, cx, cy, rate):
-    """Scale factor of the yield stress at the strain rate: the curve LCSR
-    if given, else Cowper–Symonds 1 + (ε̇/C)^(1/P), else 1."""
-    c = mc[C_LCSR]
+def rate_factor(props, m, mc, cs, ce, cx, cy, rate):
+    """Scale factor of the yield stress of material row m at the strain
+    rate: the curve LCSR if given, else Cowper–Symonds 1 + (ε̇/C)^(1/P),
+    else 1."""
+    c = mc[m, C_LCSR]
     if c >= 0:
         return curve_value(cx, cy, cs[c], ce[c], rate)
-    if p[P_CS_C] > 0.0 and p[P_CS_P] > 0.0 and rate > 0.0:
-        return 1.0 + (rate / p[P_CS_C]) ** (1.0 / p[P_CS_P])
+    cc, pp = props[m, P_CS_C], props[m, P_CS_P]
+    if cc > 0.0 and pp > 0.0 and rate > 0.0:
+        return 1.0 + (rate / cc) ** (1.0 / pp)
     return 1.0
 
 
-@njit(cache=True, inline="always")  # inlined: a call per point would reference-count 8 arrays
-def update_point(mtype, p, mc, cs, ce, cx, cy, s, b, ep, d0, d1, d2, d3, d4, dt):
-    """Stress update of one integration point.
+@njit(cache=True, inline="always")  # inlined: the shell loop keeps its registers
+def update_point(mtype, props, m, mc, cs, ce, cx, cy, sig, back, e, k, ep, d0, d1, d2, d3, d4, dt):
+    """Stress update of integration point k of element e.
 
-    s (5,) stress, b (5,) plane-stress back stress, updated in place
+    Material row m of props and mc (mtype its kind); sig, back (n, nip, 5)
+    stress and plane-stress back stress, point (e, k) updated in place
     [stress]; ep effective plastic strain before the step; d0..d4 strain
     increments Δεx, Δεy, Δγxy, Δγyz, Δγzx; dt the step [time] (rates).
+    Arrays are indexed, never sliced: a view per point would
+    reference-count its parent (atomics shared by every thread).
 
     Returns (ε̄p after the step, Δε_zz, failed): failed when ε̄p reached
     the failure strain (the stresses are then zero).
     """
-    e = p[P_E]
-    nu = p[P_PR]
-    g = p[P_G]
-    c1 = p[P_C1]
-    o0, o1 = s[0], s[1]
+    e_mod = props[m, P_E]
+    nu = props[m, P_PR]
+    g = props[m, P_G]
+    c1 = props[m, P_C1]
+    o0, o1 = sig[e, k, 0], sig[e, k, 1]
     t0 = o0 + c1 * (d0 + nu * d1)
     t1 = o1 + c1 * (d1 + nu * d0)
-    t2 = s[2] + g * d2
-    t3 = s[3] + g * d3
-    t4 = s[4] + g * d4
+    t2 = sig[e, k, 2] + g * d2
+    t3 = sig[e, k, 3] + g * d3
+    t4 = sig[e, k, 4] + g * d4
     if mtype == ELASTIC:
-        s[0], s[1], s[2], s[3], s[4] = t0, t1, t2, t3, t4
-        return ep, -nu / e * (t0 - o0 + t1 - o1), False
-    x0, x1, x2, x3, x4 = t0 - b[0], t1 - b[1], t2 - b[2], t3 - b[3], t4 - b[4]
+        sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4] = t0, t1, t2, t3, t4
+        return ep, -nu / e_mod * (t0 - o0 + t1 - o1), False
+    kinematic = mtype == KINEMATIC
+    b0 = b1 = b2 = b3 = b4 = 0.0  # MAT_024 hardens isotropically: its back stress stays zero, unread
+    if kinematic:
+        b0, b1, b2, b3, b4 = back[e, k, 0], back[e, k, 1], back[e, k, 2], back[e, k, 3], back[e, k, 4]
+    x0, x1, x2, x3, x4 = t0 - b0, t1 - b1, t2 - b2, t3 - b3, t4 - b4
     q_tr = math.sqrt(max(x0 * x0 - x0 * x1 + x1 * x1 + 3.0 * (x2 * x2 + x3 * x3 + x4 * x4), 0.0))
     rf = 1.0
-    if mc[C_LCSR] >= 0 or (p[P_CS_C] > 0.0 and p[P_CS_P] > 0.0):
-        rf = rate_factor(p, mc, cs, ce, cx, cy, effective_rate(d0, d1, d2, d3, d4, dt))
-    y0, h0 = _yield(p, mc, cs, ce, cx, cy, ep)
+    if mc[m, C_LCSR] >= 0 or (props[m, P_CS_C] > 0.0 and props[m, P_CS_P] > 0.0):
+        rf = rate_factor(props, m, mc, cs, ce, cx, cy, effective_rate(d0, d1, d2, d3, d4, dt))
+    y0, h0 = _yield(props, m, mc, cs, ce, cx, cy, ep)
     if q_tr <= rf * y0 or q_tr == 0.0:
-        s[0], s[1], s[2], s[3], s[4] = t0, t1, t2, t3, t4
-        return ep, -nu / e * (t0 - o0 + t1 - o1), False
-    hk = (1.0 - p[P_BETA]) * p[P_EP] if mtype == KINEMATIC else 0.0
-    k1 = e / (3.0 * (1.0 - nu)) + 2.0 / 3.0 * hk  # eigenvalue of C·P + ⅔H_k on ξx + ξy
+        sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4] = t0, t1, t2, t3, t4
+        return ep, -nu / e_mod * (t0 - o0 + t1 - o1), False
+    hk = (1.0 - props[m, P_BETA]) * props[m, P_EP] if kinematic else 0.0
+    k1 = e_mod / (3.0 * (1.0 - nu)) + 2.0 / 3.0 * hk  # eigenvalue of C·P + ⅔H_k on ξx + ξy
     k2 = 2.0 * g + 2.0 / 3.0 * hk  # on ξy − ξx and on the shears
     a1 = x0 + x1
     a2 = x1 - x0
@@ -154,6 +164,8 @@ def update_point(mtype, p, mc, cs, ce, cx, cy, s, b, ep, d0, d1, d2, d3, d4, dt)
     dg = (q_tr - rf * y0) / slope0 if slope0 > 0.0 else hi
     if not dg < hi:
         dg = 0.5 * hi
+    at_dg = False  # r1, r2, aa1, aa2 and q are those of the final Δγ: no last evaluation needed
+    r1 = r2 = aa1 = aa2 = q = 0.0
     for it in range(200):
         den = 1.0 / ((1.0 + dg * k1) * (1.0 + dg * k2))
         r1 = (1.0 + dg * k2) * den
@@ -161,9 +173,10 @@ def update_point(mtype, p, mc, cs, ce, cx, cy, s, b, ep, d0, d1, d2, d3, d4, dt)
         aa1 = a1 * r1
         aa2 = a2 * r2
         q = math.sqrt(0.25 * aa1 * aa1 + 0.75 * aa2 * aa2 + 3.0 * sh * r2 * r2)
-        y, h = _yield(p, mc, cs, ce, cx, cy, ep + 2.0 / 3.0 * dg * q)
+        y, h = _yield(props, m, mc, cs, ce, cx, cy, ep + 2.0 / 3.0 * dg * q)
         f = q - rf * y
         if abs(f) <= _TOL * rf * max(y, y0):
+            at_dg = True
             break
         if f > 0.0:
             lo = dg
@@ -171,6 +184,7 @@ def update_point(mtype, p, mc, cs, ce, cx, cy, s, b, ep, d0, d1, d2, d3, d4, dt)
             hi = dg
             sure = True
         if sure and hi - lo <= 1e-15 * hi:
+            at_dg = True
             break
         dq2 = -2.0 * (0.25 * aa1 * aa1 * k1 * r1 + (0.75 * aa2 * aa2 + 3.0 * sh * r2 * r2) * k2 * r2)
         dq = dq2 / (2.0 * q) if q > 0.0 else 0.0
@@ -186,30 +200,37 @@ def update_point(mtype, p, mc, cs, ce, cx, cy, s, b, ep, d0, d1, d2, d3, d4, dt)
             dg = nxt
             break
         dg = nxt
-    den = 1.0 / ((1.0 + dg * k1) * (1.0 + dg * k2))
-    r1 = (1.0 + dg * k2) * den
-    r2 = (1.0 + dg * k1) * den
-    aa1 = a1 * r1
-    aa2 = a2 * r2
-    dep = 2.0 / 3.0 * dg * math.sqrt(0.25 * aa1 * aa1 + 0.75 * aa2 * aa2 + 3.0 * sh * r2 * r2)
+    if not at_dg:
+        den = 1.0 / ((1.0 + dg * k1) * (1.0 + dg * k2))
+        r1 = (1.0 + dg * k2) * den
+        r2 = (1.0 + dg * k1) * den
+        aa1 = a1 * r1
+        aa2 = a2 * r2
+        q = math.sqrt(0.25 * aa1 * aa1 + 0.75 * aa2 * aa2 + 3.0 * sh * r2 * r2)
+    dep = 2.0 / 3.0 * dg * q
     n0 = 0.5 * (aa1 - aa2)
     n1 = 0.5 * (aa1 + aa2)
     n2, n3, n4 = x2 * r2, x3 * r2, x4 * r2
-    fb = 2.0 / 3.0 * hk * dg  # back stress moves along ξ
-    b[0] += fb * n0
-    b[1] += fb * n1
-    b[2] += fb * n2
-    b[3] += fb * n3
-    b[4] += fb * n4
-    s[0], s[1], s[2], s[3], s[4] = b[0] + n0, b[1] + n1, b[2] + n2, b[3] + n3, b[4] + n4
+    if kinematic:  # the back stress moves along ξ
+        fb = 2.0 / 3.0 * hk * dg
+        b0 += fb * n0
+        b1 += fb * n1
+        b2 += fb * n2
+        b3 += fb * n3
+        b4 += fb * n4
+    s0, s1 = b0 + n0, b1 + n1
     ep_new = ep + dep
     # Δε_zz: elastic −ν/E (Δσx + Δσy), plastic −(Δεp_x + Δεp_y) = −Δγ (ξx + ξy)/3
-    dez = -nu / e * (s[0] - o0 + s[1] - o1) - dg * (n0 + n1) / 3.0
-    if ep_new >= p[P_FAIL]:
+    dez = -nu / e_mod * (s0 - o0 + s1 - o1) - dg * (n0 + n1) / 3.0
+    if ep_new >= props[m, P_FAIL]:
         for i in range(5):
-            s[i] = 0.0
-            b[i] = 0.0
+            sig[e, k, i] = 0.0
+            if kinematic:
+                back[e, k, i] = 0.0
         return ep_new, dez, True
+    sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4] = s0, s1, b2 + n2, b3 + n3, b4 + n4
+    if kinematic:
+        back[e, k, 0], back[e, k, 1], back[e, k, 2], back[e, k, 3], back[e, k, 4] = b0, b1, b2, b3, b4
     return ep_new, dez, False
 
 
@@ -219,13 +240,16 @@ def update_points(mtype, props, mcurve, curve_start, curve_stop, curve_x, curve_
     """Batch update of independent points (tests, material drivers).
 
     mat_of (n,) int64 material row; sig, back (n, 5) [stress] and epsp (n,)
-    updated in place; deps (n, 5) strain increments (engineering shears);
+    updated in place (the kernel sees them as (n, 1, 5)); deps (n, 5) strain increments (engineering shears);
     dt [time]; outputs dez (n,) Δε_zz and failed (n,) int8.
     """
-    for i in prange(sig.shape[0]):
+    n = sig.shape[0]
+    sig3 = sig.reshape((n, 1, 5))
+    back3 = back.reshape((n, 1, 5))
+    for i in prange(n):
         m = mat_of[i]
-        ep, dz, fl = update_point(mtype[m], props[m], mcurve[m], curve_start, curve_stop, curve_x, curve_y,
-                                  sig[i], back[i], epsp[i], deps[i, 0], deps[i, 1], deps[i, 2], deps[i, 3],
+        ep, dz, fl = update_point(mtype[m], props, m, mcurve, curve_start, curve_stop, curve_x, curve_y,
+                                  sig3, back3, i, 0, epsp[i], deps[i, 0], deps[i, 1], deps[i, 2], deps[i, 3],
                                   deps[i, 4], dt)
         epsp[i] = ep
         dez[i] = dz

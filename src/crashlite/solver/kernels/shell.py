@@ -262,7 +262,6 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
         # through the thickness
         t = thick[e]
         m = mat_of[e]
-        p = props[m]
         kind = mtype[m]
         ks = shrf[e]
         nk = nip[e]
@@ -283,25 +282,25 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
             d2 = (gxy + z * kxy) * dt
             d3 = gyz * dt
             d4 = gxz * dt
-            s = sig[e, k]
-            o0, o1, o2, o3, o4 = s[0], s[1], s[2], s[3], s[4]
-            ep, dez, failed = update_point(kind, p, mcurve[m], cs, ce, cx, cy, s, back[e, k], epsp[e, k],
+            o0, o1, o2, o3, o4 = sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4]
+            ep, dez, failed = update_point(kind, props, m, mcurve, cs, ce, cx, cy, sig, back, e, k, epsp[e, k],
                                            d0, d1, d2, d3, d4, dt)
             epsp[e, k] = ep
-            work += wt * 0.5 * ((o0 + s[0]) * d0 + (o1 + s[1]) * d1 + (o2 + s[2]) * d2
-                                + ks * ((o3 + s[3]) * d3 + (o4 + s[4]) * d4))
+            s0, s1, s2, s3, s4 = sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4]
+            work += wt * 0.5 * ((o0 + s0) * d0 + (o1 + s1) * d1 + (o2 + s2) * d2
+                                + ks * ((o3 + s3) * d3 + (o4 + s4) * d4))
             if failed:
                 ipfail[e, k] = 1
                 nfail += 1
             dezs += wt * dez
-            n0 += wt * s[0]
-            n1 += wt * s[1]
-            n2 += wt * s[2]
-            m0 += wt * zeta * s[0]
-            m1 += wt * zeta * s[1]
-            m2 += wt * zeta * s[2]
-            q0 += wt * s[4]  # τzx
-            q1 += wt * s[3]  # τyz
+            n0 += wt * s0
+            n1 += wt * s1
+            n2 += wt * s2
+            m0 += wt * zeta * s0
+            m1 += wt * zeta * s1
+            m2 += wt * zeta * s2
+            q0 += wt * s4  # τzx
+            q1 += wt * s3  # τyz
         energy[e] += area * t * work
         if nfail == nk:
             alive[e] = 0
@@ -321,7 +320,7 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
         # hourglass resistance at the mid-step geometry
         h0 = h1 = h2 = h3 = h4 = 0.0
         if quad and hg_kind[e] > 0:
-            h0, h1, h2, h3, h4 = _hourglass(e, w, area, t, dt, p[P_E], p[P_G], ks, rho[e], hg_kind[e], hg_qm[e],
+            h0, h1, h2, h3, h4 = _hourglass(e, w, area, t, dt, props[m, P_E], props[m, P_G], ks, rho[e], hg_kind[e], hg_qm[e],
                                             hg_qb[e], hg_qw[e], sx, sy, hgq, hg_energy)
         # forces at x(n+1)
         area = _geometry(x, v, conn, e, nn, 0.0, w)
