@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .kernels.rigid import force_sums, place_nodes, place_rotations
+from .kernels.rigid import body_drift, body_omega, force_sums, place_nodes, place_rotations
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -74,9 +74,12 @@ class RigidBody:
             self._inv = cached
         return cached[1]
 
-    def omega(self, rot: np.ndarray | None = None) -> np.ndarray:
-        r = self.rot if rot is None else rot
-        return r @ (self.inverse_inertia_body() @ (r.T @ self.momentum))
+    def omega(self, rot: np.ndarray | None = None, mom: np.ndarray | None = None) -> np.ndarray:
+        """(3,) angular velocity R I⁻¹ Rᵀ L (at ``rot`` and ``mom`` if given)."""
+        out = np.empty(3)
+        body_omega(self.rot if rot is None else rot, self.inverse_inertia_body(),
+                   self.momentum if mom is None else mom, out)
+        return out
 
     def kinetic(self) -> float:
         """Kinetic energy at the full step: the mean of the half-step momenta
@@ -84,7 +87,7 @@ class RigidBody:
         vel, mom = self.velocity, self.momentum
         if self.prev is not None:
             vel, mom = 0.5 * (vel + self.prev[0]), 0.5 * (mom + self.prev[1])
-        w = self.rot @ (self.inverse_inertia_body() @ (self.rot.T @ mom))
+        w = self.omega(mom=mom)
         return 0.5 * self.mass * float(vel @ vel) + 0.5 * float(w @ mom)
 
     def kinetic_now(self) -> float:
@@ -127,12 +130,14 @@ class RigidBody:
         self.momentum[:] = inertia @ (free.T @ a)
 
     def drift(self, dt: float) -> None:
-        """Move and turn the body over dt."""
-        self.cog += dt * self.velocity
-        w = self.omega()
-        for _ in range(2):  # ω at mid-rotation
-            w = self.omega(rotation(0.5 * dt * w) @ self.rot)
-        self.rot = rotation(dt * w) @ self.rot
+        """Move and turn the body over dt (kernels.rigid.body_drift: ω at
+        mid-rotation)."""
+        scratch = getattr(self, "_turn", None)
+        if scratch is None:
+            scratch = self._turn = np.zeros((3, 3, 3))
+        if not self.rot.flags.writeable or not self.rot.flags.c_contiguous:
+            self.rot = np.ascontiguousarray(self.rot, dtype=float)
+        body_drift(self.cog, self.velocity, self.momentum, self.rot, self.inverse_inertia_body(), dt, scratch)
 
     def place(self, x: np.ndarray, v: np.ndarray, rot: np.ndarray | None = None,
               w: np.ndarray | None = None) -> None:

@@ -78,3 +78,70 @@ def plane_reach(x, nodes, cog, point, normal):
         a0, a1, a2 = x[i, 0] - cog[0], x[i, 1] - cog[1], x[i, 2] - cog[2]
         arm2 = max(arm2, a0 * a0 + a1 * a1 + a2 * a2)
     return gap, math.sqrt(arm2)
+
+
+@njit(cache=True)
+def body_omega(rot, inv_i, mom, out):
+    """out = R I⁻¹ Rᵀ L: the angular velocity [1/time] of a body turned by
+    ``rot`` (3, 3) with inverse body-frame inertia ``inv_i`` (3, 3) and
+    world angular momentum ``mom`` (3,)."""
+    a0 = rot[0, 0] * mom[0] + rot[1, 0] * mom[1] + rot[2, 0] * mom[2]  # Rᵀ L
+    a1 = rot[0, 1] * mom[0] + rot[1, 1] * mom[1] + rot[2, 1] * mom[2]
+    a2 = rot[0, 2] * mom[0] + rot[1, 2] * mom[1] + rot[2, 2] * mom[2]
+    b0 = inv_i[0, 0] * a0 + inv_i[0, 1] * a1 + inv_i[0, 2] * a2
+    b1 = inv_i[1, 0] * a0 + inv_i[1, 1] * a1 + inv_i[1, 2] * a2
+    b2 = inv_i[2, 0] * a0 + inv_i[2, 1] * a1 + inv_i[2, 2] * a2
+    for i in range(3):
+        out[i] = rot[i, 0] * b0 + rot[i, 1] * b1 + rot[i, 2] * b2
+
+
+@njit(cache=True)
+def rodrigues(p0, p1, p2, out):
+    """out (3, 3) = the rotation matrix of the rotation vector (p0, p1, p2)."""
+    angle = math.sqrt(p0 * p0 + p1 * p1 + p2 * p2)
+    for i in range(3):
+        for j in range(3):
+            out[i, j] = 1.0 if i == j else 0.0
+    if angle < 1e-300:
+        return
+    k0, k1, k2 = p0 / angle, p1 / angle, p2 / angle
+    s, c = math.sin(angle), 1.0 - math.cos(angle)
+    # I + sin·K + (1 − cos)·K², K the cross-product matrix of k, K² = k kᵀ − I
+    out[0, 0] += c * (k0 * k0 - 1.0)
+    out[1, 1] += c * (k1 * k1 - 1.0)
+    out[2, 2] += c * (k2 * k2 - 1.0)
+    out[0, 1] += -s * k2 + c * k0 * k1
+    out[1, 0] += s * k2 + c * k0 * k1
+    out[0, 2] += s * k1 + c * k0 * k2
+    out[2, 0] += -s * k1 + c * k0 * k2
+    out[1, 2] += -s * k0 + c * k1 * k2
+    out[2, 1] += s * k0 + c * k1 * k2
+
+
+@njit(cache=True)
+def _turn(a, rot, out):
+    """out = a @ rot (3 x 3)."""
+    for i in range(3):
+        for j in range(3):
+            out[i, j] = a[i, 0] * rot[0, j] + a[i, 1] * rot[1, j] + a[i, 2] * rot[2, j]
+
+
+@njit(cache=True)
+def body_drift(cog, vel, mom, rot, inv_i, dt, scratch):
+    """Move and turn a body over dt in place: cog += dt·v, and rot turned by
+    dt·ω with ω taken at mid-rotation (two fixed-point passes), so a
+    torque-free body keeps its energy to second order. scratch (3, 3, 3)."""
+    for i in range(3):
+        cog[i] += dt * vel[i]
+    w = scratch[0, 0]
+    body_omega(rot, inv_i, mom, w)
+    half, turned = scratch[1], scratch[2]
+    for _ in range(2):  # ω at mid-rotation
+        rodrigues(0.5 * dt * w[0], 0.5 * dt * w[1], 0.5 * dt * w[2], half)
+        _turn(half, rot, turned)
+        body_omega(turned, inv_i, mom, w)
+    rodrigues(dt * w[0], dt * w[1], dt * w[2], half)
+    _turn(half, rot, turned)
+    for i in range(3):
+        for j in range(3):
+            rot[i, j] = turned[i, j]
