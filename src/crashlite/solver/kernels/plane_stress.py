@@ -106,6 +106,19 @@ def rate_factor(props, m, mc, cs, ce, cx, cy, rate):
     return 1.0
 
 
+@njit(cache=True, inline="always")
+def _shrunk(dg, k1, k2, a1, a2, sh):
+    """ξ at the multiplier dg: the factors 1/(1 + dg·k) on ξx + ξy (r1) and
+    on ξy − ξx and the shears (r2), the two scaled in-plane combinations
+    and ξ_eq."""
+    den = 1.0 / ((1.0 + dg * k1) * (1.0 + dg * k2))
+    r1 = (1.0 + dg * k2) * den
+    r2 = (1.0 + dg * k1) * den
+    aa1 = a1 * r1
+    aa2 = a2 * r2
+    return r1, r2, aa1, aa2, math.sqrt(0.25 * aa1 * aa1 + 0.75 * aa2 * aa2 + 3.0 * sh * r2 * r2)
+
+
 @njit(cache=True, inline="always")  # inlined: the shell loop keeps its registers
 def update_point(mtype, props, m, mc, cs, ce, cx, cy, sig, back, e, k, ep, d0, d1, d2, d3, d4, dt):
     """Stress update of integration point k of element e.
@@ -167,12 +180,7 @@ def update_point(mtype, props, m, mc, cs, ce, cx, cy, sig, back, e, k, ep, d0, d
     at_dg = False  # r1, r2, aa1, aa2 and q are those of the final Δγ: no last evaluation needed
     r1 = r2 = aa1 = aa2 = q = 0.0
     for it in range(200):
-        den = 1.0 / ((1.0 + dg * k1) * (1.0 + dg * k2))
-        r1 = (1.0 + dg * k2) * den
-        r2 = (1.0 + dg * k1) * den
-        aa1 = a1 * r1
-        aa2 = a2 * r2
-        q = math.sqrt(0.25 * aa1 * aa1 + 0.75 * aa2 * aa2 + 3.0 * sh * r2 * r2)
+        r1, r2, aa1, aa2, q = _shrunk(dg, k1, k2, a1, a2, sh)
         y, h = _yield(props, m, mc, cs, ce, cx, cy, ep + 2.0 / 3.0 * dg * q)
         f = q - rf * y
         if abs(f) <= _TOL * rf * max(y, y0):
@@ -201,12 +209,7 @@ def update_point(mtype, props, m, mc, cs, ce, cx, cy, sig, back, e, k, ep, d0, d
             break
         dg = nxt
     if not at_dg:
-        den = 1.0 / ((1.0 + dg * k1) * (1.0 + dg * k2))
-        r1 = (1.0 + dg * k2) * den
-        r2 = (1.0 + dg * k1) * den
-        aa1 = a1 * r1
-        aa2 = a2 * r2
-        q = math.sqrt(0.25 * aa1 * aa1 + 0.75 * aa2 * aa2 + 3.0 * sh * r2 * r2)
+        r1, r2, aa1, aa2, q = _shrunk(dg, k1, k2, a1, a2, sh)
     dep = 2.0 / 3.0 * dg * q
     n0 = 0.5 * (aa1 - aa2)
     n1 = 0.5 * (aa1 + aa2)
