@@ -136,7 +136,7 @@ class RigidBody:
         if scratch is None:
             scratch = self._turn = np.zeros((3, 3, 3))
         if not self.rot.flags.writeable or not self.rot.flags.c_contiguous:
-            self.rot = np.ascontiguousarray(self.rot, dtype=float)
+            self.rot = np.array(self.rot, dtype=float)  # a C-ordered, writeable copy
         body_drift(self.cog, self.velocity, self.momentum, self.rot, self.inverse_inertia_body(), dt, scratch)
 
     def place(self, x: np.ndarray, v: np.ndarray, rot: np.ndarray | None = None,
