@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .kernels.rigid import body_drift, body_omega, force_sums, place_nodes, place_rotations
+from .kernels.rigid import body_drift, body_omega, force_sums, place_nodes, place_rotations, rodrigues
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -29,12 +29,9 @@ def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 def rotation(phi: np.ndarray) -> np.ndarray:
     """Rotation matrix of the rotation vector ``phi`` (Rodrigues)."""
-    angle = float(np.linalg.norm(phi))
-    if angle < 1e-300:
-        return np.eye(3)
-    k = phi / angle
-    kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
-    return np.eye(3) + np.sin(angle) * kx + (1.0 - np.cos(angle)) * kx @ kx
+    out = np.empty((3, 3))
+    rodrigues(float(phi[0]), float(phi[1]), float(phi[2]), out)
+    return out
 
 
 @dataclass
@@ -54,6 +51,9 @@ class RigidBody:
     # (j, 3) unit axes (body frame) about which the nodes' masses give no inertia (a point mass: all
     # three, masses on a line: that line); a tiny inertia stands in for it (see build_body)
     no_inertia: np.ndarray | None = None
+
+    def __post_init__(self):
+        self.rot = np.array(self.rot, dtype=float)  # its own C-ordered copy: the drift kernel turns it in place
 
     def inverse_mass_at(self, r: np.ndarray) -> np.ndarray:
         """(k,) largest inverse effective mass of points at arms r (k, 3)
@@ -132,11 +132,9 @@ class RigidBody:
     def drift(self, dt: float) -> None:
         """Move and turn the body over dt (kernels.rigid.body_drift: ω at
         mid-rotation)."""
-        scratch = getattr(self, "_turn", None)
+        scratch = getattr(self, "_drift_scratch", None)
         if scratch is None:
-            scratch = self._turn = np.zeros((3, 3, 3))
-        if not self.rot.flags.writeable or not self.rot.flags.c_contiguous:
-            self.rot = np.array(self.rot, dtype=float)  # a C-ordered, writeable copy
+            scratch = self._drift_scratch = np.zeros((3, 3, 3))
         body_drift(self.cog, self.velocity, self.momentum, self.rot, self.inverse_inertia_body(), dt, scratch)
 
     def place(self, x: np.ndarray, v: np.ndarray, rot: np.ndarray | None = None,

@@ -320,8 +320,8 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
         # hourglass resistance at the mid-step geometry
         h0 = h1 = h2 = h3 = h4 = 0.0
         if quad and hg_kind[e] > 0:
-            h0, h1, h2, h3, h4 = _hourglass(e, w, area, t, dt, props[m, P_E], props[m, P_G], ks, rho[e], hg_kind[e], hg_qm[e],
-                                            hg_qb[e], hg_qw[e], sx, sy, hgq, hg_energy)
+            h0, h1, h2, h3, h4 = _hourglass(e, w, area, t, dt, props[m, P_E], props[m, P_G], ks, rho[e], hg_kind[e],
+                                            hg_qm[e], hg_qb[e], hg_qw[e], sx, sy, hgq, hg_energy)
         # forces at x(n+1)
         area = _geometry(x, v, conn, e, nn, 0.0, w)
         if area <= 0.0:
