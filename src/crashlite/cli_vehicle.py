@@ -63,7 +63,7 @@ def _reduce(args) -> int:
 
 
 def _verify(args) -> int:
-    from .vehicle.verification import verify_vehicle
+    from .vehicle.verification import split_text, verify_vehicle
 
     v = verify_vehicle(args.full, args.simplified, args.deck_full, args.deck_simplified, load_case=args.load_case,
                        crash_boxes=args.crash_boxes, firewall=args.firewall, reference=args.reference,
@@ -73,8 +73,8 @@ def _verify(args) -> int:
     fw = f.get("firewall_intrusion") or {}
     print(f"{f['load_case']}: energy ratings {f['energy_ratings_deceleration_phase']}, crash-box internal energy "
           f"{_pc(f['crash_box_internal_energy_deviation_percent'])}, firewall intrusion max "
-          f"{_pc(fw.get('max_deviation_percent'))} mean {_pc(fw.get('mean_deviation_percent'))}, time reduction "
-          f"{_pc(f['time_reduction_percent'])}; wrote {files['html']} and {files['summary']}")
+          f"{_pc(fw.get('max_deviation_percent'))} mean {_pc(fw.get('mean_deviation_percent'))}{split_text(fw)}, "
+          f"time reduction {_pc(f['time_reduction_percent'])}; wrote {files['html']} and {files['summary']}")
     for n in v.notes:
         print(f"note: {n}")
     return 0

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from ..report.html import esc, image, num, page, table
 from ..report.plots import _pyplot, png
+from .verification import split_text
 
 
 def time_plot(runs: dict) -> bytes:
@@ -69,5 +70,6 @@ def verification_lines(summary: dict) -> list[str]:
         rating = f.get("energy_rating_min")
         out.append(f"{case}: energy rating min {'–' if rating is None else f'{rating:.3f}'}, crash-box energy "
                    f"{_pct(f['crash_box_internal_energy_deviation_percent'])}, firewall intrusion max "
-                   f"{_pct(fw.get('max_deviation_percent'))} mean {_pct(fw.get('mean_deviation_percent'))}")
+                   f"{_pct(fw.get('max_deviation_percent'))} mean {_pct(fw.get('mean_deviation_percent'))}"
+                   f"{split_text(fw)}")
     return out

@@ -159,10 +159,34 @@ def _in_cell(x: np.ndarray, x0: np.ndarray, nodes: np.ndarray, frame: np.ndarray
     return -(local[:, axis] - x0[nodes, axis])
 
 
-def _intrusion(ref_path, cmp_path, decks, firewall: np.ndarray, frame_ids: np.ndarray, axis: int, t_end: float):
+def intrusion_split(x: np.ndarray, x0: np.ndarray, nodes: np.ndarray, frame: np.ndarray, interface: np.ndarray,
+                    axis: int) -> tuple[np.ndarray, np.ndarray]:
+    """The rearward displacement of ``nodes`` in the cell frame split in two:
+    (carried, own). ``own`` is the displacement in the frame of the
+    ``interface`` nodes (their best-fitting rigid motion): the kept
+    structure's own deformation between the interface and the firewall;
+    ``carried`` = total − own: what the interface's motion in the cell frame
+    (the replaced structure's compliance, or the surrogate's springs)
+    carries the nodes by."""
+    total = _in_cell(x, x0, nodes, frame, axis)
+    own = _in_cell(x, x0, nodes, interface, axis)
+    return total - own, own
+
+
+def _deviation(full: np.ndarray, cmp: np.ndarray, scale: float) -> dict:
+    d = np.abs(cmp - full)
+    return {"max_full": float(full.max()), "max_simplified": float(cmp.max()), "mean_full": float(full.mean()),
+            "mean_simplified": float(cmp.mean()), "max_deviation_percent": 100.0 * float(d.max()) / scale,
+            "mean_deviation_percent": 100.0 * float(d.mean()) / scale}
+
+
+def _intrusion(ref_path, cmp_path, decks, firewall: np.ndarray, frame_ids: np.ndarray, axis: int, t_end: float,
+               interface_ids=None):
     """Firewall intrusion (rearwards, in the cell frame of the ``frame_ids``
     nodes) of both runs at the reference run's field state of largest
-    intrusion up to t_end."""
+    intrusion up to t_end; with ``interface_ids`` (nodes of the interface
+    in both runs) its split into what the interface carries and the kept
+    structure's own deformation (``intrusion_split``)."""
     states = [load_states(p, d) for p, d in zip((ref_path, cmp_path), decks)]
     if any(s is None for s in states):
         raise CompareError("firewall intrusion needs field states of both runs (*DATABASE_BINARY_D3PLOT)")
@@ -172,13 +196,14 @@ def _intrusion(ref_path, cmp_path, decks, firewall: np.ndarray, frame_ids: np.nd
         missing = [int(n) for n in np.append(firewall, frame_ids) if int(n) not in idx]
         if missing:
             raise CompareError(f"{s.source}: firewall or cell frame node(s) {missing[:10]} not in the field states")
-        out.append((s, np.array([idx[int(n)] for n in firewall]), np.array([idx[int(n)] for n in frame_ids])))
-    (s_r, fw_r, fr_r), (s_c, fw_c, fr_c) = out
+        out.append((s, idx, np.array([idx[int(n)] for n in firewall]), np.array([idx[int(n)] for n in frame_ids])))
+    (s_r, idx_r, fw_r, fr_r), (s_c, idx_c, fw_c, fr_c) = out
     i_r = np.array([_in_cell(x, s_r.x[0], fw_r, fr_r, axis) for x in s_r.x])
     usable = np.flatnonzero(s_r.time <= t_end * (1 + 1e-9))
     k = int(usable[np.argmax(i_r[usable].max(axis=1))])
     t = float(s_r.time[k])
-    i_c = _in_cell(s_c.at(t), s_c.x[0], fw_c, fr_c, axis)
+    x_c = s_c.at(t)
+    i_c = _in_cell(x_c, s_c.x[0], fw_c, fr_c, axis)
     full = i_r[k]
     scale = float(full.max())
     if not scale > 0:
@@ -190,7 +215,35 @@ def _intrusion(ref_path, cmp_path, decks, firewall: np.ndarray, frame_ids: np.nd
             "max_deviation_percent": 100.0 * float(diff.max()) / scale,
             "mean_deviation_percent": 100.0 * float(diff.mean()) / scale,
             "nodes": int(len(firewall)), "cell_frame_nodes": [int(n) for n in frame_ids]}
+    if interface_ids is not None:
+        both = [int(n) for n in interface_ids if int(n) in idx_r and int(n) in idx_c]
+        if len(both) >= 3:
+            ir, ic = np.array([idx_r[n] for n in both]), np.array([idx_c[n] for n in both])
+            car_r, own_r = intrusion_split(s_r.x[k], s_r.x[0], fw_r, fr_r, ir, axis)
+            car_c, own_c = intrusion_split(x_c, s_c.x[0], fw_c, fr_c, ic, axis)
+            figs["split"] = {"interface_nodes": len(both), "carried_by_interface": _deviation(car_r, car_c, scale),
+                             "own_deformation": _deviation(own_r, own_c, scale)}
     return figs, {"ids": np.asarray(firewall), "y": y, "z": z, "full": full, "simplified": i_c, "difference": diff}
+
+
+def split_text(intrusion: dict) -> str:
+    """" (of it: own deformation max a % mean b %, carried by the interface
+    max c % mean d %)" for a firewall-intrusion figure with its split, else ""."""
+    sp = (intrusion or {}).get("split")
+    if not sp:
+        return ""
+    own, car = sp["own_deformation"], sp["carried_by_interface"]
+    return (f" (of it: own deformation max {own['max_deviation_percent']:.1f} % mean "
+            f"{own['mean_deviation_percent']:.1f} %, carried by the interface max {car['max_deviation_percent']:.1f} "
+            f"% mean {car['mean_deviation_percent']:.1f} %)")
+
+
+def interface_nodes(model: Model, prefix: str = "surrogate interface") -> np.ndarray | None:
+    """Deck IDs of the nodes in every *SET_NODE whose title starts with
+    ``prefix`` (the interface bodies a reduction writes), or None."""
+    ids = [model.set_members("NODE", sid) for (kind, sid), rec in model.sets.items()
+           if kind == "NODE" and str(rec.title or "").strip().lower().startswith(prefix)]
+    return np.unique(np.concatenate(ids)).astype(np.int64) if ids else None
 
 
 def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str = "US NCAP",
@@ -267,7 +320,7 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
             frame = np.array([ref_node], np.int64)
             notes.append(f"intrusion relative to the {reference} node alone (no cell frame: {e}): the cell's "
                          "rotation counts as intrusion")
-        figs, intrusion = _intrusion(full, simplified, decks, fw, frame, axis, t_stop)
+        figs, intrusion = _intrusion(full, simplified, decks, fw, frame, axis, t_stop, interface_nodes(decks[1]))
         figures["firewall_intrusion"] = figs
         figures["firewall_intrusion_max_deviation_percent"] = figs["max_deviation_percent"]
         figures["firewall_intrusion_mean_deviation_percent"] = figs["mean_deviation_percent"]

@@ -51,6 +51,20 @@ def verification_page(v) -> str:
             f"at {num(fw['time'])}, {fw['nodes']} nodes", num(fw["max_intrusion_full"]),
             num(fw["max_intrusion_simplified"]), num(fw["max_deviation_percent"], 3),
             num(fw["mean_deviation_percent"], 3)]]))
+        sp = fw.get("split")
+        if sp:
+            body.append(f"<p>The intrusion split at the interface ({sp['interface_nodes']} nodes in both runs): what "
+                        "the interface's own motion in the cell frame carries the firewall by (the replaced "
+                        "structure, or the surrogate's springs), and the kept structure's own deformation "
+                        "between interface and firewall; deviations relative to the largest intrusion of "
+                        f"{esc(names[0])}.</p>")
+            body.append(table(["part of the intrusion", f"{names[0]} max / mean", f"{names[1]} max / mean",
+                               "max |Δ| [%]", "mean |Δ| [%]"], [
+                [label, f"{num(c['max_full'])} / {num(c['mean_full'])}",
+                 f"{num(c['max_simplified'])} / {num(c['mean_simplified'])}", num(c["max_deviation_percent"], 3),
+                 num(c["mean_deviation_percent"], 3)]
+                for label, c in (("carried by the interface", sp["carried_by_interface"]),
+                                 ("own deformation of the kept structure", sp["own_deformation"]))]))
         if v.intrusion is not None:
             body.append(image(intrusion_plot(v.intrusion, names), "firewall intrusion"))
     t = f["time"]

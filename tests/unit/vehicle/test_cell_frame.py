@@ -36,3 +36,38 @@ def test_a_pitching_and_yawing_cell_has_no_intrusion_a_pushed_firewall_has():
     d = np.array([10.0, 25.0, 40.0] * 3)  # rearward in the cell frame, more at the top
     pushed[fw] -= np.outer(d, r[:, 0])  # along the cell's turned x axis
     assert _in_cell(pushed, x0, fw, frame, 0) == pytest.approx(d, abs=1e-9)
+
+
+INTERFACE = np.array([[-600.0, y, z] for y in (-700.0, 0.0, 700.0) for z in (200.0, 450.0, 1000.0)])
+
+
+def test_the_split_separates_the_interface_motion_from_the_kept_structures_own_deformation():
+    """Cell pitched, yawed and shifted; the interface plane pushed 12 mm back
+    in the cell frame and pitched by 0.02 rad (its top forward); the
+    firewall carried with it plus its own dent d (more at the top): the
+    split gives own = d (along the interface's turned axis), carried = 12 mm
+    + the interface's pitch at the firewall's positions (to the dent's
+    d(1 − cos θ)), and the two add up to the intrusion in the cell frame."""
+    from crashlite.vehicle.verification import intrusion_split
+
+    x0 = np.vstack([CELL, FIREWALL, INTERFACE])
+    frame, fw, itf = np.arange(4), np.arange(4, 13), np.arange(13, 22)
+    # in the cell frame: the interface's rigid motion about its centre, applied to interface and firewall
+    theta = -0.02  # about y: a point above the centre moves forward (+x) for theta < 0
+    ri = rotation(np.array([0.0, theta, 0.0]))
+    ci = INTERFACE.mean(axis=0)
+    local = x0.copy()
+    moved = (x0[4:] - ci) @ ri.T + ci - [12.0, 0.0, 0.0]
+    local[4:] = moved
+    d = np.array([10.0, 25.0, 40.0] * 3)
+    local[fw] -= np.outer(d, ri[:, 0])  # the dent along the interface's turned axis
+    carried_expect = -(moved[:9, 0] - x0[fw, 0])
+    # the whole car then moves rigidly with the cell
+    r = rotation(np.array([0.0, 0.08, 0.0])) @ rotation(np.array([0.0, 0.0, -0.03]))
+    c = CELL.mean(axis=0)
+    x = (local - c) @ r.T + c + [400.0, 5.0, 30.0]
+    carried, own = intrusion_split(x, x0, fw, frame, itf, 0)
+    np.testing.assert_allclose(own, d, atol=1e-9)
+    np.testing.assert_allclose(carried, carried_expect, atol=0.5 * 0.02**2 * 40.0)  # less the dent's d(1 − cos θ)
+    np.testing.assert_allclose(carried + own, _in_cell(x, x0, fw, frame, 0), atol=1e-9)
+    assert carried.min() < 12.0 < carried.max()  # the pitch: the top is carried less far back

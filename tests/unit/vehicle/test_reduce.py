@@ -143,6 +143,8 @@ def test_verification_figures(reduced):
     assert f["crash_box_internal_energy_deviation_percent"] == pytest.approx(100 * (e_sur - e_full) / e_full)
     assert f["firewall_intrusion"]["max_intrusion_full"] > 0.1  # mm: the rails are compressed
     assert f["firewall_intrusion_max_deviation_percent"] < 5.0
+    # the split at the interface uses the cut rings' nodes (16 a rail), not the surrogate's own new nodes
+    assert f["firewall_intrusion"]["split"]["interface_nodes"] == 2 * 16
     assert f["energy_rating_min"] > 0.9  # kinetic and internal; the total is conserved, not rated:
     assert f["energies"]["total"]["rating"] is None and f["energies"]["total"]["max_difference_percent"] < 1.0
     assert f["time"]["elements_simplified"] < f["time"]["elements_full"]
