@@ -234,10 +234,7 @@ class ContactGroup(ElementGroup):
                 self.prm[kc.P_SOFT_K] = 0.5 * c.sofscl / dt0 ** 2
         self.prm[kc.P_ACTIVE] = 1.0 if c.birth <= st.t <= c.death else 0.0
         for rows, alive, el, across in self.links:
-            if across:
-                self.alive[rows] &= alive[el] != 1
-            else:
-                self.alive[rows] = alive[el] == 1
+            kc.link_alive(rows, alive, el, across, self.alive)
         self._since += 1
         if self._since >= c.bsort or 2.0 * kc.max_displacement(st.x, self.x_sort, self.involved) > self.margin:
             self._sort(st.x)

@@ -17,7 +17,7 @@ from ..keyword.errors import Problem
 from ..model.model import Model
 from .frames import project_out
 from .groups import BeamGroup, DiscreteGroup
-from .kernels.beam import update_rotations
+from .kernels.beam import turn_nodes, update_rotations
 from .kernels.integrate import update_position, update_velocity
 from .motions import Motions
 from .parts import PartAccount
@@ -197,7 +197,10 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock) -> Results:
     nb = bool((st.rot_inertia > 0).any())  # nodes with rotational DOFs (beams, shells)
     x, v, f = st.x, st.v, st.f
     groups = groups_of(s, n)
-    turn = nb and any(g.kind == "beam" for g in groups)  # only beams read the nodal orientations
+    # only beams read the nodal orientations: only their nodes turn
+    turned = np.unique(np.concatenate([g.conn.ravel() for g in groups if g.kind == "beam"] + [np.zeros(0, np.int64)]))
+    turned = turned[st.inv_j[turned] != 0.0]  # as update_rotations: nodes with rotational inertia
+    turn = nb and len(turned) > 0
     walls = Walls(s.walls, s.bodies, n)
     motions = Motions(s.motions, s.bodies, s.x0)
     parts = PartAccount(groups, s.bodies, n)
@@ -316,7 +319,7 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock) -> Results:
                 w_ext += s.nodal_loads.work(t + 0.5 * dt_step, v, st.w if nb else None, dt_step)
             update_position(x, v, dt_step)
             if turn:
-                update_rotations(st.rot, st.w, st.moment, st.inv_j, st.fixed_rot, 0.0, dt_step)
+                turn_nodes(st.rot, st.w, turned, dt_step)
             for b in s.bodies:
                 b.drift(dt_step)
                 place(b)

@@ -31,7 +31,7 @@ from ..model.model import Model
 from .groups import ElementGroup
 from .kernels import plane_stress as ps
 from .kernels.shell import N_CHUNKS, N_WORK, shell_forces, shell_timestep
-from .kernels.solid import corner_incidence, gather_corners
+from .kernels.solid import corner_incidence, gather_corner_pair
 
 _AS_BT = (0, 1, 2, 4, 6, 7, 8, 10, 11, 16, -16, 17, 18, 20)
 VISCOUS, STIFFNESS = 1, 2
@@ -457,8 +457,7 @@ class ShellGroup(ElementGroup):
 
     def forces(self, st) -> None:
         compute_forces(self.s, self.st, st.x, st.v, st.w, st.dt)
-        gather_corners(self.st.node_ptr, self.st.corner_of, self._frows, st.f)
-        gather_corners(self.st.node_ptr, self.st.corner_of, self._mrows, st.moment)
+        gather_corner_pair(self.st.node_ptr, self.st.corner_of, self._frows, st.f, self._mrows, st.moment)
 
     def corner_forces(self) -> np.ndarray:
         return self.st.fe

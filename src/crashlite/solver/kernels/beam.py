@@ -104,6 +104,36 @@ def energy_step6(gf_old, gf, gd_old, gd, elem_energy):
             gd_old[e, k] = gd[e, k]
 
 
+@njit(cache=True)
+def _turn_node(rot, w, i, dt):
+    """R_i ← exp(dt·ω_i)·R_i (Rodrigues, applied column by column: no
+    temporary arrays per node)."""
+    px = dt * w[i, 0]
+    py = dt * w[i, 1]
+    pz = dt * w[i, 2]
+    ang = np.sqrt(px * px + py * py + pz * pz)
+    if ang == 0.0:
+        return
+    kx, ky, kz = px / ang, py / ang, pz / ang
+    s = np.sin(ang)
+    sh = np.sin(0.5 * ang)
+    c = 2.0 * sh * sh  # 1 − cos(ang) without cancellation at small angles
+    r00 = 1.0 - c * (ky * ky + kz * kz)
+    r01 = -s * kz + c * kx * ky
+    r02 = s * ky + c * kx * kz
+    r10 = s * kz + c * kx * ky
+    r11 = 1.0 - c * (kx * kx + kz * kz)
+    r12 = -s * kx + c * ky * kz
+    r20 = -s * ky + c * kx * kz
+    r21 = s * kx + c * ky * kz
+    r22 = 1.0 - c * (kx * kx + ky * ky)
+    for j in range(3):
+        a0, a1, a2 = rot[i, 0, j], rot[i, 1, j], rot[i, 2, j]
+        rot[i, 0, j] = r00 * a0 + r01 * a1 + r02 * a2
+        rot[i, 1, j] = r10 * a0 + r11 * a1 + r12 * a2
+        rot[i, 2, j] = r20 * a0 + r21 * a1 + r22 * a2
+
+
 @njit(cache=True, parallel=True)
 def update_rotations(rot, w, moment, inv_j, fixed_rot, dt_v, dt):
     """ω += dt_v·M/J on free rotational DOFs (isotropic nodal inertia: no
@@ -116,28 +146,13 @@ def update_rotations(rot, w, moment, inv_j, fixed_rot, dt_v, dt):
                 w[i, j] = 0.0
             else:
                 w[i, j] += dt_v * moment[i, j] * inv_j[i]
-        px = dt * w[i, 0]
-        py = dt * w[i, 1]
-        pz = dt * w[i, 2]
-        ang = np.sqrt(px * px + py * py + pz * pz)
-        if ang == 0.0:
-            continue
-        kx, ky, kz = px / ang, py / ang, pz / ang
-        s = np.sin(ang)
-        sh = np.sin(0.5 * ang)
-        c = 2.0 * sh * sh  # 1 − cos(ang) without cancellation at small angles
-        # Rodrigues matrix R, applied column by column: no temporary arrays per node
-        r00 = 1.0 - c * (ky * ky + kz * kz)
-        r01 = -s * kz + c * kx * ky
-        r02 = s * ky + c * kx * kz
-        r10 = s * kz + c * kx * ky
-        r11 = 1.0 - c * (kx * kx + kz * kz)
-        r12 = -s * kx + c * ky * kz
-        r20 = -s * ky + c * kx * kz
-        r21 = s * kx + c * ky * kz
-        r22 = 1.0 - c * (kx * kx + ky * ky)
-        for j in range(3):
-            a0, a1, a2 = rot[i, 0, j], rot[i, 1, j], rot[i, 2, j]
-            rot[i, 0, j] = r00 * a0 + r01 * a1 + r02 * a2
-            rot[i, 1, j] = r10 * a0 + r11 * a1 + r12 * a2
-            rot[i, 2, j] = r20 * a0 + r21 * a1 + r22 * a2
+        if dt != 0.0:
+            _turn_node(rot, w, i, dt)
+
+
+@njit(cache=True)
+def turn_nodes(rot, w, nodes, dt):
+    """R ← exp(dt·ω)·R for the listed nodes only: the ones whose orientation
+    some element reads (beams); a shell takes its rotations as rates."""
+    for k in range(nodes.shape[0]):
+        _turn_node(rot, w, nodes[k], dt)

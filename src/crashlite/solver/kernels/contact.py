@@ -477,3 +477,18 @@ def scatter(rows, rnode, v, node_side, f, resultant):
                 resultant[1] += rows[i, a, 1]
                 resultant[2] += rows[i, a, 2]
     return p
+
+
+@njit(cache=True)
+def link_alive(rows, alive, el, across, seg_alive):
+    """Segments follow their elements: seg_alive[rows[k]] = alive[el[k]] == 1
+    (the element that owns the segment), or, ``across``, is cleared where
+    alive[el[k]] == 1 (a segment between solids lives while a neighbour is
+    deleted: ``_links``)."""
+    for k in range(rows.shape[0]):
+        a = alive[el[k]] == 1
+        if across:
+            if a:
+                seg_alive[rows[k]] = 0
+        else:
+            seg_alive[rows[k]] = 1 if a else 0

@@ -444,3 +444,25 @@ def gather_corners(node_ptr, corner_of, rows, out):
         out[i, 0] += a0
         out[i, 1] += a1
         out[i, 2] += a2
+
+
+@njit(cache=True, parallel=True)
+def gather_corner_pair(node_ptr, corner_of, rows_a, out_a, rows_b, out_b):
+    """``gather_corners`` of two corner arrays over the same incidence in one
+    pass (a shell's forces and moments): the index arrays are read once."""
+    for i in prange(out_a.shape[0]):
+        a0 = a1 = a2 = b0 = b1 = b2 = 0.0
+        for k in range(node_ptr[i], node_ptr[i + 1]):
+            c = corner_of[k]
+            a0 += rows_a[c, 0]
+            a1 += rows_a[c, 1]
+            a2 += rows_a[c, 2]
+            b0 += rows_b[c, 0]
+            b1 += rows_b[c, 1]
+            b2 += rows_b[c, 2]
+        out_a[i, 0] += a0
+        out_a[i, 1] += a1
+        out_a[i, 2] += a2
+        out_b[i, 0] += b0
+        out_b[i, 1] += b1
+        out_b[i, 2] += b2
