@@ -74,6 +74,15 @@ class RigidBody:
             self._inv = cached
         return cached[1]
 
+    def spin_bound(self) -> float:
+        """An upper bound of |ω| without forming ω: |R I⁻¹ Rᵀ L| ≤ λmax(I⁻¹)·|L|."""
+        cached = getattr(self, "_lam", None)
+        if cached is None or cached[0] is not self.inertia_body:
+            cached = (self.inertia_body, float(np.abs(np.linalg.eigvalsh(self.inverse_inertia_body())).max()))
+            self._lam = cached
+        m = self.momentum
+        return cached[1] * float(np.sqrt(m @ m))
+
     def omega(self, rot: np.ndarray | None = None, mom: np.ndarray | None = None) -> np.ndarray:
         """(3,) angular velocity R I⁻¹ Rᵀ L (at ``rot`` and ``mom`` if given)."""
         out = np.empty(3)

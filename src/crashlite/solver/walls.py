@@ -104,12 +104,12 @@ class Walls:
         w = self.walls[k]
         moving = w.mass > 0 and w.radius == 0
         wall_v = self.velocity[k] if w.radius == 0 else 0.0
-        omega = body.omega()
         if w.radius == 0:  # out of reach over the step: no node can land on the plane
             gap_min, arm_max = plane_reach(x, nodes, body.cog, self.point[k], w.normal)
-            speed = np.sqrt(body.velocity @ body.velocity) + np.sqrt(omega @ omega) * arm_max + abs(wall_v)
+            speed = np.sqrt(body.velocity @ body.velocity) + body.spin_bound() * arm_max + abs(wall_v)
             if gap_min > 2.0 * speed * dt:
                 return None
+        omega = body.omega()
         arm = x[nodes] - body.cog
         gap, normals, over = self._gaps(k, x, nodes, dt)
         # velocity each point must not fall below along its normal: it lands on the wall

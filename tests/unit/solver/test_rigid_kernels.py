@@ -51,3 +51,25 @@ def test_body_drift_turns_about_a_principal_axis_exactly():
         body_drift(cog, vel, mom, rot, np.linalg.inv(inertia), dt, scratch)
     np.testing.assert_allclose(rot, rotation(np.array([0.0, w * n * dt, 0.0])), atol=1e-12)
     np.testing.assert_allclose(cog, vel * n * dt, rtol=1e-13)
+
+
+def test_spin_bound_bounds_omega_and_is_reached_about_the_softest_axis():
+    """|ω| ≤ λmax(I⁻¹)|L| for any orientation and momentum (the walls' reach
+    check uses it instead of ω), with equality for L along the principal
+    axis of least inertia."""
+    from crashlite.solver.rigid import RigidBody
+
+    rng = np.random.default_rng(5)
+    a = rng.normal(size=(3, 3))
+    inertia = a @ a.T + 2 * np.eye(3)
+    body = RigidBody(1, np.zeros(1, np.int64), 1.0, np.zeros(3), inertia, np.zeros((1, 3)), np.zeros(3),
+                     np.zeros(3), rotation(rng.normal(size=3)))
+    for _ in range(20):
+        body.momentum = rng.normal(size=3)
+        body.rot = rotation(rng.normal(size=3))
+        assert np.linalg.norm(body.omega()) <= body.spin_bound() * (1 + 1e-12)
+    lam, vec = np.linalg.eigh(inertia)
+    body.rot = np.eye(3)
+    body.momentum = 3.0 * vec[:, 0]
+    assert np.linalg.norm(body.omega()) == pytest.approx(body.spin_bound(), rel=1e-12)
+    assert body.spin_bound() == pytest.approx(3.0 / lam[0], rel=1e-12)
