@@ -225,13 +225,18 @@ def test_thread_count_does_not_change_the_result(tmp_path):
     assert np.array_equal(one.final_x, two.final_x) and np.array_equal(one.contact_force, two.contact_force)
 
 
-def test_bucket_search_finds_every_pair_within_reach():
+@pytest.mark.parametrize("far", [0.0, 1e12, 1e30], ids=["compact", "node 1e12 away", "node 1e30 away"])
+def test_bucket_search_finds_every_pair_within_reach(far):
+    """Every (node, segment) pair whose grown box holds the node, and no
+    other; a node flung far away (a diverging or escaping node) coarsens
+    the grid instead of overflowing its cell keys."""
     rng = np.random.default_rng(3)
     n_seg = 200
     base = rng.uniform(0, 50, (n_seg, 3))
     size = np.where(np.arange(n_seg) % 50 == 0, 40.0, 3.0)[:, None, None]  # a few large segments
     x = (base[:, None, :] + size * rng.uniform(0, 1, (n_seg, 4, 3))).reshape(-1, 3)
     nodes = rng.uniform(-2, 52, (300, 3))
+    nodes[17] += far
     x = np.concatenate([x, nodes])
     seg = np.arange(4 * n_seg).reshape(n_seg, 4)
     seg[::7, 3] = seg[::7, 2]  # some triangles
@@ -243,6 +248,14 @@ def test_bucket_search_finds_every_pair_within_reach():
     for i, nd in enumerate(snode):
         inside = np.flatnonzero(np.all((x[nd] >= lo) & (x[nd] <= hi), axis=1))
         assert sorted(cand[cptr[i]:cptr[i + 1]].tolist()) == inside.tolist()
+    assert cptr[18] == cptr[17] or far == 0.0  # the far node has none
+
+
+def test_bucket_search_stops_a_diverged_run_with_a_diagnosis():
+    x = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0.5, 0.5, np.nan]], float)
+    seg = np.array([[0, 1, 2, 3]])
+    with pytest.raises(FloatingPointError, match="diverged"):
+        find_candidates(x, np.array([4]), np.array([-1]), seg, np.zeros(1, np.int64), np.ones(1))
 
 
 def test_solid_surface_is_the_exterior_faces(tmp_path):

@@ -183,14 +183,15 @@ def _grid(x, snode, lo, hi, h):
         for k in range(3):
             org[k] = min(org[k], x[snode[i], k])
             top[k] = max(top[k], x[snode[i], k])
-    ncell = np.empty(3, np.int64)
+    # counted in floating point: a node flung far away must coarsen the grid, not overflow the keys
+    ncell = np.empty(3)
     for k in range(3):
-        ncell[k] = int((top[k] - org[k]) / h) + 1
-    total = 0
+        ncell[k] = np.floor((top[k] - org[k]) / h) + 1.0
+    total = 0.0
     for s in range(lo.shape[0]):
-        c = 1
+        c = 1.0
         for k in range(3):
-            c *= int((hi[s, k] - org[k]) / h) - int((lo[s, k] - org[k]) / h) + 1
+            c *= np.floor((hi[s, k] - org[k]) / h) - np.floor((lo[s, k] - org[k]) / h) + 1.0
         total += c
     return org, ncell, total
 
@@ -266,15 +267,17 @@ def find_candidates(x, snode, sside, seg, mside, grow):
         return cptr, np.zeros(0, np.int64)
     lo, hi = np.empty((nm, 3)), np.empty((nm, 3))
     segment_boxes(x, seg, grow, lo, hi)
-    if not (np.isfinite(lo).all() and np.isfinite(hi).all()):
+    if not (np.isfinite(lo).all() and np.isfinite(hi).all() and np.isfinite(x[snode]).all()):
         raise FloatingPointError("non-finite coordinates in the contact search: the run diverged")
     h = max(float(np.median((hi - lo).max(axis=1))), 1e-12 * float(np.abs(hi).max() + np.abs(lo).max()), 1e-300)
     while True:
-        org, ncell, total = _grid(x, snode, lo, hi, h)
-        if total <= 64 * nm:  # a few huge segments must not flood the grid
+        org, ncell_f, total = _grid(x, snode, lo, hi, h)
+        # a few huge segments must not flood the grid, nor a far node overflow its cell keys
+        if total <= 64 * nm and ncell_f[0] * ncell_f[1] * ncell_f[2] < 2.0**62:
             break
         h *= 2.0
-    skeys, sowner = _register(lo, hi, h, org, ncell, total)
+    ncell = ncell_f.astype(np.int64)
+    skeys, sowner = _register(lo, hi, h, org, ncell, int(total))
     dummy = np.zeros(0, np.int64)
     _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, sowner, cptr, dummy, False)
     cptr = np.cumsum(cptr)
