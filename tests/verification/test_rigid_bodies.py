@@ -177,3 +177,51 @@ def test_moving_wall_pushes_a_free_rigid_body(tmp_path):
     _balanced_but_at_the_impact(r)
     lost = 0.5 * 0.5 * 1000.0**2 - 0.5 * (0.5 + _MASS.sum()) * common**2
     assert r.wall[-1] == pytest.approx(lost, rel=1e-6)
+
+
+def _strip_with_root_body(tmp_path, end):
+    """A free steel strip (4 x 10 shells of 10 mm, 1 mm thick, in the x–y
+    plane) whose root row (5 collinear nodes at x = 0) is a nodal rigid
+    body; the strip starts with the transverse velocity 1000 mm/s·(x/L)²
+    (smooth: an impulse on the tip row alone would ring the shells' shear
+    and rotation modes, whose mid-step kinetic energy the central
+    difference misstates by (ωΔt)²/4)."""
+    nx, ny, h = 10, 4, 10.0
+    ids = np.arange((nx + 1) * (ny + 1)).reshape(nx + 1, ny + 1) + 1
+    nodes = [f"{ids[i, j]},{i * h},{j * h},0.0" for i in range(nx + 1) for j in range(ny + 1)]
+    shells = [f"{k + 1},1,{ids[i, j]},{ids[i + 1, j]},{ids[i + 1, j + 1]},{ids[i, j + 1]}"
+              for k, (i, j) in enumerate((i, j) for i in range(nx) for j in range(ny))]
+    vel = [f"{ids[i, j]},0.0,0.0,{1000.0 * (i / nx) ** 2}" for i in range(1, nx + 1) for j in range(ny + 1)]
+    text = "\n".join(["*KEYWORD", "*NODE", *nodes, "*ELEMENT_SHELL", *shells, "*PART", "strip", "1,1,1",
+                      "*SECTION_SHELL", "1,2,0.8333,3", "1.0,1.0,1.0,1.0", "*MAT_ELASTIC", "1,7.85e-9,210000.0,0.3",
+                      "*SET_NODE_LIST", "1", ",".join(str(i) for i in ids[0]),
+                      "*CONSTRAINED_NODAL_RIGID_BODY", "1000,0,1", "*INITIAL_VELOCITY_NODE", *vel,
+                      "*CONTROL_TERMINATION", f"{end}", "*END"])
+    p = tmp_path / "strip.k"
+    p.write_text(text)
+    return read_deck(p)
+
+
+def test_a_row_of_shell_nodes_as_a_body_carries_their_rotary_inertia(tmp_path):
+    """The root row of a shell strip is a nodal rigid body: its nodes lie on
+    one line, so their masses give it no inertia about that line, but the
+    shells bend it about the line through the nodes' rotations. The body
+    carries the nodes' rotary inertia (Σ J_i about every axis, as the
+    shells' step assumes): the strip vibrates freely, energy conserved to
+    1 % over 12 000 cycles (20 ms), nothing diverges. (Without it, the row
+    turned about its line on a stand-in inertia of 1e-9 of the body's and
+    the run went to NaN in 18 cycles.)"""
+    from crashlite.solver.setup import build
+
+    m = _strip_with_root_body(tmp_path, 0.02)
+    s = build(m)
+    (b,) = s.bodies
+    lam = np.linalg.eigvalsh(b.inertia_body)
+    j_row = float(s.rot_inertia[b.nodes].sum())
+    assert j_row > 0 and b.no_inertia is None
+    assert lam[0] == pytest.approx(j_row, rel=1e-9)  # about the line: the nodes' rotary inertia alone
+    r = run(m, output_dt=1e-4)
+    assert r.cycles > 10000
+    assert np.isfinite(r.final_x).all()
+    assert np.abs(r.energy_ratio - 1.0).max() < 0.01
+    assert r.internal.max() > 0.02 * r.kinetic[0]  # it bends (most of the motion is the free strip's drift and spin)

@@ -157,10 +157,15 @@ class RigidBody:
 
 
 def build_body(body_id: int, nodes: np.ndarray, x: np.ndarray, v: np.ndarray, mass: np.ndarray,
-               given: dict | None = None, node_inertia: np.ndarray | None = None) -> RigidBody:
+               given: dict | None = None, node_inertia: np.ndarray | None = None,
+               node_rot: np.ndarray | None = None) -> RigidBody:
     """A body from its nodes' lumped masses (plus the inertia tensors of
-    *ELEMENT_INERTIA on them, ``node_inertia`` (n, 3, 3) global), or from
-    _INERTIA values (``given``: tm, cog (3,), inertia (3, 3) global, v, w)."""
+    *ELEMENT_INERTIA on them, ``node_inertia`` (n, 3, 3) global, and the
+    isotropic rotary inertia of shell and beam nodes, ``node_rot`` (n,):
+    the body takes their moments, so it carries their inertia too; a row
+    of shell nodes then turns about its own line with the inertia the
+    shells' step was sized for), or from _INERTIA values (``given``: tm,
+    cog (3,), inertia (3, 3) global, v, w)."""
     m = mass[nodes]
     if given and given.get("tm", 0.0) > 0:
         total, cog, inertia = given["tm"], np.asarray(given["cog"], float), np.asarray(given["inertia"], float)
@@ -173,6 +178,8 @@ def build_body(body_id: int, nodes: np.ndarray, x: np.ndarray, v: np.ndarray, ma
         inertia = np.einsum("k,kij->ij", m, (r * r).sum(1)[:, None, None] * np.eye(3) - r[:, :, None] * r[:, None, :])
         if node_inertia is not None:
             inertia = inertia + node_inertia[nodes].sum(axis=0)
+        if node_rot is not None:
+            inertia = inertia + np.eye(3) * float(node_rot[nodes].sum())
     no_inertia = None
     if np.linalg.matrix_rank(inertia) < 3:
         # collinear nodes (no inertia about their line) or a point mass (none

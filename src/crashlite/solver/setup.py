@@ -466,7 +466,8 @@ def _no_inertia_problem(model: Model, rec, body, used, mass) -> Problem | None:
     return None
 
 
-def _bodies(model: Model, x, v, mass, problems: list, used: np.ndarray | None = None) -> list:
+def _bodies(model: Model, x, v, mass, problems: list, used: np.ndarray | None = None,
+            rot_inertia: np.ndarray | None = None) -> list:
     from .rigid import build_body
 
     bodies = []
@@ -496,7 +497,7 @@ def _bodies(model: Model, x, v, mass, problems: list, used: np.ndarray | None = 
                      "v": [rec.get("vtx", 0.0), rec.get("vty", 0.0), rec.get("vtz", 0.0)],
                      "w": [rec.get("vrx", 0.0), rec.get("vry", 0.0), rec.get("vrz", 0.0)]}
         try:
-            bodies.append(build_body(int(rec["pid"]), nodes, x, v, mass, given, inertia))
+            bodies.append(build_body(int(rec["pid"]), nodes, x, v, mass, given, inertia, rot_inertia))
         except ValueError as e:
             problems.append(_problem(rec, "nsid", str(e)))
             continue
@@ -604,7 +605,7 @@ def _build(model: Model) -> Setup:
     used[disc.n2[disc.n2 >= 0]] = True
     for g in groups:
         used[g.conn[g.conn >= 0]] = True
-    bodies = _bodies(model, model.nodes.xyz, v0, mass, problems, used)
+    bodies = _bodies(model, model.nodes.xyz, v0, mass, problems, used, rot_inertia)
     bodies += part_bodies(model, model.nodes.xyz, v0, mass, problems)
     body_of = {b.body_id: b for b in bodies}
     for mo in motions:
