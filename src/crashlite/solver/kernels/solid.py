@@ -427,20 +427,25 @@ def corner_incidence(n_nodes: int, conn: np.ndarray):
     return np.cumsum(ptr), corner_of
 
 
+@njit(cache=True, inline="always")
+def _corner_sum(node_ptr, corner_of, rows, i):
+    """Σ rows[c] over the corners c of node i, in their fixed order."""
+    a0 = a1 = a2 = 0.0
+    for k in range(node_ptr[i], node_ptr[i + 1]):
+        c = corner_of[k]
+        a0 += rows[c, 0]
+        a1 += rows[c, 1]
+        a2 += rows[c, 2]
+    return a0, a1, a2
+
+
 @njit(cache=True, parallel=True)
 def gather_corners(node_ptr, corner_of, rows, out):
     """out[i] += Σ rows[c] over the corners c of node i, in a fixed order.
 
     rows (n_elem·8, 3) corner forces (fe reshaped); out (n_nodes, 3)."""
     for i in prange(out.shape[0]):
-        a0 = 0.0
-        a1 = 0.0
-        a2 = 0.0
-        for k in range(node_ptr[i], node_ptr[i + 1]):
-            c = corner_of[k]
-            a0 += rows[c, 0]
-            a1 += rows[c, 1]
-            a2 += rows[c, 2]
+        a0, a1, a2 = _corner_sum(node_ptr, corner_of, rows, i)
         out[i, 0] += a0
         out[i, 1] += a1
         out[i, 2] += a2
@@ -449,17 +454,11 @@ def gather_corners(node_ptr, corner_of, rows, out):
 @njit(cache=True, parallel=True)
 def gather_corner_pair(node_ptr, corner_of, rows_a, out_a, rows_b, out_b):
     """``gather_corners`` of two corner arrays over the same incidence in one
-    pass (a shell's forces and moments): the index arrays are read once."""
+    parallel pass (a shell's forces and moments): one launch, and each
+    node's index range is read while still in cache."""
     for i in prange(out_a.shape[0]):
-        a0 = a1 = a2 = b0 = b1 = b2 = 0.0
-        for k in range(node_ptr[i], node_ptr[i + 1]):
-            c = corner_of[k]
-            a0 += rows_a[c, 0]
-            a1 += rows_a[c, 1]
-            a2 += rows_a[c, 2]
-            b0 += rows_b[c, 0]
-            b1 += rows_b[c, 1]
-            b2 += rows_b[c, 2]
+        a0, a1, a2 = _corner_sum(node_ptr, corner_of, rows_a, i)
+        b0, b1, b2 = _corner_sum(node_ptr, corner_of, rows_b, i)
         out_a[i, 0] += a0
         out_a[i, 1] += a1
         out_a[i, 2] += a2
