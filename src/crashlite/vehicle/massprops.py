@@ -139,10 +139,11 @@ def _given_inertia(part) -> tuple[float, np.ndarray, np.ndarray] | None:
     return float(part["tm"]), c, tensor
 
 
-def replaced_rows(cut: Cut, moments: dict | None = None) -> tuple[list, list, list, list]:
+def replaced_rows(cut: Cut, moments: dict | None = None) -> tuple[list, list, list, list, list]:
     """Raw moments of everything ``cut`` replaces, row by row: (element
     Moments per table and *PART_INERTIA bodies, their weights (bool masks
-    of the replaced rows, None: all), point-mass Moments, notes).
+    of the replaced rows, None: all), point-mass Moments, notes, the table
+    name of each element Moments (None for a *PART_INERTIA body)).
     ``moments``: ``element_moments`` of the model when already at hand
     (several cuts of one model); the given-inertia parts are zeroed in it."""
     model = cut.model
@@ -166,6 +167,7 @@ def replaced_rows(cut: Cut, moments: dict | None = None) -> tuple[list, list, li
                 notes.append(f"part {pid} (*PART_INERTIA) lies across the interface: counted whole")
     elems = [moments[t] for t in moments] + given
     masks = [cut.replaced[t] for t in moments] + [None] * len(given)
+    tables = list(moments) + [None] * len(given)
     lumped_m = []
     ms = model.masses
     if len(ms):
@@ -184,29 +186,46 @@ def replaced_rows(cut: Cut, moments: dict | None = None) -> tuple[list, list, li
             lumped_m.append(mk.point_moments(pos, it.mass[sel], tensor))
     if any("INERTIA" in r.options for r in model.find("CONSTRAINED_NODAL_RIGID_BODY")):
         notes.append("*CONSTRAINED_NODAL_RIGID_BODY_INERTIA mass and inertia are not counted (node masses are)")
-    return elems, masks, lumped_m, notes
+    return elems, masks, lumped_m, notes, tables
 
 
-def split_replaced(cut: Cut, far_point) -> tuple[MassProperties, MassProperties]:
+def split_replaced(cut: Cut, far_point, only=None, without=None) -> tuple[MassProperties, MassProperties]:
     """The replaced mass shared between the interface and a point behind it
     (the rear-axle point) as a two-node bar lumps its mass: each element
     and point mass goes to the far share by ξ, its distance behind the
     interface over the far point's (clipped to [0, 1]), to the interface
     share by 1 − ξ. Each share keeps its own CoG and inertia, so the two
     together have exactly the mass, CoG and inertia of the whole.
-    Returns (interface share, far share)."""
-    elems, masks, lumped, _ = replaced_rows(cut)
+
+    only     part IDs: the elements of these parts alone (no point masses,
+             no *PART_INERTIA bodies)
+    without  part IDs: everything but the elements of these parts
+    (so the shares of disjoint ``only`` sets and of ``without`` their union
+    add up to the whole). Returns (interface share, far share)."""
+    elems, masks, lumped, _, tables = replaced_rows(cut)
     span = float((cut.point - np.asarray(far_point, float)) @ cut.axis)
     if not span > 0:
         raise ValueError("the far point of the mass split must lie behind the interface")
-    rows = elems + lumped
-    weights = list(masks) + [None] * len(lumped)
+    keep_points = only is None
+    rows, weights = [], []
+    for mo, w, t in zip(elems, masks, tables):
+        base = np.ones(len(mo.mass)) if w is None else np.asarray(w, float)
+        if t is None:  # a *PART_INERTIA body
+            if not keep_points:
+                continue
+        elif only is not None or without is not None:
+            pid = getattr(cut.model, t).pid
+            base = base * (np.isin(pid, list(only)) if only is not None else ~np.isin(pid, list(without)))
+        rows.append(mo)
+        weights.append(base)
+    if keep_points:
+        rows += lumped
+        weights += [np.ones(len(mo.mass)) for mo in lumped]
     near_w, far_w = [], []
-    for mo, w in zip(rows, weights):
+    for mo, base in zip(rows, weights):
         with np.errstate(invalid="ignore", divide="ignore"):
             c = np.where(mo.mass[:, None] > 0, mo.first / mo.mass[:, None], 0.0)
         xi = np.clip(((cut.point - c) @ cut.axis) / span, 0.0, 1.0)
-        base = np.ones(len(mo.mass)) if w is None else np.asarray(w, float)
         near_w.append(base * (1.0 - xi))
         far_w.append(base * xi)
     return mk.combine(*rows, weights_mask=near_w), mk.combine(*rows, weights_mask=far_w)
@@ -222,7 +241,7 @@ def replaced_mass(cut: Cut, axle_nodes=None, axle_parts=None, moments: dict | No
     moments     ``element_moments`` of the model, to reuse over several cuts
     """
     model = cut.model
-    elems, masks, lumped_m, notes = replaced_rows(cut, moments)
+    elems, masks, lumped_m, notes, _ = replaced_rows(cut, moments)
     elements = mk.combine(*elems, weights_mask=masks)
     lumped = mk.combine(*lumped_m)
     structure = elements + lumped

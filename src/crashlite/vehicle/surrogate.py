@@ -279,7 +279,6 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
     if mass_split == "axle" and mass.axle_points is not None:
         near, far = split_replaced(cut, mass.axle_points)
     g_id, a_id, i_id = node(far.cog), node(axle), node(centre)
-    f_id = node(near.cog) if near is not None else None
     k_beam = beam_axial * stiffness
     k_springs = stiffness - k_beam
     total_m = float(far.mass)
@@ -300,6 +299,20 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
         if along < 0.9:
             notes.append(f"assembly {name!r}: profile {np.degrees(np.arccos(min(along, 1.0))):.0f}° off the "
                          "vehicle axis")
+    # the interface share of the replaced mass: per assembly body its own parts' share (a body of a
+    # few cut nodes alone would be light), the rest on the body nearest the interface centre
+    own_near = {}
+    near_total = near
+    if near is not None and interface == "assembly":
+        taken: set = set()
+        for sp in springs:
+            parts = [int(p) for p in assemblies[sp.assembly] if int(p) not in taken]
+            taken.update(parts)
+            share = split_replaced(cut, mass.axle_points, only=parts)[0]
+            if share.mass > 0:
+                own_near[sp.assembly] = (node(share.cog), share)
+        near = split_replaced(cut, mass.axle_points, without=taken)[0]
+    f_id = node(near.cog) if near is not None and near.mass > 0 else None
     front_ids = [node(s.front) for s in springs]
     rear_ids = [node(s.rear) for s in springs]
     nodes = Nodes.zeros(len(new_ids))
@@ -329,6 +342,8 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
         for k, (s, f) in enumerate(zip(springs, front_ids)):
             own = groups[s.assembly][~bound[groups[s.assembly]]]
             extra = ([f, i_id] + ([f_id] if f_id is not None else [])) if k == nearest else [f]
+            if s.assembly in own_near:
+                extra = extra + [own_near[s.assembly][0]]
             pid = ids.take("part")
             sid = node_set(f"surrogate interface {s.assembly}", np.concatenate([kept_ids(own), extra]))
             m.keywords.append(record("CONSTRAINED_NODAL_RIGID_BODY", pid=pid, nsid=sid))
@@ -394,15 +409,20 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
     rear_members = np.concatenate([[g_id, a_id], rear_ids, full.nodes.ids[ride]])
     sid = node_set("surrogate rear body", rear_members)
     c, t = far.cog, far.inertia
-    if near is not None:  # the interface's share: a mass with its inertia on the interface body
-        it = Inertias.zeros(1)
-        it.ids[:] = ids.take("element")
-        it.node[:] = index[f_id]
-        it.mass[:] = near.mass
-        it.tensor[0] = near.inertia[[0, 0, 0, 1, 1, 2], [0, 1, 2, 1, 2, 2]]
+    # the interface's share: masses with their inertia on the interface body (bodies)
+    lumps = ([(f_id, near)] if f_id is not None else []) + list(own_near.values())
+    if lumps:
+        it = Inertias.zeros(len(lumps))
+        for r, (nid, share) in enumerate(lumps):
+            it.ids[r] = ids.take("element")
+            it.node[r] = index[nid]
+            it.mass[r] = share.mass
+            it.tensor[r] = share.inertia[[0, 0, 0, 1, 1, 2], [0, 1, 2, 1, 2, 2]]
         m.inertias = Inertias.concat([m.inertias, it])
-        notes.append(f"{100 * near.mass / mass.structure.mass:.1f} % of the replaced mass on the interface body "
-                     f"(shared along the axis to the rear axle), the rest on the rear body")
+        shared = sum(share.mass for _, share in lumps)
+        notes.append(f"{100 * shared / mass.structure.mass:.1f} % of the replaced mass on the interface "
+                     f"bod{'ies' if len(own_near) else 'y'} (shared along the axis to the rear axle"
+                     f"{', per assembly' if own_near else ''}), the rest on the rear body")
     m.keywords.append(record("CONSTRAINED_NODAL_RIGID_BODY_INERTIA", pid=pid, nsid=sid, xc=float(c[0]),
                              yc=float(c[1]), zc=float(c[2]), tm=total_m - beam_mass, nodeid=g_id,
                              ixx=float(t[0, 0]), ixy=float(t[0, 1]), ixz=float(t[0, 2]), iyy=float(t[1, 1]),
@@ -419,4 +439,4 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
         node_ids["interface mass"] = f_id
     return Surrogate(m, springs, float(stiffness), mass, tr, node_ids,
                      part_ids, beam, interface, notes,
-                     {"rear body": far, **({"interface": near} if near is not None else {})})
+                     {"rear body": far, **({"interface": near_total} if near_total is not None else {})})

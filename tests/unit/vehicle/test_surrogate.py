@@ -200,3 +200,64 @@ def test_interface_proposal_finds_the_elastic_rear(tmp_path):
     behind = next(c for c in p.candidates if c["x"] == pytest.approx(p.x))
     assert behind["yielded_percent_behind"] == 0.0
     assert behind["replaced_elements_percent"] == pytest.approx(100.0 * np.mean(centre < 300.0))
+
+
+def _two_tubes():
+    """Two tubes (parts 1 and 2) side by side along x, rear rings together
+    the node set "axle", a point mass on each front ring."""
+    xyz, quads = tube_mesh(B, L, 4, 20)
+    xyz2 = xyz + [0.0, 3 * B, 0.0]
+    m = shell_model(np.vstack([xyz, xyz2]), np.vstack([quads, quads + len(xyz)]),
+                    pids=np.repeat([1, 2], len(quads)), thickness=T)
+    x = m.nodes.xyz
+    rear, front = np.flatnonzero(np.isclose(x[:, 0], 0.0)), np.flatnonzero(np.isclose(x[:, 0], L))
+    ms = Masses.zeros(len(front))
+    ms.ids = np.arange(1, len(front) + 1) + 1000
+    ms.node = front.astype(np.int32)
+    ms.mass = np.full(len(front), M_FRONT / len(front))
+    m.masses = ms
+    m.sets[("NODE", 1)] = id_list("SET_NODE_LIST_TITLE", 1, m.nodes.ids[rear], title="axle")
+    return m
+
+
+def test_split_shares_of_disjoint_parts_add_up_to_the_whole():
+    from crashlite.vehicle.massprops import split_replaced
+
+    m = _two_tubes()
+    m.masses.node[:] = np.flatnonzero(np.isclose(m.nodes.xyz[:, 0], L / 4))[:len(m.masses.node)]  # behind the cut
+    cut = cut_behind(m, x=L / 2)
+    axle = m.nodes.xyz[np.isclose(m.nodes.xyz[:, 0], 0.0)].mean(axis=0)
+    whole = split_replaced(cut, axle)[0]
+    parts = [split_replaced(cut, axle, only=[1])[0], split_replaced(cut, axle, only=[2])[0],
+             split_replaced(cut, axle, without=[1, 2])[0]]
+    assert parts[0].mass == pytest.approx(parts[1].mass, rel=1e-12) and parts[0].mass > 0
+    assert parts[2].mass > 0  # the point masses: only in the rest
+    assert sum(p.mass for p in parts) == pytest.approx(whole.mass, rel=1e-12)
+    first = sum(p.mass * p.cog for p in parts)
+    np.testing.assert_allclose(first, whole.mass * whole.cog, rtol=1e-12, atol=1e-12 * np.abs(first).max())
+
+
+def test_assembly_bodies_carry_their_own_share_of_the_interface_mass():
+    """One interface body per tube: each holds its own tube's share of the
+    replaced mass near the interface (as the bar lumping shares it), not
+    only its cut ring's nodal masses; the total mass stays the full
+    model's."""
+    from crashlite.vehicle.massprops import split_replaced
+
+    m = _two_tubes()
+    cut = cut_behind(m, x=L / 2)
+    rm = replaced_mass(cut, axle_nodes="axle")
+    k = longitudinal_stiffness(cut, "axle")
+    s = build_surrogate(cut, {"tube 1": [1], "tube 2": [2]}, {"tube 1": 0.5, "tube 2": 0.5}, k.stiffness, rm,
+                        interface="assembly")
+    own = split_replaced(cut, rm.axle_points, only=[1])[0]
+    assert own.mass > 0
+    it = s.model.inertias
+    for name in ("tube 1", "tube 2"):
+        nsid = int([r for r in s.model.find("CONSTRAINED_NODAL_RIGID_BODY") if "INERTIA" not in r.options
+                    and s.part_ids[f"interface {name}"] == int(r["pid"])][0]["nsid"])
+        members = s.model.node_index(s.model.set_members("NODE", nsid))
+        held = it.mass[np.isin(it.node, members)]
+        assert held.sum() == pytest.approx(own.mass, rel=1e-9)  # its own share (the rest: no elements, no points)
+    nrb = s.model.find("CONSTRAINED_NODAL_RIGID_BODY_INERTIA")[0]
+    assert s.model.mass_properties().mass + nrb["tm"] == pytest.approx(m.mass_properties().mass, rel=1e-12)
