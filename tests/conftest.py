@@ -15,3 +15,13 @@ def deck(tmp_path):
         return p
 
     return write
+
+
+@pytest.fixture
+def two_threads():
+    """Skip a 1-vs-2-thread comparison where Numba has one thread only (it
+    needs two; CI has two cores)."""
+    import numba
+
+    if numba.config.NUMBA_NUM_THREADS < 2:
+        pytest.skip("one thread only")

@@ -204,7 +204,7 @@ def test_one_flat_plate_does_not_touch_itself(tmp_path):
     assert g.max_gap == 0.0 and res.sliding[-1] == 0.0
 
 
-def test_thread_count_does_not_change_the_result(tmp_path):
+def test_thread_count_does_not_change_the_result(tmp_path, two_threads):
     d = Deck()
     d.plate(1, 4, 4, 20.0, 20.0)
     top = d.plate(2, 3, 3, 15.0, 15.0, x0=2.0, y0=3.0, z=1.3)

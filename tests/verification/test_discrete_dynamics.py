@@ -102,7 +102,7 @@ def test_unsupported_content_is_refused_with_the_keyword(tmp_path):
     assert "DAMPING_GLOBAL" in str(e.value) and "ENDTIM" in str(e.value)
 
 
-def test_results_identical_on_one_and_two_threads(tmp_path):
+def test_results_identical_on_one_and_two_threads(tmp_path, two_threads):
     import numba
 
     springs = [f"{i},1,{a},{b}" for i, (a, b) in enumerate([(1, 2), (2, 3), (1, 3)], start=1)]

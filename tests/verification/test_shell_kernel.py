@@ -164,7 +164,7 @@ def test_large_rigid_rotation_and_translation_give_no_stress(tmp_path, bwc):
     np.testing.assert_allclose(g.st.thick, 1.0, rtol=1e-12)
 
 
-def test_forces_bit_identical_on_one_and_two_threads(tmp_path):
+def test_forces_bit_identical_on_one_and_two_threads(tmp_path, two_threads):
     """Plastic, hourglass-loaded, distorted mesh with triangles driven by
     the same random motion: forces, moments and state equal bit for bit."""
     xyz, quads = grid(8, 6, 40.0, 30.0)

@@ -460,12 +460,10 @@ def test_stiffness_hourglass_resists_an_hourglass_mode(tmp_path):
     assert g.hourglass[0] == pytest.approx(work, rel=1e-6)
 
 
-def test_thread_count_does_not_change_a_single_bit(tmp_path):
+def test_thread_count_does_not_change_a_single_bit(tmp_path, two_threads):
     """125 elements (more than the kernel's fixed chunks), plastic and
     hourglass forces: positions, stresses and energies after 150 steps are
     bit-identical on 1 and 2 threads."""
-    if numba.config.NUMBA_NUM_THREADS < 2:
-        pytest.skip("one thread only")
     default = numba.get_num_threads()
     out = []
     try:

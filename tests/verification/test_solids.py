@@ -147,7 +147,7 @@ def test_bar_impact_on_a_rigid_wall_gives_rho_c_v_for_two_transits(tmp_path, bul
     assert r.hourglass.max() < 1e-6 * r.internal.max()
 
 
-def test_thread_count_does_not_change_the_result(tmp_path):
+def test_thread_count_does_not_change_the_result(tmp_path, two_threads):
     model = _bar_deck(tmp_path, end=2e-5)
     default = numba.get_num_threads()
     try:

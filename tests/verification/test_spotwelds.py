@@ -165,7 +165,7 @@ def test_spot_weld_needs_two_distinct_nodes(tmp_path):
         setup.build(read_deck(path))
 
 
-def test_welds_and_ties_bit_identical_on_one_and_two_threads(tmp_path):
+def test_welds_and_ties_bit_identical_on_one_and_two_threads(tmp_path, two_threads):
     """Welded plates with a point mass tied to one of them: the run gives
     the same bits on 1 and 2 threads (the constraints work serially in a
     fixed order)."""
