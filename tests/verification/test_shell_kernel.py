@@ -13,7 +13,7 @@ import pytest
 from crashlite import read_deck
 from crashlite.solver.shells import build_shells
 
-from _shell_driver import deck_text, grid, run_deck
+from _shell_driver import deck_text, grid
 
 E, NU, RHO = 210000.0, 0.3, 7.85e-9
 ELASTIC = f"*MAT_ELASTIC\n1,{RHO},{E},{NU}"

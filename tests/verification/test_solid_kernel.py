@@ -11,7 +11,6 @@ import numba
 import numpy as np
 import pytest
 
-from crashlite.solver import run
 from crashlite.solver.solids import lumped_mass
 
 from _solid_driver import Driver, brick_mesh, deck_text, group_from_deck
