@@ -31,7 +31,11 @@ what lies behind it (the paper's figure 15):
   longitudinal stiffness stays K.
 
 The total mass is the full model's: kept elements and point masses stay,
-everything replaced is the rear body's (less the beam's own small mass).
+everything replaced is the rear body's (less the beam's own small mass),
+or, with ``mass_split="axle"``, shared between the rear body and the
+interface body as a bar lumps it; with one body per assembly each of them
+carries its own parts' share and the body nearest the interface centre
+the rest (point masses, parts of no assembly).
 """
 
 from __future__ import annotations
