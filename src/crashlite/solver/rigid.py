@@ -66,22 +66,23 @@ class RigidBody:
         a = np.einsum("kji,jl,klm->kim", skew, np.linalg.inv(self.inertia_body), skew)
         return 1.0 / self.mass + np.linalg.eigvalsh(a)[:, -1]
 
-    def inverse_inertia_body(self) -> np.ndarray:
-        """(3, 3) inverse of ``inertia_body``, formed once per inertia."""
+    def _inverse(self) -> tuple:
+        """(inertia_body, its inverse, the inverse's largest eigenvalue),
+        formed once per inertia."""
         cached = getattr(self, "_inv", None)
         if cached is None or cached[0] is not self.inertia_body:
-            cached = (self.inertia_body, np.linalg.inv(self.inertia_body))
-            self._inv = cached
-        return cached[1]
+            inv = np.linalg.inv(self.inertia_body)
+            cached = self._inv = (self.inertia_body, inv, float(np.abs(np.linalg.eigvalsh(inv)).max()))
+        return cached
+
+    def inverse_inertia_body(self) -> np.ndarray:
+        """(3, 3) inverse of ``inertia_body``."""
+        return self._inverse()[1]
 
     def spin_bound(self) -> float:
         """An upper bound of |ω| without forming ω: |R I⁻¹ Rᵀ L| ≤ λmax(I⁻¹)·|L|."""
-        cached = getattr(self, "_lam", None)
-        if cached is None or cached[0] is not self.inertia_body:
-            cached = (self.inertia_body, float(np.abs(np.linalg.eigvalsh(self.inverse_inertia_body())).max()))
-            self._lam = cached
         m = self.momentum
-        return cached[1] * float(np.sqrt(m @ m))
+        return self._inverse()[2] * float(np.sqrt(m @ m))
 
     def omega(self, rot: np.ndarray | None = None, mom: np.ndarray | None = None) -> np.ndarray:
         """(3,) angular velocity R I⁻¹ Rᵀ L (at ``rot`` and ``mom`` if given)."""

@@ -189,7 +189,8 @@ def replaced_rows(cut: Cut, moments: dict | None = None) -> tuple[list, list, li
     return elems, masks, lumped_m, notes, tables
 
 
-def split_replaced(cut: Cut, far_point, only=None, without=None) -> tuple[MassProperties, MassProperties]:
+def split_replaced(cut: Cut, far_point, only=None, without=None,
+                   moments: dict | None = None) -> tuple[MassProperties, MassProperties]:
     """The replaced mass shared between the interface and a point behind it
     (the rear-axle point) as a two-node bar lumps its mass: each element
     and point mass goes to the far share by ξ, its distance behind the
@@ -201,8 +202,9 @@ def split_replaced(cut: Cut, far_point, only=None, without=None) -> tuple[MassPr
              no *PART_INERTIA bodies)
     without  part IDs: everything but the elements of these parts
     (so the shares of disjoint ``only`` sets and of ``without`` their union
-    add up to the whole). Returns (interface share, far share)."""
-    elems, masks, lumped, _, tables = replaced_rows(cut)
+    add up to the whole); ``moments``: ``element_moments`` of the model, to
+    reuse over several splits. Returns (interface share, far share)."""
+    elems, masks, lumped, _, tables = replaced_rows(cut, moments)
     span = float((cut.point - np.asarray(far_point, float)) @ cut.axis)
     if not span > 0:
         raise ValueError("the far point of the mass split must lie behind the interface")

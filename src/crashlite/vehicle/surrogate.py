@@ -48,7 +48,7 @@ import numpy as np
 from ..model.mesh import Beams, Discretes, Inertias, Nodes
 from ..model.model import Model
 from .cut import ELEMENT_TABLES, Cut
-from .massprops import ReplacedMass, split_replaced
+from .massprops import ReplacedMass, element_moments, split_replaced
 from .records import id_list, record
 from .truncate import Truncated, truncate
 
@@ -308,14 +308,15 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
     own_near = {}
     near_total = near
     if near is not None and interface == "assembly":
+        moments = element_moments(full)  # once for every split
         taken: set = set()
         for sp in springs:
             parts = [int(p) for p in assemblies[sp.assembly] if int(p) not in taken]
             taken.update(parts)
-            share = split_replaced(cut, mass.axle_points, only=parts)[0]
+            share = split_replaced(cut, mass.axle_points, only=parts, moments=moments)[0]
             if share.mass > 0:
                 own_near[sp.assembly] = (node(share.cog), share)
-        near = split_replaced(cut, mass.axle_points, without=taken)[0]
+        near = split_replaced(cut, mass.axle_points, without=taken, moments=moments)[0]
     f_id = node(near.cog) if near is not None and near.mass > 0 else None
     front_ids = [node(s.front) for s in springs]
     rear_ids = [node(s.rear) for s in springs]

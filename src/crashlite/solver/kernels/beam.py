@@ -12,6 +12,8 @@ order (race-free, thread-count independent).
 import numpy as np
 from numba import njit, prange
 
+from .rigid import rotation_entries
+
 
 @njit(cache=True, inline="always")
 def _vee_skew(d):
@@ -106,27 +108,9 @@ def energy_step6(gf_old, gf, gd_old, gd, elem_energy):
 
 @njit(cache=True)
 def _turn_node(rot, w, i, dt):
-    """R_i ← exp(dt·ω_i)·R_i (Rodrigues, applied column by column: no
-    temporary arrays per node)."""
-    px = dt * w[i, 0]
-    py = dt * w[i, 1]
-    pz = dt * w[i, 2]
-    ang = np.sqrt(px * px + py * py + pz * pz)
-    if ang == 0.0:
-        return
-    kx, ky, kz = px / ang, py / ang, pz / ang
-    s = np.sin(ang)
-    sh = np.sin(0.5 * ang)
-    c = 2.0 * sh * sh  # 1 − cos(ang) without cancellation at small angles
-    r00 = 1.0 - c * (ky * ky + kz * kz)
-    r01 = -s * kz + c * kx * ky
-    r02 = s * ky + c * kx * kz
-    r10 = s * kz + c * kx * ky
-    r11 = 1.0 - c * (kx * kx + kz * kz)
-    r12 = -s * kx + c * ky * kz
-    r20 = -s * ky + c * kx * kz
-    r21 = s * kx + c * ky * kz
-    r22 = 1.0 - c * (kx * kx + ky * ky)
+    """R_i ← exp(dt·ω_i)·R_i, applied column by column (kernels.rigid's
+    Rodrigues entries: no temporary arrays per node)."""
+    r00, r01, r02, r10, r11, r12, r20, r21, r22 = rotation_entries(dt * w[i, 0], dt * w[i, 1], dt * w[i, 2])
     for j in range(3):
         a0, a1, a2 = rot[i, 0, j], rot[i, 1, j], rot[i, 2, j]
         rot[i, 0, j] = r00 * a0 + r01 * a1 + r02 * a2

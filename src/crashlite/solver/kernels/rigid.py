@@ -95,27 +95,31 @@ def body_omega(rot, inv_i, mom, out):
         out[i] = rot[i, 0] * b0 + rot[i, 1] * b1 + rot[i, 2] * b2
 
 
+@njit(cache=True, inline="always")
+def rotation_entries(p0, p1, p2):
+    """The nine entries (row by row) of the rotation matrix of the rotation
+    vector (p0, p1, p2): I + sin·K + (1 − cos)·K², K the cross-product
+    matrix of the unit axis, 1 − cos as 2 sin²(½θ) (no cancellation at small
+    angles). Scalars only: kernels apply it without temporary arrays."""
+    angle = math.sqrt(p0 * p0 + p1 * p1 + p2 * p2)
+    if angle < 1e-300:
+        return 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0
+    k0, k1, k2 = p0 / angle, p1 / angle, p2 / angle
+    s = math.sin(angle)
+    sh = math.sin(0.5 * angle)
+    c = 2.0 * sh * sh
+    return (1.0 - c * (k1 * k1 + k2 * k2), -s * k2 + c * k0 * k1, s * k1 + c * k0 * k2,
+            s * k2 + c * k0 * k1, 1.0 - c * (k0 * k0 + k2 * k2), -s * k0 + c * k1 * k2,
+            -s * k1 + c * k0 * k2, s * k0 + c * k1 * k2, 1.0 - c * (k0 * k0 + k1 * k1))
+
+
 @njit(cache=True)
 def rodrigues(p0, p1, p2, out):
     """out (3, 3) = the rotation matrix of the rotation vector (p0, p1, p2)."""
-    angle = math.sqrt(p0 * p0 + p1 * p1 + p2 * p2)
+    r = rotation_entries(p0, p1, p2)
     for i in range(3):
         for j in range(3):
-            out[i, j] = 1.0 if i == j else 0.0
-    if angle < 1e-300:
-        return
-    k0, k1, k2 = p0 / angle, p1 / angle, p2 / angle
-    s, c = math.sin(angle), 1.0 - math.cos(angle)
-    # I + sin·K + (1 − cos)·K², K the cross-product matrix of k, K² = k kᵀ − I
-    out[0, 0] += c * (k0 * k0 - 1.0)
-    out[1, 1] += c * (k1 * k1 - 1.0)
-    out[2, 2] += c * (k2 * k2 - 1.0)
-    out[0, 1] += -s * k2 + c * k0 * k1
-    out[1, 0] += s * k2 + c * k0 * k1
-    out[0, 2] += s * k1 + c * k0 * k2
-    out[2, 0] += -s * k1 + c * k0 * k2
-    out[1, 2] += -s * k0 + c * k1 * k2
-    out[2, 1] += s * k0 + c * k1 * k2
+            out[i, j] = r[3 * i + j]
 
 
 @njit(cache=True)
