@@ -53,7 +53,8 @@ def _reduce(args) -> int:
                                                                           for p in args.axle_parts], shares=args.shares,
                          t_end=None if args.t_end is None else args.t_end / 1000.0 * _seconds(args.deck),
                          interface_mode=args.interface_mode, spring_length=args.spring_length,
-                         damping_ratio=args.damping_ratio, mass_split=args.mass_split, quiet=False)
+                         damping_ratio=args.damping_ratio, mass_split=args.mass_split, springs=args.springs,
+                         quiet=False)
     files = red.write(args.output, args.report, fmt=args.format)
     s = red.summary()["model_size"]
     print(f"wrote {files['deck']} ({s['simplified_elements']} of {s['full_elements']} elements, "
@@ -191,6 +192,9 @@ def add_commands(sub) -> None:
     r.add_argument("--damping-ratio", type=float, default=0.0, help="damping ratio of dampers beside the springs")
     r.add_argument("--mass-split", choices=("axle", "cog"), default="axle",
                    help="replaced mass shared between interface and rear body along the axis, or all at its CoG")
+    r.add_argument("--springs", choices=("axle", "relief"), default="axle",
+                   help="the K the springs share: step 3's, borne at the rear axle (the paper), or the replaced "
+                        "structure's under inertia relief (held by its own mass, as in the crash)")
     r.add_argument("--format", choices=("fixed", "long", "i10", "free"), default="fixed")
     r.set_defaults(func=_reduce)
     w = vsub.add_parser("verify", formatter_class=fmt,

@@ -32,10 +32,11 @@ def test_full_car_is_a_plausible_us_ncap_crash(study):
     deceleration (rear seats, CFC 60) peak 30–60 g, dynamic crush
     400–750 mm, the cell stopped within the run, energy error < 3 %,
     hourglass < 10 % of the internal energy, the front structure (bumper,
-    crash boxes, rails, radiator support) taking most of the energy, 95 %
-    of the passenger cell's shells below 1 % plastic strain (the floor,
-    hinge pillars and heel kick do yield: README), the B-pillars with under
-    1 % of their area beyond 0.2 % and nowhere 0.5 %."""
+    crash boxes, rails, radiator support) taking most of the energy, and
+    the passenger cell nearly elastic: 99 % of its shells below 1 % plastic
+    strain, under 6 % of its area beyond 0.2 %, nowhere 3 % (the largest
+    values lie at the door hinges and in the toe pan: README), the B-pillars
+    with under 1 % of their area beyond 0.2 % and nowhere 0.5 %."""
     r = _results(study, "full")
     deck = read_deck(study.out / "usncap.k")
     t = r["time"]
@@ -56,7 +57,7 @@ def test_full_car_is_a_plausible_us_ncap_crash(study):
     front = sum(e for p, e in ie.items() if names[p].startswith(("bumper", "crash box", "front rail", "radiator")))
     assert front > 0.5 * sum(ie.values())
     cell = cell_plastic_strain(read_deck(study.out / "car.k"), study.out / "full")
-    assert cell["p95"] < 0.01
+    assert cell["p99"] < 0.01 and cell["yielded_area_percent"] < 6.0 and cell["max"] < 0.03
     for side in ("left", "right"):  # the B-pillars stay elastic but for a trace
         pillar = cell["parts"][f"B-pillar {side}"]
         assert pillar["yielded_area_percent"] < 1.0 and pillar["max"] < 0.005

@@ -17,9 +17,20 @@ and a latch), heel kick, rear floor on the rear rails, rigid rear axle
 between the rear rails, rear side panels, C-pillars, rear window, tail cross member,
 rear panel.
 
+The passenger cell is built to stay nearly elastic in a 56 km/h full-width
+crash (the premise of the simplified vehicle): the rail extension steps down
+to the floor longitudinal in two stages; the toe pan and the front end of
+the floor longitudinal, where that step turns the rail's load, are thicker
+and stronger than the floor behind; torque boxes under the floor take part
+of it out to the sills, whose front ends are closed; the floor longitudinals
+run on under the rear rails' front ends (the kick-up), and the heel kick is
+closed by the rear seat cross member, which also takes the tunnel's end; the
+doors' hinge ends are reinforced and their hinges and latches are weld
+patches. The engine's rear face leaves 120 mm to the firewall.
+
 Joints: pieces that touch share their nodes (the lattice is conforming);
 the doors are the only separate bodies (5 mm outboard of the body side),
-held by two hinges and a latch (*CONSTRAINED_SPOTWELD pairs).
+held by two hinges and a latch (patches of *CONSTRAINED_SPOTWELD pairs).
 """
 
 from __future__ import annotations
@@ -31,6 +42,7 @@ from .lattice import Plate, Ruled, Tube
 
 DOOR_GAP = 5.0  # [mm] door inner panel to body side
 DOOR_DEPTH = 80.0  # [mm] door box, inner panel to outer skin
+HINGE_REACH = 40.0  # [mm] half the height of a hinge or latch plate (its weld patch)
 
 
 @dataclass(frozen=True)
@@ -117,12 +129,19 @@ def parts(engine_mass: float = 170.0, axle_mass: float = 73.0) -> list[PartDef]:
     add("bumper beam", "bumper beam", "MS1200", 1.6, (_by(-680.0, 680.0, 760.0, 830.0, 390.0, 500.0),))
     for side, s in _sides():
         y0, y1 = _y(s, 410.0, 490.0)
-        add(f"crash box {side}", f"crash box {side}", "DP600", 1.5, (_bx(610.0, 760.0, y0, y1, 390.0, 500.0),))
+        add(f"crash box {side}", f"crash box {side}", "DP600", 1.2, (_bx(610.0, 760.0, y0, y1, 390.0, 500.0),))
         add(f"front rail {side}", f"front rail {side}", "DP600", 1.6, (_bx(-250.0, 610.0, y0, y1, 390.0, 500.0),))
         # behind the firewall the rail goes on as a tall hat on the floor (the toe-board box), stiffer than
         # the rail so that the rail folds in front of it
+        # it steps down in two stages so that no section has to turn the whole rail load through the
+        # height between rail and floor longitudinal at once
         add(f"rail extension {side}", f"front rail {side}", "DP800", 2.0,
-            (_hat_x(-550.0, -250.0, y0, y1, 250.0, 500.0), _px(-550.0, y0, y1, 250.0, 500.0)))
+            (_hat_x(-400.0, -250.0, y0, y1, 250.0, 500.0), _px(-400.0, y0, y1, 350.0, 500.0),
+             _hat_x(-550.0, -400.0, y0, y1, 250.0, 350.0), _px(-550.0, y0, y1, 250.0, 350.0)))
+        # torque box: from the rail's floor longitudinal out to the sill, under the floor behind the firewall
+        t0, t1 = _y(s, 490.0, 640.0)
+        add(f"torque box {side}", f"floor {side}", "DP800", 2.0,
+            (Tube(1, t0, t1, ((-400.0, 250.0), (-400.0, 150.0), (-250.0, 150.0), (-250.0, 250.0)), closed=False),))
     add("radiator support", "radiator support", "HX340LAD", 1.2, (
         _by(-680.0, 680.0, 560.0, 610.0, 700.0, 750.0), _by(-410.0, 410.0, 560.0, 610.0, 390.0, 460.0),
         _bz(500.0, 700.0, 560.0, 610.0, 410.0, 490.0), _bz(500.0, 700.0, 560.0, 610.0, -490.0, -410.0)))
@@ -132,8 +151,8 @@ def parts(engine_mass: float = 170.0, axle_mass: float = 73.0) -> list[PartDef]:
         w0, w1 = _y(s, 490.0, 600.0)
         add(f"wheelhouse {side}", f"upper rail {side}", "DC04", 0.8, (_px(0.0, w0, w1, 390.0, 750.0),))
     add("engine and gearbox", "engine and gearbox", "rigid", 3.0, (
-        _bx(-80.0, 400.0, -300.0, 330.0, 300.0, 700.0), _px(-80.0, -300.0, 330.0, 300.0, 700.0),
-        _px(400.0, -300.0, 330.0, 300.0, 700.0)), mass=engine_mass)
+        _bx(-130.0, 350.0, -300.0, 330.0, 300.0, 700.0), _px(-130.0, -300.0, 330.0, 300.0, 700.0),
+        _px(350.0, -300.0, 330.0, 300.0, 700.0)), mass=engine_mass)
     add("engine mounts", "engine and gearbox", "HX340LAD", 3.0,
         (_pz(500.0, 100.0, 200.0, 330.0, 410.0), _pz(500.0, 100.0, 200.0, -410.0, -300.0)))
     add("firewall", "firewall", "DC04", 1.2, (
@@ -145,7 +164,7 @@ def parts(engine_mass: float = 170.0, axle_mass: float = 73.0) -> list[PartDef]:
     for side, s in _sides():
         y0, y1 = _y(s, 680.0, 760.0)
         yi, yo = s * 680.0, s * 760.0
-        add(f"hinge pillar {side}", f"A-pillar {side}", "DP800", 1.8,
+        add(f"hinge pillar {side}", f"A-pillar {side}", "PHS1500", 1.8,
             (_bz(300.0, 850.0, -330.0, -250.0, y0, y1), _pz(850.0, -330.0, -250.0, y0, y1)))
         # the A-pillar leaves the hinge pillar's rear face (top 100 mm) for the roof rail's front end
         bottom = ((-330.0, yi, 850.0), (-330.0, yo, 850.0), (-330.0, yo, 750.0), (-330.0, yi, 750.0),
@@ -153,31 +172,40 @@ def parts(engine_mass: float = 170.0, axle_mass: float = 73.0) -> list[PartDef]:
         top = ((-1150.0, yi, 1400.0), (-1150.0, yo, 1400.0), (-1150.0, yo, 1300.0), (-1150.0, yi, 1300.0),
                (-1150.0, yi, 1400.0))
         add(f"A-pillar {side}", f"A-pillar {side}", "PHS1500", 1.4, (Ruled(bottom, top, A_LENGTH, closed=True),))
+        # the sill's front end is closed by a bulkhead below the hinge pillar (beside the firewall's foot)
         add(f"sill {side}", f"door sill {side}", "DP800", 1.8,
-            (_bx(-2000.0, -250.0, *_y(s, 640.0, 760.0), 150.0, 300.0),))
+            (_bx(-2000.0, -250.0, *_y(s, 640.0, 760.0), 150.0, 300.0), _px(-250.0, *_y(s, 640.0, 760.0), 150.0, 250.0),
+             _px(-250.0, *_y(s, 680.0, 760.0), 250.0, 300.0)))
+        # the front floor (toe pan) and the front end of the floor longitudinal take the rail's load
+        # down from rail height to the floor: thicker and stronger than the floor behind them
         f0, f1 = _y(s, 110.0, 640.0)
-        add(f"floor {side}", f"floor {side}", "HX340LAD", 1.0, (_pz(250.0, -2000.0, -250.0, f0, f1),))
+        add(f"toe pan {side}", f"floor {side}", "DP800", 1.6, (_pz(250.0, -800.0, -250.0, f0, f1),))
+        add(f"floor {side}", f"floor {side}", "DP600", 1.2, (_pz(250.0, -2000.0, -800.0, f0, f1),))
         l0, l1 = _y(s, 410.0, 490.0)
+        add(f"floor longitudinal front {side}", f"floor {side}", "PHS1500", 2.0, (
+            _hat_x(-800.0, -250.0, l0, l1, 250.0, 150.0), _px(-250.0, l0, l1, 150.0, 250.0)))
         add(f"floor longitudinal {side}", f"floor {side}", "DP800", 1.8, (
-            _hat_x(-2000.0, -250.0, l0, l1, 250.0, 150.0), _px(-250.0, l0, l1, 150.0, 250.0),
-            _px(-2000.0, l0, l1, 150.0, 250.0)))
+            _hat_x(-2000.0, -800.0, l0, l1, 250.0, 150.0), _px(-2000.0, l0, l1, 150.0, 250.0)))
         ya, yb = s * 110.0, s * 640.0
         add(f"seat cross members {side}", f"floor {side}", "DP600", 1.5, tuple(
             Tube(1, ya, yb, ((xa, 250.0), (xa, 300.0), (xb, 300.0), (xb, 250.0)), closed=False)
             for xa, xb in ((-1230.0, -1150.0), (-1700.0, -1600.0))))
-    add("tunnel", "tunnel", "DP600", 1.5, (
+    add("tunnel", "tunnel", "DP800", 1.5, (
         Tube(0, -2000.0, -250.0, ((110.0, 250.0), (110.0, 460.0), (-110.0, 460.0), (-110.0, 250.0)), closed=False),
         _px(-2000.0, -110.0, 110.0, 350.0, 460.0)))
-    add("exhaust", "exhaust", "X2CrTi12", 1.2, (_bx(-1950.0, -80.0, -40.0, 40.0, 300.0, 350.0),))
+    add("exhaust", "exhaust", "X2CrTi12", 1.2, (_bx(-1850.0, -130.0, -40.0, 40.0, 300.0, 350.0),))
     add("exhaust hangers", "exhaust", "DC04", 1.0, (_py(0.0, -900.0, -800.0, 350.0, 460.0),
                                                     _py(0.0, -1700.0, -1600.0, 350.0, 460.0)))
     for side, s in _sides():
         shift = (0.0, s * (760.0 - 680.0 + DOOR_GAP), 0.0)  # door inner panel DOOR_GAP outboard of y = 760
         yi, yo = s * 680.0, s * 760.0
         y0, y1 = _y(s, 680.0, 760.0)
+        inner = ((yo, 300.0), (yi, 300.0), (yi, 850.0), (yo, 850.0))
+        # the hinge end of the door inner is a reinforcement that spreads the hinges' load into the door
+        add(f"door hinge reinforcement {side}", f"door {side}", "DP600", 2.0, (
+            Tube(0, -450.0, -330.0, inner, closed=False), _px(-330.0, y0, y1, 300.0, 850.0)), shift=shift)
         add(f"door inner {side}", f"door {side}", "DC04", 1.0, (
-            Tube(0, -1450.0, -330.0, ((yo, 300.0), (yi, 300.0), (yi, 850.0), (yo, 850.0)), closed=False),
-            _px(-330.0, y0, y1, 300.0, 850.0), _px(-1450.0, y0, y1, 300.0, 850.0)), shift=shift)
+            Tube(0, -1450.0, -450.0, inner, closed=False), _px(-1450.0, y0, y1, 300.0, 850.0)), shift=shift)
         add(f"door outer {side}", f"door {side}", "DC04", 0.7, (_py(yo, -1450.0, -330.0, 300.0, 850.0),), shift=shift)
     add("windshield", "windshield", "glass", 4.5, (Ruled(((-330.0, -680.0, 850.0), (-330.0, 680.0, 850.0)),
                                                          ((-1150.0, -680.0, 1400.0), (-1150.0, 680.0, 1400.0)),
@@ -195,11 +223,19 @@ def parts(engine_mass: float = 170.0, axle_mass: float = 73.0) -> list[PartDef]:
             (_bz(300.0, 1300.0, -1530.0, -1450.0, *_y(s, 680.0, 760.0)),))
 
     # --- rear structure ------------------------------------------------------------------------
-    add("heel kick", "rear floor", "DC04", 1.0, (_px(-2000.0, -640.0, 640.0, 250.0, 350.0),))
-    add("rear floor", "rear floor", "DC04", 0.8, (_pz(350.0, -3000.0, -2000.0, -760.0, 760.0),))
+    # heel kick: the riser between floor and rear floor, closed by the rear seat cross member in front of
+    # it, which also takes the tunnel's rear end
+    add("heel kick", "rear floor", "DP600", 1.2, (_px(-2000.0, -640.0, 640.0, 250.0, 350.0),))
+    add("rear seat cross member", "rear floor", "DP600", 1.5,
+        (Tube(1, -640.0, 640.0, ((-2000.0, 350.0), (-1920.0, 350.0), (-1920.0, 250.0)), closed=False),))
+    add("rear floor", "rear floor", "HX340LAD", 0.9, (_pz(350.0, -3000.0, -2000.0, -760.0, 760.0),))
     for side, s in _sides():
-        add(f"rear rail {side}", "rear rails", "DP600", 1.6,
-            (_hat_x(-3000.0, -2000.0, *_y(s, 410.0, 490.0), 350.0, 250.0),))
+        y0, y1 = _y(s, 410.0, 490.0)
+        add(f"rear rail {side}", "rear rails", "DP600", 1.6, (_hat_x(-3000.0, -2000.0, y0, y1, 350.0, 250.0),))
+        # the rear rail's kick-up: the floor longitudinal goes on under the rail's front end, so the rear
+        # structure's load passes from one to the other over 300 mm instead of at a corner
+        add(f"rear rail kick {side}", "rear rails", "DP800", 1.8,
+            (_hat_x(-2300.0, -2000.0, y0, y1, 250.0, 150.0), _px(-2300.0, y0, y1, 150.0, 250.0)))
     add("rear axle", "rear axle", "rigid", 3.0, (
         Tube(1, -410.0, 410.0, ((-2520.0, 250.0), (-2440.0, 250.0), (-2440.0, 300.0), (-2520.0, 300.0))),),
         mass=axle_mass)
@@ -273,10 +309,10 @@ class Hinge:
 def door_joints() -> list[Hinge]:
     out = []
     for side, s in _sides():
-        for name, pillar, x, z in (("upper hinge", "hinge pillar", -330.0, 700.0),
-                                   ("lower hinge", "hinge pillar", -330.0, 450.0),
-                                   ("latch", "B-pillar", -1450.0, 650.0)):
-            out.append(Hinge(f"door {side} {name}", f"door inner {side}", (x, s * 680.0, z), f"{pillar} {side}",
+        for name, door, pillar, x, z in (("upper hinge", "door hinge reinforcement", "hinge pillar", -330.0, 700.0),
+                                         ("lower hinge", "door hinge reinforcement", "hinge pillar", -330.0, 450.0),
+                                         ("latch", "door inner", "B-pillar", -1450.0, 650.0)):
+            out.append(Hinge(f"door {side} {name}", f"{door} {side}", (x, s * 680.0, z), f"{pillar} {side}",
                              (x, s * 760.0, z)))
     return out
 

@@ -14,7 +14,7 @@ mass and centre of gravity, and adds what the method needs, all by name:
 - *DATABASE_HISTORY_NODE_ID: engine top, vehicle CoG, rear seats, B-pillar
   sills;
 - one *CONTACT_AUTOMATIC_SINGLE_SURFACE over the vehicle; door hinges and
-  latches as *CONSTRAINED_SPOTWELD.
+  latches as patches of *CONSTRAINED_SPOTWELD pairs across the door gap.
 
 Units mm–t–s–N–MPa. No controls, walls or initial velocity: the load cases
 (``vehicle.loadcases``) include the car deck and add those.
@@ -211,13 +211,19 @@ def _outputs(v: GenericVehicle, mesh, xyz, parts, cog_x, cog_z, friction) -> Non
                              ssid=vehicle, sstyp=2, fs=friction, fd=friction))
     welds = []
     for j in body.door_joints():
+        # a hinge or latch is a patch: every door node within HINGE_REACH of it welded to the body
+        # node opposite (one welded node pair would concentrate the door's load in two elements)
         door = mesh.nodes_of([j.door_part])
+        bodyn = mesh.nodes_of([j.body_part])
         shift = np.asarray(parts[mesh.part_index(j.door_part)].shift, float)
-        a = _nearest(xyz, door, np.asarray(j.door) + shift)
-        b = _nearest(xyz, mesh.nodes_of([j.body_part]), j.body)
-        if abs(np.linalg.norm(xyz[a] - xyz[b]) - body.DOOR_GAP) > 1e-6:
+        a0 = _nearest(xyz, door, np.asarray(j.door) + shift)
+        near = door[np.linalg.norm(xyz[door] - xyz[a0], axis=1) <= body.HINGE_REACH]
+        gap = shift / np.linalg.norm(shift) * body.DOOR_GAP
+        pairs = [(a, _nearest(xyz, bodyn, xyz[a] - gap)) for a in near]
+        pairs = [(a, b) for a, b in pairs if abs(np.linalg.norm(xyz[a] - xyz[b]) - body.DOOR_GAP) <= 1e-6]
+        if not any(a == a0 for a, _ in pairs):
             raise ValueError(f"{j.name}: door and body nodes are not opposite each other")
-        welds.append((len(welds) + 1, ids[a], ids[b]))
+        welds += [(len(welds) + 1 + k, ids[a], ids[b]) for k, (a, b) in enumerate(pairs)]
     w = np.array(welds, np.int64)
     m.keywords.append(record("CONSTRAINED_SPOTWELD_ID", rows={"wid": w[:, 0], "n1": w[:, 1], "n2": w[:, 2]}))
     hist = []

@@ -12,7 +12,9 @@ binout or ASCII folders), and runs:
 2. mass, CoG and inertia of the replaced structure, the rear-axle point
    (``massprops``);
 3. the longitudinal stiffness K and the transverse and roll stiffness of
-   the replaced structure (``stiffness``, ``surrogate.transverse_stiffness``);
+   the replaced structure (``stiffness``, ``surrogate.transverse_stiffness``),
+   and K under inertia relief (``relief``), which the springs take with
+   ``springs="relief"`` instead of the paper's axle-borne K;
 4. the surrogate deck (``surrogate``).
 
 ``Reduction.write`` writes the simplified deck, ``reduction.json`` with
@@ -33,6 +35,7 @@ from ..model.model import Model
 from . import loadpaths as lp
 from .cut import Cut, cut_behind
 from .massprops import ReplacedMass, replaced_mass
+from .relief import relieved_stiffness
 from .stiffness import StiffnessResult, longitudinal_stiffness, transverse_stiffness
 from .surrogate import Surrogate, build_surrogate
 
@@ -53,6 +56,8 @@ class Reduction:
     surrogate: Surrogate
     seconds: dict = field(default_factory=dict)  # step -> wall time [s]
     notes: list = field(default_factory=list)
+    relief: StiffnessResult | None = None  # K under inertia relief
+    springs: str = "axle"  # the K the springs share: "axle" (the paper's step 3) or "relief"
 
     def summary(self) -> dict:
         full = self.cut.model
@@ -68,7 +73,9 @@ class Reduction:
                             "max_deviation_percent_points": {k: 100 * v for k, v in self.share_deviation.items()}},
             "step2_mass": {**self.mass.table(), "inertia": self.mass.structure.inertia.tolist()},
             "step3_stiffness": {**self.stiffness.table(), "transverse": dict(self.transverse),
-                                "static_model": dict(self.stiffness.elements), "dofs": self.stiffness.n_dofs},
+                                "static_model": dict(self.stiffness.elements), "dofs": self.stiffness.n_dofs,
+                                "inertia_relief": None if self.relief is None else self.relief.table(),
+                                "springs_from": self.springs},
             "step4_surrogate": self.surrogate.summary(),
             "model_size": {"full_elements": n_full, "simplified_elements": n_sur,
                            "element_reduction_percent": 100.0 * (1 - n_sur / n_full) if n_full else None,
@@ -137,7 +144,7 @@ def _support(model: Model, support):
 def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.0, 0.0), assemblies=None,
                    support=None, axle_parts=None, shares="combined", t_end: float | None = None,
                    interface_mode: str = "rigid", spring_length: float = 100.0, damping_ratio: float = 0.0,
-                   mass_split: str = "axle", quiet: bool = True) -> Reduction:
+                   mass_split: str = "axle", springs: str = "axle", quiet: bool = True) -> Reduction:
     """Steps 1–4 (module docstring).
 
     deck        the full vehicle deck (path or Model)
@@ -151,6 +158,8 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     shares      "combined" (mean over the load cases) or the name of one load case
     t_end       ignore section forces after this time (e.g. the rebound)
     mass_split  "axle" or "cog" (``surrogate.build_surrogate``)
+    springs     the K the springs share: "axle", the paper's step 3 (borne at the rear axle), or
+                "relief", the replaced structure held by its own inertia (``relief``)
     """
     from ..keyword.reader import read_deck
 
@@ -208,17 +217,21 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     say(f"step 2: replaced mass {mass.structure.mass:.6g} at {np.round(mass.structure.cog, 1).tolist()}")
     # step 3
     t0 = time.perf_counter()
+    if springs not in ("axle", "relief"):
+        raise ValueError(f"springs={springs!r}: 'axle' or 'relief'")
     k = longitudinal_stiffness(cut, sup)
     trans = transverse_stiffness(cut, sup)
+    rel = relieved_stiffness(cut)
     seconds["step 3 stiffness"] = time.perf_counter() - t0
     say(f"step 3: K = {k.stiffness:.6g} (F {k.force:g}, u {k.displacement:.4g}); shear {trans['shear']:.4g}, "
-        f"roll {trans['roll']:.4g}")
+        f"roll {trans['roll']:.4g}; under inertia relief K = {rel.stiffness:.6g}")
     # step 4
     t0 = time.perf_counter()
-    sur = build_surrogate(cut, assemblies, used, k.stiffness, mass, trans, interface=interface_mode,
+    k_springs = rel.stiffness if springs == "relief" else k.stiffness
+    sur = build_surrogate(cut, assemblies, used, k_springs, mass, trans, interface=interface_mode,
                           spring_length=spring_length, damping_ratio=damping_ratio, mass_split=mass_split)
     seconds["step 4 surrogate"] = time.perf_counter() - t0
     say(f"step 4: {len(sur.springs)} springs, {len(sur.model.shells)} of {len(model.shells)} shells kept")
-    notes += mass.notes + k.notes
+    notes += mass.notes + k.notes + [n for n in rel.notes if n not in k.notes]
     return Reduction(str(getattr(model, "source", "") or ""), paths, used, basis, deviation, cut, mass, k, trans,
-                     sur, seconds, notes)
+                     sur, seconds, notes, rel, springs)

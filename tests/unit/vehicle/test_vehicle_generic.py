@@ -106,6 +106,29 @@ def test_interface_position_moves_the_sections():
     assert "A-pillar left" in v.sections and "roof" not in v.sections
 
 
+
+@pytest.mark.parametrize("mesh", [COARSE, 20.0])
+def test_door_joints_are_weld_patches_across_the_gap(mesh):
+    """Each hinge and latch welds every door node within HINGE_REACH of it
+    to the body node straight across the DOOR_GAP: a patch of the same
+    height whatever the mesh (one welded pair would put the door's load
+    into two elements)."""
+    from crashlite.vehicle import body
+
+    m = generic_vehicle(mesh).model
+    w = m.find("CONSTRAINED_SPOTWELD")[0].rows
+    a, b = m.nodes.xyz[m.node_index(w["n1"])], m.nodes.xyz[m.node_index(w["n2"])]
+    d = a - b
+    assert np.allclose(np.abs(d[:, 1]), body.DOOR_GAP) and np.allclose(d[:, [0, 2]], 0.0)
+    joints = body.door_joints()
+    nearest = np.argmin([np.linalg.norm(b - np.asarray(j.body, float), axis=1) for j in joints], axis=0)
+    for k, j in enumerate(joints):
+        patch = b[nearest == k]
+        assert len(patch) >= 2, j.name
+        span = patch[:, 2].max() - patch[:, 2].min()
+        assert 1.0 * body.HINGE_REACH <= span <= 2.0 * body.HINGE_REACH + 1e-9, j.name
+    assert len(w["n1"]) == len(np.unique(w["n1"]))
+
 def test_mesh_is_one_conforming_body(car):
     """Every part is tied into the body through shared nodes, the doors
     through their hinge and latch welds; no two nodes coincide; no sliver
