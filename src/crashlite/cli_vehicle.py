@@ -192,9 +192,9 @@ def add_commands(sub) -> None:
     r.add_argument("--damping-ratio", type=float, default=0.0, help="damping ratio of dampers beside the springs")
     r.add_argument("--mass-split", choices=("axle", "cog"), default="axle",
                    help="replaced mass shared between interface and rear body along the axis, or all at its CoG")
-    r.add_argument("--springs", choices=("axle", "relief"), default="axle",
-                   help="the K the springs share: step 3's, borne at the rear axle (the paper), or the replaced "
-                        "structure's under inertia relief (held by its own mass, as in the crash)")
+    r.add_argument("--springs", choices=("relief", "axle"), default="relief",
+                   help="the K the springs share: the replaced structure's under inertia relief (held by its own "
+                        "mass, as in the crash), or step 3's, borne at the rear axle (the paper)")
     r.add_argument("--format", choices=("fixed", "long", "i10", "free"), default="fixed")
     r.set_defaults(func=_reduce)
     w = vsub.add_parser("verify", formatter_class=fmt,

@@ -13,8 +13,8 @@ binout or ASCII folders), and runs:
    (``massprops``);
 3. the longitudinal stiffness K and the transverse and roll stiffness of
    the replaced structure (``stiffness``, ``surrogate.transverse_stiffness``),
-   and K under inertia relief (``relief``), which the springs take with
-   ``springs="relief"`` instead of the paper's axle-borne K;
+   and K under inertia relief (``relief``), which the springs share by
+   default (``springs="axle"``: the paper's axle-borne K);
 4. the surrogate deck (``surrogate``).
 
 ``Reduction.write`` writes the simplified deck, ``reduction.json`` with
@@ -57,7 +57,12 @@ class Reduction:
     seconds: dict = field(default_factory=dict)  # step -> wall time [s]
     notes: list = field(default_factory=list)
     relief: StiffnessResult | None = None  # K under inertia relief
-    springs: str = "axle"  # the K the springs share: "axle" (the paper's step 3) or "relief"
+    springs: str = "relief"  # the K the springs share: "relief" or "axle" (the paper's step 3)
+
+    @property
+    def spring_stiffness(self) -> float:
+        """The K the springs share (``springs``)."""
+        return self.relief.stiffness if self.springs == "relief" and self.relief is not None else self.stiffness.stiffness
 
     def summary(self) -> dict:
         full = self.cut.model
@@ -144,7 +149,7 @@ def _support(model: Model, support):
 def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.0, 0.0), assemblies=None,
                    support=None, axle_parts=None, shares="combined", t_end: float | None = None,
                    interface_mode: str = "rigid", spring_length: float = 100.0, damping_ratio: float = 0.0,
-                   mass_split: str = "axle", springs: str = "axle", quiet: bool = True) -> Reduction:
+                   mass_split: str = "axle", springs: str = "relief", quiet: bool = True) -> Reduction:
     """Steps 1–4 (module docstring).
 
     deck        the full vehicle deck (path or Model)
@@ -158,8 +163,8 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     shares      "combined" (mean over the load cases) or the name of one load case
     t_end       ignore section forces after this time (e.g. the rebound)
     mass_split  "axle" or "cog" (``surrogate.build_surrogate``)
-    springs     the K the springs share: "axle", the paper's step 3 (borne at the rear axle), or
-                "relief", the replaced structure held by its own inertia (``relief``)
+    springs     the K the springs share: "relief" (default), the replaced structure held by its own
+                inertia as in the crash (``relief``), or "axle", the paper's step 3 (borne at the rear axle)
     """
     from ..keyword.reader import read_deck
 

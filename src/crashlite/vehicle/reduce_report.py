@@ -44,6 +44,12 @@ def reduction_page(r) -> str:
                       [[num(t3["force"]), num(t3["displacement"]), num(t3["stiffness"], 6), num(tr["lateral"]),
                         num(tr["vertical"]), num(tr["roll"])]]))
     body.append(f"<p class=\"note\">Linear static model: {esc(t3['static_model'])}, {t3['dofs']} DOFs.</p>")
+    ir = t3.get("inertia_relief")
+    if ir:
+        body.append(f"<p>Under inertia relief (the structure held by its own mass, as in the crash): "
+                    f"displacement {num(ir['displacement'])} against its mean motion, longitudinal stiffness "
+                    f"{num(ir['stiffness'], 6)}. The springs share the "
+                    f"{'inertia-relief' if t3['springs_from'] == 'relief' else 'axle-borne'} K.</p>")
     body.append("<h2>Step 4: the surrogate</h2>")
     sur = s["step4_surrogate"]
     body.append(table(["assembly", "share [%]", "stiffness", "damping", "direction", "interface nodes"],

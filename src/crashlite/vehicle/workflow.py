@@ -55,7 +55,8 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
     red.write(out / "simplified.k", out)
     seconds["reduction"] = time.perf_counter() - t0
     s = red.summary()
-    say(f"  steps 1-4: K = {red.stiffness.stiffness:.5g} N/mm, replaced {red.mass.structure.mass * 1e3:.1f} kg, "
+    say(f"  steps 1-4: K = {red.stiffness.stiffness:.5g} N/mm borne at the axle, {red.relief.stiffness:.5g} under "
+        f"inertia relief (springs: {red.springs}), replaced {red.mass.structure.mass * 1e3:.1f} kg, "
         f"{len(red.surrogate.springs)} springs; {s['model_size']['simplified_elements']} of "
         f"{s['model_size']['full_elements']} elements kept")
     sim_deck = usncap_deck(out / "simplified.k", out / "usncap_simplified.k", speed_kmh=speed_kmh, end_time=end_time)
@@ -151,7 +152,8 @@ def paper_study(out, mesh_size: float = 38.0, barrier_size: float = 50.0, usncap
     simplified = out / "simplified.k"
     red.write(simplified, out)
     s = red.summary()
-    say(f"  steps 1-4 ({s['shares_used']['basis']} shares): K = {red.stiffness.stiffness:.5g} N/mm, "
+    say(f"  steps 1-4 ({s['shares_used']['basis']} shares): K = {red.stiffness.stiffness:.5g} N/mm borne at the "
+        f"axle, {red.relief.stiffness:.5g} under inertia relief (springs: {red.springs}), "
         f"{s['model_size']['simplified_elements']} of {s['model_size']['full_elements']} elements kept")
     decks["usncap simplified"] = usncap_deck(simplified, out / "usncap_simplified.k", end_time=usncap_end)
     go("usncap simplified", decks["usncap simplified"])
