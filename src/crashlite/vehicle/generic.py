@@ -70,11 +70,14 @@ def generic_vehicle(mesh_size: float = 25.0, mass: float = 1263.0, cog_x: float 
     """The generic compact car with elements of about ``mesh_size`` mm,
     total ``mass`` [kg] with its CoG at (``cog_x``, 0, ``cog_z``) [mm]
     (front axle at x = 0, ground at z = 0), cross sections at
-    ``interface_x`` [mm]; rigid engine-gearbox and rear-axle masses [kg];
+    ``interface_x`` [mm] (moved to the middle of the element row behind it
+    where it falls on a row of nodes: ``GenericVehicle.interface_x``);
+    rigid engine-gearbox and rear-axle masses [kg];
     crash-box bead depth ``trigger`` [mm]; contact friction."""
     parts = body.parts(engine_mass, axle_mass)
     mesh = build_mesh(parts, mesh_size, trigger)
     xyz = np.round(mesh.xyz, 5)  # short, exact texts in the deck; moves nodes < 1e-5 mm
+    interface_x = _between_rows(xyz[:, 0], float(interface_x))
     m = Model()
     n_nodes, n_el = len(xyz), len(mesh.quads)
     m.nodes = Nodes(np.arange(1, n_nodes + 1, dtype=np.int64), xyz, np.zeros(n_nodes, np.int8),
@@ -94,6 +97,17 @@ def generic_vehicle(mesh_size: float = 25.0, mass: float = 1263.0, cog_x: float 
     _sets(v, parts, mesh)
     _outputs(v, mesh, xyz, parts, cog_x, cog_z, friction)
     return v
+
+
+def _between_rows(x: np.ndarray, at: float) -> float:
+    """``at``, or where it lies on a row of nodes (a section there would cut
+    none of the elements that end on it), the middle of the element row
+    behind it."""
+    rows = np.unique(x)
+    k = int(np.argmin(np.abs(rows - at)))
+    if abs(rows[k] - at) > 1e-6 * max(1.0, abs(at)) or k == 0:
+        return at
+    return float(0.5 * (rows[k] + rows[k - 1]))
 
 
 def _materials_parts(m: Model, parts, mesh) -> None:

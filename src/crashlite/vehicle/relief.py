@@ -36,8 +36,7 @@ from .cut import Cut
 from .massprops import _given_inertia, element_moments, node_indices
 from .stiffness import StiffnessResult, build_static, solve_named
 
-_NODES = {"shells": lambda t: t.nodes, "solids": lambda t: t.nodes, "beams": lambda t: t.nodes[:, :2],
-          "discretes": lambda t: t.nodes}
+_NODES = {"shells": lambda t: t.nodes, "solids": lambda t: t.nodes, "beams": lambda t: t.nodes[:, :2]}
 
 
 def replaced_node_masses(cut: Cut) -> tuple[np.ndarray, list]:
@@ -143,10 +142,7 @@ def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interfac
     inertia = -m[carry, None] * (acc + np.cross(alpha, xyz[carry] - c))
     for n, v in zip(carry.tolist(), inertia):
         loads[n] = np.concatenate([v, np.zeros(3)])
-    tied = np.zeros(ls.n, bool)
-    for g_nodes, _ in ls._groups:
-        tied[g_nodes] = True
-    cand = np.flatnonzero(ls.in_structure & ~tied)
+    cand = np.flatnonzero(ls.in_structure & ~ls.tied())  # (a held node of a rigid group would hold the group)
     for n, dofs in _support_321(xyz, cand):
         ls.fix([n], dofs)
     (sol,) = solve_named(ls, model, [loads])

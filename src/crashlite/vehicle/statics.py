@@ -146,6 +146,13 @@ class LinearStatic:
         self._groups.append((nodes, idx))
         return idx
 
+    def tied(self) -> np.ndarray:
+        """(n,) bool: model nodes that belong to a rigid group."""
+        out = np.zeros(self.n, bool)
+        for nodes, _ in self._groups:
+            out[nodes] = True
+        return out
+
     def position(self, node: int) -> np.ndarray:
         """(3,) coordinates of a model node or a master."""
         return self.xyz[node].copy() if node < self.n else np.array(self._master_xyz[node - self.n])

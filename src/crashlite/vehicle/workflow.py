@@ -50,7 +50,7 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
     seconds["full run"] = time.perf_counter() - t0
     say(f"  full run: {full.cycles} cycles in {full.wall_time:.1f} s")
     t0 = time.perf_counter()
-    red = reduce_vehicle(car, [out / "full"], load_cases=["US NCAP"], interface=interface_x,
+    red = reduce_vehicle(car, [out / "full"], load_cases=["US NCAP"], interface=v.interface_x,
                          axle_parts=["rear axle"], **reduce_options)
     red.write(out / "simplified.k", out)
     seconds["reduction"] = time.perf_counter() - t0
@@ -147,7 +147,7 @@ def paper_study(out, mesh_size: float = 38.0, barrier_size: float = 50.0, usncap
     decks[first] = odb(car, "detailed", first)
     go(first, decks[first])
     red = reduce_vehicle(car, [runs["usncap full"]["results"], runs[first]["results"]],
-                         load_cases=["US NCAP", "Euro NCAP ODB"], interface=interface_x, axle_parts=["rear axle"],
+                         load_cases=["US NCAP", "Euro NCAP ODB"], interface=v.interface_x, axle_parts=["rear axle"],
                          shares=shares, **reduce_options)
     simplified = out / "simplified.k"
     red.write(simplified, out)
@@ -181,7 +181,7 @@ def paper_study(out, mesh_size: float = 38.0, barrier_size: float = 50.0, usncap
             "simplified_car_detailed_barrier_s": loop["odb simplified car, detailed barrier"],
             "barrier_reduction_percent": time_reduction(loop[first], loop["odb full car, simplified barrier"]),
             "vehicle_reduction_percent": time_reduction(loop[first], loop["odb simplified car, detailed barrier"])})
-    summary = {"mesh_size": mesh_size, "barrier_element_size": barrier_size, "interface_x": interface_x,
+    summary = {"mesh_size": mesh_size, "barrier_element_size": barrier_size, "interface_x": v.interface_x,
                "shares": s["shares_used"], "time": times,
                "runs": {k: {"loop_time_s": r["loop_time"], "cycles": r["cycles"], "elements": r["elements"]}
                         for k, r in runs.items()},

@@ -99,6 +99,19 @@ def test_sets_sections_and_history_nodes(car, reread):
     assert abs(cog[0] + 1100.0) < COARSE and abs(cog[1]) < COARSE
 
 
+def test_interface_on_a_row_of_nodes_moves_into_the_element_row_behind():
+    """x = −800 is where the toe pan meets the floor (a lattice line): a
+    section there would cut no element that ends on it, so the sections go
+    to the middle of the element row behind, and every assembly is cut."""
+    v = generic_vehicle(COARSE, interface_x=-800.0)
+    x = np.unique(v.model.nodes.xyz[:, 0])
+    k = np.searchsorted(x, -800.0)
+    assert x[k] == -800.0 and v.interface_x == pytest.approx(0.5 * (x[k] + x[k - 1]))
+    assert {r["xct"] for r in v.model.find("DATABASE_CROSS_SECTION_PLANE")} == {v.interface_x}
+    assert set(v.sections) == set(INTERFACE_ASSEMBLIES)
+    assert generic_vehicle(COARSE, interface_x=-600.0).interface_x == -600.0  # between rows: kept
+
+
 def test_interface_position_moves_the_sections():
     v = generic_vehicle(COARSE, interface_x=-1000.0)
     planes = v.model.find("DATABASE_CROSS_SECTION_PLANE")
