@@ -12,9 +12,9 @@ binout or ASCII folders), and runs:
 2. mass, CoG and inertia of the replaced structure, the rear-axle point
    (``massprops``);
 3. the longitudinal stiffness K and the transverse and roll stiffness of
-   the replaced structure (``stiffness``, ``surrogate.transverse_stiffness``),
-   and K under inertia relief (``relief``), which the springs share by
-   default (``springs="axle"``: the paper's axle-borne K);
+   the replaced structure on one factorisation (``stiffness``), and K under
+   inertia relief (``relief``), which the springs share by default
+   (``springs="axle"``: the paper's K, borne at the rear axle);
 4. the surrogate deck (``surrogate``).
 
 ``Reduction.write`` writes the simplified deck, ``reduction.json`` with
@@ -36,7 +36,7 @@ from . import loadpaths as lp
 from .cut import Cut, cut_behind
 from .massprops import ReplacedMass, replaced_mass
 from .relief import relieved_stiffness
-from .stiffness import StiffnessResult, longitudinal_stiffness, transverse_stiffness
+from .stiffness import StiffnessResult, longitudinal_stiffness
 from .surrogate import Surrogate, build_surrogate
 
 
@@ -51,8 +51,7 @@ class Reduction:
     share_deviation: dict  # load case -> max |share − used share|
     cut: Cut
     mass: ReplacedMass
-    stiffness: StiffnessResult
-    transverse: dict
+    stiffness: StiffnessResult  # with its transverse and roll stiffness
     surrogate: Surrogate
     seconds: dict = field(default_factory=dict)  # step -> wall time [s]
     notes: list = field(default_factory=list)
@@ -62,7 +61,7 @@ class Reduction:
     @property
     def spring_stiffness(self) -> float:
         """The K the springs share (``springs``)."""
-        return self.relief.stiffness if self.springs == "relief" and self.relief is not None else self.stiffness.stiffness
+        return (self.relief if self.springs == "relief" else self.stiffness).stiffness
 
     def summary(self) -> dict:
         full = self.cut.model
@@ -77,7 +76,7 @@ class Reduction:
             "shares_used": {"basis": self.share_basis, "shares_percent": {k: 100 * v for k, v in self.shares.items()},
                             "max_deviation_percent_points": {k: 100 * v for k, v in self.share_deviation.items()}},
             "step2_mass": {**self.mass.table(), "inertia": self.mass.structure.inertia.tolist()},
-            "step3_stiffness": {**self.stiffness.table(), "transverse": dict(self.transverse),
+            "step3_stiffness": {**self.stiffness.table(), "transverse": dict(self.stiffness.transverse),
                                 "static_model": dict(self.stiffness.elements), "dofs": self.stiffness.n_dofs,
                                 "inertia_relief": None if self.relief is None else self.relief.table(),
                                 "springs_from": self.springs},
@@ -168,6 +167,8 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     """
     from ..keyword.reader import read_deck
 
+    if springs not in ("axle", "relief"):
+        raise ValueError(f"springs={springs!r}: 'axle' or 'relief'")
     say = (lambda *a: None) if quiet else (lambda *a: print(*a, flush=True))
     model = deck if isinstance(deck, Model) else read_deck(deck)
     results = list(results) if isinstance(results, (list, tuple)) else [results]
@@ -222,10 +223,8 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     say(f"step 2: replaced mass {mass.structure.mass:.6g} at {np.round(mass.structure.cog, 1).tolist()}")
     # step 3
     t0 = time.perf_counter()
-    if springs not in ("axle", "relief"):
-        raise ValueError(f"springs={springs!r}: 'axle' or 'relief'")
-    k = longitudinal_stiffness(cut, sup)
-    trans = transverse_stiffness(cut, sup)
+    k = longitudinal_stiffness(cut, sup, transverse=(1000.0, 1.0e6))
+    trans = k.transverse
     rel = relieved_stiffness(cut)
     seconds["step 3 stiffness"] = time.perf_counter() - t0
     say(f"step 3: K = {k.stiffness:.6g} (F {k.force:g}, u {k.displacement:.4g}); shear {trans['shear']:.4g}, "
@@ -238,5 +237,5 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     seconds["step 4 surrogate"] = time.perf_counter() - t0
     say(f"step 4: {len(sur.springs)} springs, {len(sur.model.shells)} of {len(model.shells)} shells kept")
     notes += mass.notes + k.notes + [n for n in rel.notes if n not in k.notes]
-    return Reduction(str(getattr(model, "source", "") or ""), paths, used, basis, deviation, cut, mass, k, trans,
-                     sur, seconds, notes, rel, springs)
+    return Reduction(str(getattr(model, "source", "") or ""), paths, used, basis, deviation, cut, mass, k, sur,
+                     seconds, notes, rel, springs)

@@ -54,6 +54,7 @@ class StiffnessResult:
     notes: list = field(default_factory=list)
     solution: StaticSolution | None = None
     nodes: np.ndarray | None = None  # (n,) node indices of the model in the static model
+    transverse: dict | None = None  # lateral, vertical, shear and roll stiffness on the same factorisation
 
     def table(self) -> dict:
         """The paper's table 3."""
@@ -257,36 +258,61 @@ def solve_named(ls: LinearStatic, model: Model, cases: list) -> list:
         raise MechanismError(f"{e} (deck node IDs {ids[:10].tolist()})", e.nodes) from None
 
 
+def _transverse_loads(axis: np.ndarray, force: float, moment: float) -> dict:
+    """The rigid interface's transverse load cases: name -> (force (3,), moment (3,))."""
+    ref = np.array([0.0, 0.0, 1.0]) if abs(axis[2]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    e_lat = np.cross(ref, axis)
+    e_lat /= np.linalg.norm(e_lat)
+    e_ver = np.cross(axis, e_lat)
+    return {"lateral": (e_lat * force, np.zeros(3)), "vertical": (e_ver * force, np.zeros(3)),
+            "roll": (np.zeros(3), axis * moment)}
+
+
 def structure_stiffness(model: Model, support, load_nodes, force: float = 1000.0, direction=(-1.0, 0.0, 0.0),
                         select: dict | None = None, support_dofs=(0, 1, 2, 3, 4, 5), load_point=None,
-                        drill: float = 1e-3) -> StiffnessResult:
+                        drill: float = 1e-3, transverse: tuple | None = None) -> StiffnessResult:
     """Stiffness of the selected elements of ``model`` borne at ``support``
     (node indices, ("set", SID) or a *SET_NODE title; ``support_dofs`` held)
     and loaded by a rigid body tying ``load_nodes`` to a master at their
-    centroid (or ``load_point``) with ``force`` along ``direction``."""
+    centroid (or ``load_point``) with ``force`` along ``direction``.
+    ``transverse`` = (force, moment): also load it across ``direction``
+    (both ways, the softer is the shear stiffness) and about it, on the same
+    factorisation (``StiffnessResult.transverse``)."""
     ls, master, counts, notes = borne_structure(model, support, load_nodes, select, support_dofs, load_point, drill)
     dvec = np.asarray(direction, float).reshape(3)
     dvec = dvec / np.linalg.norm(dvec)
-    (sol,) = solve_named(ls, model, [{master: np.concatenate([force * dvec, np.zeros(3)])}])
+    across = {} if transverse is None else _transverse_loads(dvec, *transverse)
+    cases = [{master: np.concatenate([force * dvec, np.zeros(3)])}] + \
+        [{master: np.concatenate(fm)} for fm in across.values()]
+    sol, *others = solve_named(ls, model, cases)
     u = float(sol.u[master, :3] @ dvec)
     if not u > 0:
         raise ValueError(f"the load point moves {u:.3g} along the load: the structure is not stable under it")
+    trans = None
+    if across:
+        trans = {}
+        for (key, (f, m)), o in zip(across.items(), others):
+            um = o.u[master]
+            trans[key] = float(m @ m) / float(um[3:] @ m) if key == "roll" else float(f @ f) / float(um[:3] @ f)
+        trans["shear"] = min(trans["lateral"], trans["vertical"])
     return StiffnessResult(force / u, float(force), u, dvec, ls.position(master), sol.u[master].copy(),
                            sol.reaction_force, counts, sol.n_dofs, notes + sol.notes, sol,
-                           np.flatnonzero(ls.in_structure))
+                           np.flatnonzero(ls.in_structure), trans)
 
 
 def longitudinal_stiffness(cut: Cut, support, force: float = 1000.0, direction=None,
                            support_dofs=(0, 1, 2, 3, 4, 5), interface_nodes=None,
-                           drill: float = 1e-3) -> StiffnessResult:
+                           drill: float = 1e-3, transverse: tuple | None = None) -> StiffnessResult:
     """Step 3: K of the structure ``cut`` replaces, borne at ``support``
     (the rear-axle attachment points: indices, ("set", SID) or a *SET_NODE
     title), loaded through its interface nodes (default: all of the cut)
-    with ``force`` along ``direction`` (default −axis, rearwards)."""
+    with ``force`` along ``direction`` (default −axis, rearwards);
+    ``transverse`` = (force, moment) adds ``transverse_stiffness``'s cases
+    on the same factorisation."""
     d = -cut.axis if direction is None else direction
     nodes = cut.interface_nodes if interface_nodes is None else node_indices(cut.model, interface_nodes)
     res = structure_stiffness(cut.model, support, nodes, force, d, select=cut.replaced, support_dofs=support_dofs,
-                              drill=drill)
+                              drill=drill, transverse=transverse)
     res.notes = list(cut.notes) + res.notes
     return res
 
@@ -297,19 +323,5 @@ def transverse_stiffness(cut: Cut, support, interface_nodes=None, force: float =
     borne at ``support`` like step 3: the rigid interface loaded across the
     axis (both transverse directions, the softer taken) and about it.
     Returns {"shear": k_t [force/length], "roll": k_r [force·length/rad], "lateral", "vertical"}."""
-    a = cut.axis
-    ref = np.array([0.0, 0.0, 1.0]) if abs(a[2]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    e_lat = np.cross(ref, a)
-    e_lat /= np.linalg.norm(e_lat)
-    e_ver = np.cross(a, e_lat)
-    nodes = cut.interface_nodes if interface_nodes is None else node_indices(cut.model, interface_nodes)
-    ls, master, _, _ = borne_structure(cut.model, support, nodes, cut.replaced)
-    cases = {"lateral": (e_lat * force, np.zeros(3)), "vertical": (e_ver * force, np.zeros(3)),
-             "roll": (np.zeros(3), a * moment)}
-    sols = solve_named(ls, cut.model, [{master: np.concatenate(fm)} for fm in cases.values()])
-    out = {}
-    for (key, (f, _)), sol in zip(cases.items(), sols):
-        u = sol.u[master]
-        out[key] = moment / float(u[3:] @ a) if key == "roll" else force / float(u[:3] @ (f / force))
-    out["shear"] = min(out["lateral"], out["vertical"])
-    return out
+    return longitudinal_stiffness(cut, support, force=force, interface_nodes=interface_nodes,
+                                  transverse=(force, moment)).transverse
