@@ -88,13 +88,16 @@ def _interface(args) -> int:
     from .report.build import jsonable
     from .vehicle.interface import propose_interface
 
-    p = propose_interface(read_deck(args.deck), args.results, threshold=args.threshold, allowed=args.allowed / 100.0,
-                          step=args.step)
-    print(f"{'x':>9} {'yielded behind':>15} {'p99 ratio':>10} {'mass replaced':>14} {'elements replaced':>18}")
+    p = propose_interface(read_deck(args.deck), args.results, strain=args.strain / 100.0,
+                          allowed=args.allowed / 100.0, energy=args.energy / 100.0, step=args.step)
+    print(f"{'x':>9} {'energy behind':>14} {'strained area':>14} {'p99 εp':>8} {'mass replaced':>14} "
+          f"{'elements replaced':>18}  most energy behind")
     for c in p.candidates:
         mark = "  <- proposed" if p.x is not None and c["x"] == p.x else ""
-        print(f"{c['x']:9.1f} {c['yielded_percent_behind']:14.1f}% {c['p99_yield_ratio_behind']:10.2f} "
-              f"{c['replaced_mass_percent']:13.1f}% {c['replaced_elements_percent']:17.1f}%{mark}")
+        most = ", ".join(f"{k} {v:.2f} %" for k, v in c["most_energy_behind"].items())
+        print(f"{c['x']:9.1f} {c['energy_behind_percent']:13.2f}% {c['strained_area_percent_behind']:13.2f}% "
+              f"{100 * c['p99_plastic_strain_behind']:7.2f}% {c['replaced_mass_percent']:13.1f}% "
+              f"{c['replaced_elements_percent']:17.1f}%  {most}{mark}")
     for n in p.notes:
         print(f"note: {n}")
     if args.json is not None:
@@ -220,8 +223,11 @@ def add_commands(sub) -> None:
                         help="propose the interface: the foremost plane with the structure behind it elastic")
     f.add_argument("deck", type=Path, help="full vehicle deck")
     f.add_argument("--results", type=Path, required=True, help="crashlite results of a full run with field states")
-    f.add_argument("--threshold", type=float, default=1.0, help="strain / yield strain that counts as yielded")
-    f.add_argument("--allowed", type=float, default=1.0, help="share of the shells behind allowed to yield [%%]")
+    f.add_argument("--strain", type=float, default=1.0, help="plastic strain that counts as strained [%%]")
+    f.add_argument("--allowed", type=float, default=1.0,
+                   help="share of the shell area behind allowed to reach --strain [%%]")
+    f.add_argument("--energy", type=float, default=3.0,
+                   help="share of the energy the shells absorb allowed behind the plane [%%]")
     f.add_argument("--step", type=float, default=None, help="candidate spacing [length] (default 4 elements)")
     f.add_argument("--json", type=Path, default=None, help="write the candidates as JSON")
     f.set_defaults(func=_interface)

@@ -72,6 +72,15 @@ def test_uniaxial_tension_ends_with_the_plastic_strain(tmp_path, solid):
     assert eps[3] == 0.0
     saved = np.load(tmp_path / "run" / "results.npz")
     assert np.array_equal(saved[f"{kind}_plastic_strain"], eps)
+    # and the internal energy each ends with: elastic σ²/2E plus the plastic work (σy + σ)/2 · εp per
+    # volume, summing to the run's internal energy
+    energy = getattr(r, f"{kind}_internal_energy")
+    volume = L / 4 * 10.0 * (10.0 if solid else 1.0)
+    plastic = (SY + sigma) / 2 * (sigma - SY) / H
+    assert energy[:3] == pytest.approx(volume * (sigma ** 2 / (2 * E) + plastic), rel=0.05)
+    assert energy[3] == pytest.approx(volume * sigma ** 2 / (2 * E), rel=0.1)
+    assert energy.sum() == pytest.approx(r.internal[-1], rel=1e-9)
+    assert np.array_equal(saved[f"{kind}_internal_energy"], energy)
     if not solid:
         assert shell_plastic_strain(read_deck(deck), tmp_path / "run") == pytest.approx(eps)
     # the last field state for ParaView carries it as cell data

@@ -402,6 +402,7 @@ def _results(s, rec, groups, parts, walls, st, locals_) -> Results:
         eps = g.plastic_strain() if g.kind in ("shell", "solid") else None
         if eps is not None:
             extra[f"{g.kind}_ids"], extra[f"{g.kind}_plastic_strain"] = np.asarray(g.ids, np.int64), eps
+            extra[f"{g.kind}_internal_energy"] = np.array(g.energy, float)
     known = {f.name for f in fields(Results)}
     n = len(st.x)
     return Results(

@@ -63,6 +63,10 @@ class Results:
     shell_plastic_strain: np.ndarray = _empty()  # (n_shells,)
     solid_ids: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
     solid_plastic_strain: np.ndarray = _empty()  # (n_solids,)
+    # internal energy of each deformable shell and solid at the end (hourglass energy apart), same rows:
+    # where a run's energy went, element by element (the interface proposal sums it behind a plane)
+    shell_internal_energy: np.ndarray = _empty()  # (n_shells,) [energy]
+    solid_internal_energy: np.ndarray = _empty()  # (n_solids,) [energy]
     cycles: int = 0
     dt: float = 0.0
     wall_time: float = 0.0  # whole run: set-up (with Numba compilation) and time loop [s]

@@ -9,7 +9,9 @@ Load paths, front to back: bumper beam → crash boxes → front rails (closed
 boxes) → firewall, rail extensions, floor longitudinals, tunnel, sills;
 the upper rails (aprons) from the radiator support to the firewall beside
 the hinge pillars. The rigid engine and gearbox block sits between the
-rails on two mount brackets; the exhaust hangs from it through the tunnel.
+rails on two mount brackets. The exhaust hangs in the tunnel on two
+hangers, clear of the engine: a real exhaust's flexible joint lets the
+engine move back without pushing it, so it is no load path.
 Behind the firewall: hinge pillars and A-pillars, cowl, windshield, roof
 with rails and headers, B-pillars, sills, floor halves with longitudinals
 and seat cross members, tunnel, doors (outboard of the body side on hinges
@@ -193,7 +195,8 @@ def parts(engine_mass: float = 170.0, axle_mass: float = 73.0) -> list[PartDef]:
     add("tunnel", "tunnel", "DP800", 1.5, (
         Tube(0, -2000.0, -250.0, ((110.0, 250.0), (110.0, 460.0), (-110.0, 460.0), (-110.0, 250.0)), closed=False),
         _px(-2000.0, -110.0, 110.0, 350.0, 460.0)))
-    add("exhaust", "exhaust", "X2CrTi12", 1.2, (_bx(-1850.0, -130.0, -40.0, 40.0, 300.0, 350.0),))
+    # starts 150 mm inside the tunnel: the engine stops at the firewall before it can reach it
+    add("exhaust", "exhaust", "X2CrTi12", 1.2, (_bx(-1850.0, -400.0, -40.0, 40.0, 300.0, 350.0),))
     add("exhaust hangers", "exhaust", "DC04", 1.0, (_py(0.0, -900.0, -800.0, 350.0, 460.0),
                                                     _py(0.0, -1700.0, -1600.0, 350.0, 460.0)))
     for side, s in _sides():

@@ -1,24 +1,35 @@
 """Where to put the interface: the structure behind it must stay elastic.
 
-Every shell of a full run gets a *yield ratio*: its largest strain over
-the run divided by its material's yield strain σy/E; above 1 it has
-yielded. The strain is the larger of two measures: from the field states,
-the largest relative length change of its four edges and two diagonals
-between the first state and each later one (a membrane measure: pure
-bending of a flat element is missed); and, where the run recorded it (a
-crashlite run), its effective plastic strain εp at the end of the run, the
-peak over its integration points and the run, counted as a strain of
-σy/E + εp (the uniaxial total strain at that plastic strain).
+The springs of the surrogate are elastic: whatever the replaced structure
+would dissipate in the crash is lost, and whatever of it would fold
+changes the load paths. ``propose_interface`` therefore rates every shell
+of a full run by two measures:
 
-``propose_interface`` scans candidate planes normal to the vehicle axis
-from the front to the rear and proposes the foremost one behind which at
-most a share ``allowed`` of the shells (solids and beams are not rated)
-reach ``threshold`` times their yield strain: the paper's criterion (the
-replaced structure stays elastic), with the most reduction; ``allowed``
-forgives the odd element around a lumped mass or a spot weld. For every
-candidate it reports that share, the largest and the 99th-percentile
-ratio behind it, and the mass and the share of the elements the reduction
-would replace: with the time step unchanged, the run time scales with the
+- its effective plastic strain εp at the end of the run, the peak over its
+  integration points (a crashlite run records it). Where a run lacks it,
+  an estimate from the field states: the largest relative length change of
+  its four edges and two diagonals between the first state and any later
+  one, less the yield strain σy/E (a membrane measure: the bending of a
+  flat element is missed);
+- the internal energy it holds at the end of the run (a crashlite run
+  records it per element: plastic work plus what elastic energy is left);
+  where a run lacks it, the plastic work σy·εp·V, a lower bound.
+
+It scans candidate planes normal to the vehicle axis from the front to the
+rear and proposes the foremost one behind which (a) the shells hold at most
+a share ``energy`` of the energy all shells absorbed and (b) at most a
+share ``allowed`` of the shell area reaches the plastic strain ``strain``:
+the paper's criterion (the replaced structure stays elastic) with the most
+reduction. (a) is what the reduction loses; (b) keeps a plane from being
+proposed ahead of a part that folds with little energy. Neither is
+upset by thin skins that yield a little while they ring, nor by the odd
+element around a lumped mass or a spot weld, which a criterion on every
+element yielding is (a car's door skins and floor all yield somewhere).
+
+For every candidate it reports both shares, the largest and the 99th
+percentile plastic strain behind it, the parts holding most of the energy
+behind it, and the mass and the share of the elements the reduction would
+replace: with the time step unchanged, the run time scales with the
 elements kept, so the share replaced is the expected time saving.
 """
 
@@ -37,16 +48,22 @@ _EDGES = ((0, 1), (1, 2), (2, 3), (3, 0), (0, 2), (1, 3))
 @dataclass
 class InterfaceProposal:
     x: float | None  # proposed interface position along the axis [length]; None: no candidate is elastic behind
-    threshold: float
-    allowed: float  # share of the shells behind allowed to reach the threshold
-    candidates: list  # dicts: x, yielded_percent_behind, max/p99 yield ratio behind, replaced mass/elements %
-    yield_ratio: np.ndarray  # (n_shells,) largest strain / yield strain of each shell
+    strain: float  # plastic strain that counts as strained
+    allowed: float  # share of the shell area behind allowed to reach it
+    energy: float  # share of the shells' absorbed energy allowed behind
+    candidates: list  # dicts: x, energy_behind_percent, strained_area_percent_behind, ... (module docstring)
+    plastic_strain: np.ndarray  # (n_shells,) effective plastic strain of each shell
+    absorbed: np.ndarray  # (n_shells,) energy each shell holds at the end of the run [energy]
+    measured: dict = field(default_factory=dict)  # how each measure was obtained: "recorded" or "estimated"
     notes: list = field(default_factory=list)
 
     def summary(self) -> dict:
-        return {"proposed_x": self.x, "threshold": self.threshold, "allowed": self.allowed,
-                "candidates": list(self.candidates),
-                "yielded_shells": int((self.yield_ratio >= 1.0).sum()), "notes": list(self.notes)}
+        return {"proposed_x": self.x,
+                "criteria": {"plastic_strain": self.strain, "strained_area_allowed_percent": 100.0 * self.allowed,
+                             "energy_allowed_percent": 100.0 * self.energy},
+                "measures": dict(self.measured), "candidates": list(self.candidates),
+                "shells_beyond_strain": int((self.plastic_strain >= self.strain).sum()),
+                "notes": list(self.notes)}
 
 
 def shell_strain(x0: np.ndarray, states: np.ndarray, quads: np.ndarray) -> np.ndarray:
@@ -62,104 +79,147 @@ def shell_strain(x0: np.ndarray, states: np.ndarray, quads: np.ndarray) -> np.nd
     return out
 
 
-def _yield_strain(model: Model) -> np.ndarray:
-    """(n_shells,) σy/E of each shell's material (inf where it has none: rigid, elastic)."""
+def _shell_material(model: Model) -> tuple[np.ndarray, np.ndarray]:
+    """(n_shells,) σy/E and σy of each shell's material (inf and 0 where it
+    has none: rigid, elastic)."""
     s = model.shells
-    out = np.full(len(s), np.inf)
+    ey, sy = np.full(len(s), np.inf), np.zeros(len(s))
     for pid in np.unique(s.pid):
         part = model.parts.get(int(pid))
         mat = model.materials.get(part.get("mid")) if part is not None else None
         if mat is None or mat.keyword == "MAT_RIGID":
             continue
-        e, sy = float(mat.get("e", 0.0) or 0.0), float(mat.get("sigy", 0.0) or 0.0)
-        if e > 0 and sy > 0:
-            out[s.pid == pid] = sy / e
-    return out
+        e, y = float(mat.get("e", 0.0) or 0.0), float(mat.get("sigy", 0.0) or 0.0)
+        if e > 0 and y > 0:
+            ey[s.pid == pid], sy[s.pid == pid] = y / e, y
+    return ey, sy
 
 
-def yield_ratio(model: Model, results) -> np.ndarray:
-    """(n_shells,) largest strain over yield strain of every shell of
-    ``model`` in the run ``results`` (a crashlite results folder with field
-    states, nodes matched by ID)."""
+def _membrane_strain(model: Model, results) -> np.ndarray:
+    """(n_shells,) largest edge or diagonal strain over the field states of
+    ``results`` (nodes matched by ID)."""
     from ..verify.fields import load_states
 
     st = load_states(results, model)
     if st is None:
-        raise ValueError(f"{results}: no field states (*DATABASE_BINARY_D3PLOT) to rate the strains")
+        raise ValueError(f"{results}: neither plastic strains nor field states (*DATABASE_BINARY_D3PLOT) "
+                         "to rate the shells by")
     idx = {int(n): k for k, n in enumerate(st.ids)}
     missing = [int(n) for n in model.nodes.ids if int(n) not in idx]
     if missing:
         raise ValueError(f"{results}: {len(missing)} node(s) of the deck are not in the field states "
                          f"(e.g. {missing[:5]}): not a run of this deck")
-    order = np.array([idx[int(n)] for n in model.nodes.ids])
-    xs = st.x[:, order]
-    ey = _yield_strain(model)
-    ratio = shell_strain(xs[0], xs[1:], model.shells.nodes.astype(np.int64)) / ey
-    eps = shell_plastic_strain(model, results)
-    if eps is not None:
-        plastic = eps > 0
-        ratio[plastic] = np.maximum(ratio[plastic], 1.0 + eps[plastic] / ey[plastic])
-    return ratio
+    xs = st.x[:, np.array([idx[int(n)] for n in model.nodes.ids])]
+    return shell_strain(xs[0], xs[1:], model.shells.nodes.astype(np.int64))
+
+
+def _shell_field(model: Model, results, name: str) -> np.ndarray | None:
+    """(n_shells,) the per-shell array ``name`` of a crashlite results.npz,
+    rows matched by element ID (0 for shells it lacks: rigid ones), or None
+    when the run did not record it."""
+    path = Path(results) / "results.npz" if Path(results).is_dir() else Path(results)
+    if not path.is_file():
+        return None
+    with np.load(path) as z:
+        if name not in z.files or "shell_ids" not in z.files or not len(z["shell_ids"]):
+            return None
+        ids, values = z["shell_ids"], z[name]
+    from ..model.mesh import index_map
+
+    k = index_map(ids)(model.shells.ids)
+    return np.where(k >= 0, values[np.maximum(k, 0)], 0.0)
 
 
 def shell_plastic_strain(model: Model, results) -> np.ndarray | None:
     """(n_shells,) effective plastic strain of every shell of ``model`` at the
     end of the run in the crashlite results folder ``results`` (0 for rigid
     shells, matched by element ID), or None when the run did not record it."""
-    path = Path(results) / "results.npz" if Path(results).is_dir() else Path(results)
-    if not path.is_file():
-        return None
-    with np.load(path) as z:
-        if "shell_plastic_strain" not in z.files or not len(z["shell_ids"]):
-            return None
-        ids, eps = z["shell_ids"], z["shell_plastic_strain"]
-    from ..model.mesh import index_map
-
-    k = index_map(ids)(model.shells.ids)
-    return np.where(k >= 0, eps[np.maximum(k, 0)], 0.0)
+    return _shell_field(model, results, "shell_plastic_strain")
 
 
-def propose_interface(model: Model, results, threshold: float = 1.0, allowed: float = 0.01,
-                      axis=(1.0, 0.0, 0.0), step: float | None = None,
-                      ratio: np.ndarray | None = None) -> InterfaceProposal:
-    """Candidate planes at the multiples of ``step`` (default: four element sizes) along
-    ``axis`` over the model's length; the proposal (module docstring)."""
+def shell_volumes(model: Model) -> np.ndarray:
+    """(n_shells,) initial area x section thickness of every shell."""
+    from ..solver.shells import element_areas
+    from ..solver.tied import shell_thickness
+
+    s = model.shells
+    tri = (s.nodes[:, 3] == s.nodes[:, 2]).astype(np.int8)
+    return element_areas(model.nodes.xyz, s.nodes.astype(np.int64), tri) * shell_thickness(model)
+
+
+def shell_measures(model: Model, results) -> tuple[np.ndarray, np.ndarray, dict]:
+    """(plastic strain, absorbed energy, how each was obtained) of every
+    shell in the run ``results`` (module docstring)."""
+    ey, sy = _shell_material(model)
+    eps = shell_plastic_strain(model, results)
+    how = {"plastic_strain": "recorded", "energy": "recorded"}
+    if eps is None:
+        eps = np.maximum(_membrane_strain(model, results) - ey, 0.0)  # inf yield strain: 0
+        how["plastic_strain"] = "estimated from the field states' membrane strain"
+    energy = _shell_field(model, results, "shell_internal_energy")
+    if energy is None:
+        energy = sy * eps * shell_volumes(model)
+        how["energy"] = "estimated: plastic work σy·εp·V (a lower bound)"
+    return eps, energy, how
+
+
+def propose_interface(model: Model, results, strain: float = 0.01, allowed: float = 0.01, energy: float = 0.03,
+                      axis=(1.0, 0.0, 0.0), step: float | None = None, measures=None) -> InterfaceProposal:
+    """Candidate planes at the multiples of ``step`` (default: four element
+    sizes) along ``axis`` over the model's length; the proposal (module
+    docstring). ``measures``: (plastic strain, absorbed energy) per shell
+    instead of reading them from ``results``."""
+    from ..solver.shells import element_areas
     from .cut import cut_behind
     from .massprops import element_moments, replaced_mass
 
     a = np.asarray(axis, float)
     a = a / np.linalg.norm(a)
-    r = yield_ratio(model, results) if ratio is None else np.asarray(ratio, float)
-    r = np.nan_to_num(r, nan=0.0, posinf=0.0)  # rigid and elastic materials do not yield
+    if measures is None:
+        eps, absorbed, how = shell_measures(model, results)
+    else:
+        eps, absorbed = (np.asarray(m, float) for m in measures)
+        how = {"plastic_strain": "given", "energy": "given"}
     xyz = model.nodes.xyz
     conn = model.shells.nodes.astype(np.int64)
+    area = element_areas(xyz, conn, (conn[:, 3] == conn[:, 2]).astype(np.int8))
     centre = xyz[conn].mean(axis=1) @ a
     size = float(np.median(np.linalg.norm(xyz[conn[:, 2]] - xyz[conn[:, 0]], axis=1))) / np.sqrt(2.0)
     step = 4.0 * size if step is None else float(step)
     lo, hi = float(centre.min()), float(centre.max())
     full_mass = model.mass_properties().mass
     n_el = sum(len(getattr(model, t)) for t in ("shells", "solids", "beams", "discretes"))
+    total = float(absorbed.sum())
+    titles = np.array([str(model.parts.get(int(p), {}).get("heading", "") or f"part {int(p)}")
+                       for p in model.shells.pid])
     moments = element_moments(model)  # once: every candidate sums its own share of them
     out, proposed = [], None
     first = np.ceil(hi / step) * step - step  # candidates on multiples of the step
     for x in np.arange(first, lo, -step):
         behind = centre < x
-        share = float(np.mean(r[behind] >= threshold)) if behind.any() else 0.0
         cut = cut_behind(model, x=float(x), axis=a)
         n_rep = sum(int(m.sum()) for m in cut.replaced.values())
-        rep = replaced_mass(cut, moments=moments).structure.mass
-        out.append({"x": float(x), "yielded_percent_behind": 100.0 * share,
-                    "max_yield_ratio_behind": float(r[behind].max()) if behind.any() else 0.0,
-                    "p99_yield_ratio_behind": float(np.percentile(r[behind], 99)) if behind.any() else 0.0,
-                    "replaced_mass_percent": 100.0 * rep / full_mass,
+        e_share = float(absorbed[behind].sum()) / total if total > 0 else 0.0
+        a_share = float(area[behind & (eps >= strain)].sum() / area[behind].sum()) if behind.any() else 0.0
+        parts = {}
+        for t in np.unique(titles[behind]):
+            parts[str(t)] = float(absorbed[behind & (titles == t)].sum())
+        top = sorted(parts.items(), key=lambda kv: -kv[1])[:3]
+        out.append({"x": float(x), "energy_behind_percent": 100.0 * e_share,
+                    "strained_area_percent_behind": 100.0 * a_share,
+                    "max_plastic_strain_behind": float(eps[behind].max()) if behind.any() else 0.0,
+                    "p99_plastic_strain_behind": float(np.percentile(eps[behind], 99)) if behind.any() else 0.0,
+                    "most_energy_behind": {t: 100.0 * v / total for t, v in top if total > 0},
+                    "replaced_mass_percent": 100.0 * replaced_mass(cut, moments=moments).structure.mass / full_mass,
                     "replaced_elements_percent": 100.0 * n_rep / max(n_el, 1)})
-        if proposed is None and share <= allowed:
+        if proposed is None and e_share <= energy and a_share <= allowed:
             proposed = float(x)
-    notes = []
+    notes = [f"{k.replace('_', ' ')}: {v}" for k, v in how.items() if v != "recorded"]
     if proposed is None:
-        notes.append(f"behind every candidate plane more than {100 * allowed:g} % of the shells reach "
-                     f"{threshold:g} x their yield strain: the structure does not stay elastic anywhere")
-    return InterfaceProposal(proposed, float(threshold), float(allowed), out, r, notes)
+        notes.append(f"behind every candidate plane the shells hold more than {100 * energy:g} % of the absorbed "
+                     f"energy or more than {100 * allowed:g} % of their area reaches {100 * strain:g} % plastic "
+                     "strain: the structure does not stay elastic anywhere")
+    return InterfaceProposal(proposed, float(strain), float(allowed), float(energy), out, eps, absorbed, how, notes)
 
 
 PASSENGER_CELL = ("A-pillar", "door sill", "floor", "tunnel", "door", "roof", "B-pillars", "rear floor")

@@ -177,10 +177,11 @@ def test_surrogate_oscillates_like_the_full_tube():
 
 def test_interface_proposal_finds_the_elastic_rear(tmp_path):
     """Field states of a tube whose front 200 mm is shortened by 10 % while
-    the rest only translates: every shell ahead of x = 300 yields, none
+    the rest only translates (a run without recorded strains): every shell
+    ahead of x = 300 has εp = 0.1 − σy/E and the plastic work σy·εp·V, none
     behind; the proposal is the foremost candidate plane at or behind 300,
     and each candidate's replaced share is that of the elements behind it."""
-    from crashlite.vehicle.interface import propose_interface, yield_ratio
+    from crashlite.vehicle.interface import propose_interface, shell_measures
 
     m, _, _ = _tube(per_side=4, n_len=20, masses=False)
     m.materials[1] = record("MAT_PLASTIC_KINEMATIC", mid=1, ro=RHO, e=E, pr=NU, sigy=200.0, etan=0.0, beta=0.0)
@@ -191,15 +192,52 @@ def test_interface_proposal_finds_the_elastic_rear(tmp_path):
     x1[:, 0] -= 50.0  # the whole tube moves on: no strain from that
     np.savez(tmp_path / "results.npz", states_time=np.array([0.0, 0.01]), states_x=np.stack([x0, x1]),
              node_ids=m.nodes.ids)
-    r = yield_ratio(m, tmp_path)
+    eps, work, how = shell_measures(m, tmp_path)
     centre = x0[m.shells.nodes].mean(axis=1)[:, 0]
-    assert np.all(r[centre > 300.0] == pytest.approx(0.1 / (200.0 / E), rel=1e-6))
-    assert np.all(r[centre < 300.0] < 1e-9)
+    assert np.all(eps[centre > 300.0] == pytest.approx(0.1 - 200.0 / E, rel=1e-6))
+    assert np.all(eps[centre < 300.0] == 0.0)
+    side = B / 4  # 16 shells of 25 x 12.5 mm around
+    assert np.all(work[centre > 300.0] == pytest.approx(200.0 * (0.1 - 200.0 / E) * 25.0 * side * T, rel=1e-6))
+    assert "estimated" in how["plastic_strain"] and "estimated" in how["energy"]
     p = propose_interface(m, tmp_path, step=50.0)
     assert p.x == pytest.approx(300.0)
     behind = next(c for c in p.candidates if c["x"] == pytest.approx(p.x))
-    assert behind["yielded_percent_behind"] == 0.0
+    assert behind["energy_behind_percent"] == 0.0 and behind["strained_area_percent_behind"] == 0.0
     assert behind["replaced_elements_percent"] == pytest.approx(100.0 * np.mean(centre < 300.0))
+    ahead = next(c for c in p.candidates if c["x"] == pytest.approx(350.0))
+    assert ahead["energy_behind_percent"] == pytest.approx(100.0 * 2 / 8)  # 2 of the 8 strained rings
+    assert len(p.notes) == 2  # both measures were estimated, and it says so
+
+
+def test_interface_proposal_takes_both_criteria():
+    """Given measures on the tube (8 strained rings ahead of x = 300, 1 unit
+    of energy per shell): a ring behind that absorbs as much but strains
+    only 0.5 % holds 1/9 of the energy and moves the proposal behind it (the
+    energy criterion); a ring that strains 2 % with almost no energy moves
+    it behind that ring (the strain criterion, 1/12 of the area behind 300);
+    relaxed criteria bring it back to 300."""
+    from crashlite.vehicle.interface import propose_interface
+
+    m, _, _ = _tube(per_side=4, n_len=20, masses=False)
+    centre = m.nodes.xyz[m.shells.nodes].mean(axis=1)[:, 0]
+    eps = np.where(centre > 300.0, 0.05, 0.0)
+    energy = np.where(centre > 300.0, 1.0, 0.0)
+    ring = (centre > 100.0) & (centre < 125.0)
+    e1 = np.where(ring, 1.0, energy)
+    p = propose_interface(m, None, step=50.0, measures=(np.where(ring, 0.005, eps), e1))
+    assert p.x == pytest.approx(100.0)
+    at = {round(c["x"]): c for c in p.candidates}
+    assert at[150]["energy_behind_percent"] == pytest.approx(100.0 / 9)
+    assert at[150]["strained_area_percent_behind"] == 0.0
+    assert propose_interface(m, None, step=50.0, energy=0.12, measures=(np.where(ring, 0.005, eps), e1)).x == 300.0
+    ring = (centre > 150.0) & (centre < 175.0)
+    e2 = np.where(ring, 1e-4, energy)
+    p = propose_interface(m, None, step=50.0, measures=(np.where(ring, 0.02, eps), e2))
+    assert p.x == pytest.approx(150.0)
+    assert {round(c["x"]): c for c in p.candidates}[300]["strained_area_percent_behind"] == pytest.approx(100.0 / 12)
+    assert propose_interface(m, None, step=50.0, strain=0.03, measures=(np.where(ring, 0.02, eps), e2)).x == 300.0
+    none = propose_interface(m, None, step=50.0, measures=(np.full(len(centre), 0.05), np.ones(len(centre))))
+    assert none.x is None and "does not stay elastic" in none.notes[-1]
 
 
 def _two_tubes():
