@@ -89,7 +89,7 @@ def _interface(args) -> int:
     from .vehicle.interface import propose_interface
 
     p = propose_interface(read_deck(args.deck), args.results, strain=args.strain / 100.0,
-                          allowed=args.allowed / 100.0, energy=args.energy / 100.0, step=args.step)
+                          allowed=args.allowed / 100.0, energy=args.energy / 100.0, step=args.step, also=args.at)
     print(f"{'x':>9} {'energy behind':>14} {'strained area':>14} {'p99 εp':>8} {'mass replaced':>14} "
           f"{'elements replaced':>18}  most energy behind")
     for c in p.candidates:
@@ -229,6 +229,8 @@ def add_commands(sub) -> None:
     f.add_argument("--energy", type=float, default=3.0,
                    help="share of the energy the shells absorb allowed behind the plane [%%]")
     f.add_argument("--step", type=float, default=None, help="candidate spacing [length] (default 4 elements)")
+    f.add_argument("--at", type=float, nargs="+", default=(), metavar="X",
+                   help="rate these planes too (e.g. the interface in use) [length]")
     f.add_argument("--json", type=Path, default=None, help="write the candidates as JSON")
     f.set_defaults(func=_interface)
     y = vsub.add_parser("study", formatter_class=fmt,

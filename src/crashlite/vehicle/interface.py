@@ -164,11 +164,12 @@ def shell_measures(model: Model, results) -> tuple[np.ndarray, np.ndarray, dict]
 
 
 def propose_interface(model: Model, results, strain: float = 0.01, allowed: float = 0.01, energy: float = 0.03,
-                      axis=(1.0, 0.0, 0.0), step: float | None = None, measures=None) -> InterfaceProposal:
+                      axis=(1.0, 0.0, 0.0), step: float | None = None, also=(), measures=None) -> InterfaceProposal:
     """Candidate planes at the multiples of ``step`` (default: four element
-    sizes) along ``axis`` over the model's length; the proposal (module
-    docstring). ``measures``: (plastic strain, absorbed energy) per shell
-    instead of reading them from ``results``."""
+    sizes) along ``axis`` over the model's length, and at the positions
+    ``also`` (e.g. the interface in use); the proposal (module docstring).
+    ``measures``: (plastic strain, absorbed energy) per shell instead of
+    reading them from ``results``."""
     from ..solver.shells import element_areas
     from .cut import cut_behind
     from .massprops import element_moments, replaced_mass
@@ -195,7 +196,8 @@ def propose_interface(model: Model, results, strain: float = 0.01, allowed: floa
     moments = element_moments(model)  # once: every candidate sums its own share of them
     out, proposed = [], None
     first = np.ceil(hi / step) * step - step  # candidates on multiples of the step
-    for x in np.arange(first, lo, -step):
+    planes = np.concatenate([np.arange(first, lo, -step), [float(x) for x in also if lo < float(x) < hi]])
+    for x in np.unique(planes)[::-1]:
         behind = centre < x
         cut = cut_behind(model, x=float(x), axis=a)
         n_rep = sum(int(m.sum()) for m in cut.replaced.values())

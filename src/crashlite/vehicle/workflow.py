@@ -1,11 +1,13 @@
 """The paper's simplified-vehicle workflow on the generic car, end to end.
 
-``us_ncap_study`` generates the car, runs its US NCAP load case, reduces
-it at the interface (steps 1–4), runs the simplified car in the same load
-case and verifies it against the full one, writing every deck, results
-folder and report under one folder:
+``us_ncap_study`` generates the car, runs its US NCAP load case, proposes
+an interface from that run (``interface.propose_interface``, reported
+beside the one used), reduces it at the interface (steps 1–4), runs the
+simplified car in the same load case and verifies it against the full
+one, writing every deck, results folder and report under one folder:
 
     out/car.k, out/usncap.k, out/full/          the full model and its run
+    out/interface.json                          the interface proposal
     out/simplified.k, out/reduction.{json,html} steps 1–4
     out/usncap_simplified.k, out/simplified/    the simplified run
     out/verify/index.html, summary.json         the verification
@@ -25,13 +27,16 @@ class Study:
     reduction: object  # reduce.Reduction
     verification: object  # verification.VehicleVerification
     seconds: dict  # stage -> wall time [s]
+    proposal: object = None  # interface.InterfaceProposal from the full run
 
 
 def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interface_x: float = -600.0,
                   speed_kmh: float = 56.0, quiet: bool = True, say=print, **reduce_options) -> Study:
     """Full run, reduction, simplified run and verification (module docstring)."""
     from ..solver import run
+    from ..report.build import jsonable
     from .generic import generic_vehicle
+    from .interface import propose_interface
     from .loadcases import usncap_deck
     from .reduce import reduce_vehicle
     from .verification import verify_vehicle
@@ -49,6 +54,18 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
     full = run(full_deck, out=out / "full", quiet=quiet)
     seconds["full run"] = time.perf_counter() - t0
     say(f"  full run: {full.cycles} cycles in {full.wall_time:.1f} s")
+    t0 = time.perf_counter()
+    prop = propose_interface(v.model, out / "full", also=(v.interface_x,))
+    (out / "interface.json").write_text(json.dumps(jsonable(prop.summary()), indent=1) + "\n")
+    seconds["interface proposal"] = time.perf_counter() - t0
+    at = next(c for c in prop.candidates if c["x"] == v.interface_x)
+    said = next((c for c in prop.candidates if c["x"] == prop.x), None)
+    say(f"  interface proposal: " + (f"x = {prop.x:.0f} mm ({said['energy_behind_percent']:.2f} % of the absorbed "
+                                     f"energy and {said['strained_area_percent_behind']:.2f} % of the area strained "
+                                     f"beyond {100 * prop.strain:g} % behind it, {said['replaced_elements_percent']:.0f} % "
+                                     "of the elements replaced)" if said else "none (" + prop.notes[-1] + ")")
+        + f"; at the interface used, x = {at['x']:.0f}: {at['energy_behind_percent']:.2f} % and "
+          f"{at['strained_area_percent_behind']:.2f} %")
     t0 = time.perf_counter()
     red = reduce_vehicle(car, [out / "full"], load_cases=["US NCAP"], interface=v.interface_x,
                          axle_parts=["rear axle"], **reduce_options)
@@ -68,7 +85,7 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
     ver = verify_vehicle(out / "full", out / "simplified", full_deck, sim_deck)
     ver.write(out / "verify")
     seconds["verification"] = time.perf_counter() - t0
-    return Study(out, red, ver, seconds)
+    return Study(out, red, ver, seconds, prop)
 
 
 @dataclass

@@ -207,6 +207,10 @@ def test_interface_proposal_finds_the_elastic_rear(tmp_path):
     ahead = next(c for c in p.candidates if c["x"] == pytest.approx(350.0))
     assert ahead["energy_behind_percent"] == pytest.approx(100.0 * 2 / 8)  # 2 of the 8 strained rings
     assert len(p.notes) == 2  # both measures were estimated, and it says so
+    # a plane off the grid is rated as well: one of the 8 strained rings lies behind it
+    q = propose_interface(m, tmp_path, step=50.0, also=(337.5,))
+    assert q.x == pytest.approx(300.0)
+    assert {c["x"]: c for c in q.candidates}[337.5]["energy_behind_percent"] == pytest.approx(100.0 * 1 / 8)
 
 
 def test_interface_proposal_takes_both_criteria():
