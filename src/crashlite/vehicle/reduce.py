@@ -78,7 +78,8 @@ class Reduction:
             "step2_mass": {**self.mass.table(), "inertia": self.mass.structure.inertia.tolist()},
             "step3_stiffness": {**self.stiffness.table(), "transverse": dict(self.stiffness.transverse),
                                 "static_model": dict(self.stiffness.elements), "dofs": self.stiffness.n_dofs,
-                                "inertia_relief": None if self.relief is None else self.relief.table(),
+                                "inertia_relief": None if self.relief is None else {
+                                    **self.relief.table(), "transverse": dict(self.relief.transverse or {})},
                                 "springs_from": self.springs},
             "step4_surrogate": self.surrogate.summary(),
             "model_size": {"full_elements": n_full, "simplified_elements": n_sur,
@@ -224,8 +225,8 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     # step 3
     t0 = time.perf_counter()
     k = longitudinal_stiffness(cut, sup, transverse=(1000.0, 1.0e6))
-    trans = k.transverse
-    rel = relieved_stiffness(cut)
+    rel = relieved_stiffness(cut, transverse=(1000.0, 1.0e6))
+    trans = rel.transverse if springs == "relief" else k.transverse  # the beam as the springs: one way of bearing
     seconds["step 3 stiffness"] = time.perf_counter() - t0
     say(f"step 3: K = {k.stiffness:.6g} (F {k.force:g}, u {k.displacement:.4g}); shear {trans['shear']:.4g}, "
         f"roll {trans['roll']:.4g}; under inertia relief K = {rel.stiffness:.6g}")

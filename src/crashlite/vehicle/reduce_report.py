@@ -48,8 +48,10 @@ def reduction_page(r) -> str:
     if ir:
         body.append(f"<p>Under inertia relief (the structure held by its own mass, as in the crash): "
                     f"displacement {num(ir['displacement'])} against its mean motion, longitudinal stiffness "
-                    f"{num(ir['stiffness'], 6)}. The springs share the "
-                    f"{'inertia-relief' if t3['springs_from'] == 'relief' else 'axle-borne'} K.</p>")
+                    f"{num(ir['stiffness'], 6)}"
+                    + ("".join(f", {k} {num(v)}" for k, v in ir.get("transverse", {}).items() if k != "shear"))
+                    + f". The springs share the {'inertia-relief' if t3['springs_from'] == 'relief' else 'axle-borne'} "
+                    "K; the anti-rotation beam takes the same kind's shear and roll stiffness.</p>")
     body.append("<h2>Step 4: the surrogate</h2>")
     sur = s["step4_surrogate"]
     body.append(table(["assembly", "share [%]", "stiffness", "damping", "direction", "interface nodes"],

@@ -23,6 +23,13 @@ F·L / (3·EA): K_relief = 3·EA/L, three times the bar held at its far end
 (test). On a vehicle the rear structure between the seats and the axle, which
 the axle-borne K counts in full, carries only the inertia behind it, so
 K_relief is several times K_axle.
+
+The same holds across the axis: pushed sideways or twisted, the interface
+moves relative to the structure's mean rigid motion by what the
+structure's own inertia bends or twists it. A uniform beam pushed across
+at one end comes to 105·EI/L³ (35 times the cantilever's 3·EI/L³), twisted
+to 3·GJ/L (three times GJ/L held at the far end). The surrogate's beam
+takes its shear and roll stiffness from these when its springs do.
 """
 
 from __future__ import annotations
@@ -34,7 +41,7 @@ import numpy as np
 from ..model import mass as mk
 from .cut import Cut
 from .massprops import _given_inertia, element_moments, node_indices
-from .stiffness import StiffnessResult, build_static, solve_named
+from .stiffness import StiffnessResult, _transverse_loads, build_static, solve_named
 
 _NODES = {"shells": lambda t: t.nodes, "solids": lambda t: t.nodes, "beams": lambda t: t.nodes[:, :2]}
 
@@ -111,11 +118,14 @@ def _rigid_fit(r: np.ndarray, u: np.ndarray, w: np.ndarray, c: np.ndarray) -> tu
 
 
 def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interface_nodes=None,
-                       drill: float = 1e-3) -> StiffnessResult:
+                       drill: float = 1e-3, transverse: tuple | None = None) -> StiffnessResult:
     """K of the replaced structure of ``cut`` under inertia relief (module
     docstring): the rigid interface (default: all cut nodes) pushed with
     ``force`` along ``direction`` (default −axis), the structure's mass
-    reacting it."""
+    reacting it. ``transverse`` = (force, moment): also pushed across the
+    direction and twisted about it, each reacted by the inertia likewise, on
+    the same factorisation (``StiffnessResult.transverse``: lateral,
+    vertical, shear = the softer, roll)."""
     model = cut.model
     d = -cut.axis if direction is None else np.asarray(direction, float)
     d = d / np.linalg.norm(d)
@@ -135,26 +145,39 @@ def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interfac
     c = (m[carry, None] * xyz[carry]).sum(axis=0) / big_m
     i_c = mk.combine(mk.point_moments(xyz[carry], m[carry])).inertia
     p = ls.position(master)
-    f = force * d
-    acc = f / big_m
-    alpha = np.linalg.pinv(i_c) @ np.cross(p - c, f)
-    loads = {master: np.concatenate([f, np.zeros(3)])}
-    inertia = -m[carry, None] * (acc + np.cross(alpha, xyz[carry] - c))
-    for n, v in zip(carry.tolist(), inertia):
-        loads[n] = np.concatenate([v, np.zeros(3)])
+    across = {} if transverse is None else _transverse_loads(d, *transverse)
+    pushes = [(force * d, np.zeros(3))] + list(across.values())
+    cases = []
+    for f, mom in pushes:  # the interface load and the d'Alembert forces that balance it
+        alpha = np.linalg.pinv(i_c) @ (np.cross(p - c, f) + mom)
+        loads = {master: np.concatenate([f, mom])}
+        inertia = -m[carry, None] * (f / big_m + np.cross(alpha, xyz[carry] - c))
+        for n, v in zip(carry.tolist(), inertia):
+            loads[n] = np.concatenate([v, np.zeros(3)])
+        cases.append(loads)
     cand = np.flatnonzero(ls.in_structure & ~ls.tied())  # (a held node of a rigid group would hold the group)
     for n, dofs in _support_321(xyz, cand):
         ls.fix([n], dofs)
-    (sol,) = solve_named(ls, model, [loads])
-    u = sol.u[:ls.n, :3]
-    t, th = _rigid_fit(xyz[carry], u[carry], m[carry], c)
-    rigid = t + np.cross(th, p - c)
-    u_def = float((sol.u[master, :3] - rigid) @ d)
+    sol, *others = solve_named(ls, model, cases)
+
+    def relative(s):  # the interface's motion less the structure's best-fit rigid motion: (3,), (3,)
+        t, th = _rigid_fit(xyz[carry], s.u[:ls.n, :3][carry], m[carry], c)
+        return s.u[master, :3] - (t + np.cross(th, p - c)), s.u[master, 3:] - th
+
+    u_def = float(relative(sol)[0] @ d)
     if not u_def > 0:
         raise ValueError(f"the interface moves {u_def:.3g} along the load relative to the structure: not stable")
-    react = sol.reaction_force
-    if np.linalg.norm(react) > 1e-6 * force:
-        notes.append(f"the 3-2-1 support reacts {np.linalg.norm(react):.3g} (loads not in equilibrium)")
-    return StiffnessResult(force / u_def, float(force), u_def, d, p, sol.u[master].copy(), react, counts,
-                           sol.n_dofs, list(cut.notes) + notes + mnotes + sol.notes, sol,
-                           np.flatnonzero(ls.in_structure))
+    trans = None
+    if across:
+        trans = {}
+        for (key, (f, mom)), o in zip(across.items(), others):
+            du, dth = relative(o)
+            trans[key] = float(mom @ mom) / float(dth @ mom) if key == "roll" else float(f @ f) / float(du @ f)
+        trans["shear"] = min(trans["lateral"], trans["vertical"])
+    for s in [sol] + others:
+        if np.linalg.norm(s.reaction_force) > 1e-6 * force:
+            notes.append(f"the 3-2-1 support reacts {np.linalg.norm(s.reaction_force):.3g} (loads not in "
+                         "equilibrium)")
+    return StiffnessResult(force / u_def, float(force), u_def, d, p, sol.u[master].copy(), sol.reaction_force,
+                           counts, sol.n_dofs, list(cut.notes) + notes + mnotes + sol.notes, sol,
+                           np.flatnonzero(ls.in_structure), trans)

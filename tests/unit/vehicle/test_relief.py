@@ -79,3 +79,28 @@ def test_off_axis_mass_is_balanced_by_rotary_inertia():
     assert np.linalg.norm(r.support_reaction) < 1e-6 * r.force
     assert not any("reacts" in n for n in r.notes)
     assert r.stiffness > 0.0
+
+
+def test_slender_tube_across_and_twisted():
+    """A free uniform beam pushed across at one end by P and held by its own
+    inertia: M(x) = P·(x² − x³/L)/L from the free end, and the loaded end's
+    deflection against the best-fit rigid motion is P·L³/(105·EI), so the
+    lateral and vertical stiffness are 105·EI/L³ (the tube's shear adds
+    0.1 % at L/B = 24); twisted, 3·GJ/L (Bredt's J = B³·t for the thin
+    square tube). Against the tube held at its far end: 35 and 3 times."""
+    length, x_cut = 1500.0, 1200.0
+    xyz, q = tube_mesh(B, length, 4, 120)
+    model = shell_model(xyz, q, thickness=T, poisson=0.0)
+    cut = cut_behind(model, x=x_cut)
+    r = relieved_stiffness(cut, transverse=(1000.0, 1.0e6))
+    ei = E * (2.0 / 3.0) * T * B**3
+    gj = E / 2.0 * B**3 * T
+    tr = r.transverse
+    assert tr["lateral"] == pytest.approx(105.0 * ei / x_cut**3, rel=0.03)
+    assert tr["vertical"] == pytest.approx(tr["lateral"], rel=1e-6)
+    assert tr["shear"] == min(tr["lateral"], tr["vertical"])
+    assert tr["roll"] == pytest.approx(3.0 * gj / x_cut, rel=0.03)
+    held = longitudinal_stiffness(cut, np.flatnonzero(xyz[:, 0] == 0.0), transverse=(1000.0, 1.0e6)).transverse
+    assert tr["lateral"] / held["lateral"] == pytest.approx(35.0, rel=0.03)
+    assert tr["roll"] / held["roll"] == pytest.approx(3.0, rel=0.03)
+    assert r.stiffness == pytest.approx(3.0 * E * 4 * B * T / x_cut, rel=2e-3)  # the axial case, same solve
