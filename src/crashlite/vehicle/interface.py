@@ -137,14 +137,19 @@ def shell_plastic_strain(model: Model, results) -> np.ndarray | None:
     return _shell_field(model, results, "shell_plastic_strain")
 
 
+def shell_areas(model: Model) -> np.ndarray:
+    """(n_shells,) initial area of every shell (degenerate quads as triangles)."""
+    from ..solver.shells import element_areas
+
+    conn = model.shells.nodes.astype(np.int64)
+    return element_areas(model.nodes.xyz, conn, (conn[:, 3] == conn[:, 2]).astype(np.int8))
+
+
 def shell_volumes(model: Model) -> np.ndarray:
     """(n_shells,) initial area x section thickness of every shell."""
-    from ..solver.shells import element_areas
     from ..solver.tied import shell_thickness
 
-    s = model.shells
-    tri = (s.nodes[:, 3] == s.nodes[:, 2]).astype(np.int8)
-    return element_areas(model.nodes.xyz, s.nodes.astype(np.int64), tri) * shell_thickness(model)
+    return shell_areas(model) * shell_thickness(model)
 
 
 def shell_measures(model: Model, results) -> tuple[np.ndarray, np.ndarray, dict]:
@@ -170,7 +175,6 @@ def propose_interface(model: Model, results, strain: float = 0.01, allowed: floa
     ``also`` (e.g. the interface in use); the proposal (module docstring).
     ``measures``: (plastic strain, absorbed energy) per shell instead of
     reading them from ``results``."""
-    from ..solver.shells import element_areas
     from .cut import cut_behind
     from .massprops import element_moments, replaced_mass
 
@@ -183,7 +187,7 @@ def propose_interface(model: Model, results, strain: float = 0.01, allowed: floa
         how = {"plastic_strain": "given", "energy": "given"}
     xyz = model.nodes.xyz
     conn = model.shells.nodes.astype(np.int64)
-    area = element_areas(xyz, conn, (conn[:, 3] == conn[:, 2]).astype(np.int8))
+    area = shell_areas(model)
     centre = xyz[conn].mean(axis=1) @ a
     size = float(np.median(np.linalg.norm(xyz[conn[:, 2]] - xyz[conn[:, 0]], axis=1))) / np.sqrt(2.0)
     step = 4.0 * size if step is None else float(step)
@@ -229,14 +233,10 @@ PASSENGER_CELL = ("A-pillar", "door sill", "floor", "tunnel", "door", "roof", "B
 
 def _strain_and_area(model: Model, results) -> tuple[np.ndarray, np.ndarray]:
     """(n_shells,) plastic strain at the end of the run and initial area of every shell."""
-    from ..solver.shells import element_areas
-
     eps = shell_plastic_strain(model, results)
     if eps is None:
         raise ValueError(f"{results}: the run did not record the shells' plastic strain (a crashlite run does)")
-    s = model.shells
-    tri = (s.nodes[:, 3] == s.nodes[:, 2]).astype(np.int8)
-    return eps, element_areas(model.nodes.xyz, s.nodes.astype(np.int64), tri)
+    return eps, shell_areas(model)
 
 
 def _yielded_percent(eps: np.ndarray, area: np.ndarray, limit: float) -> float:

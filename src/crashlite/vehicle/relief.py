@@ -41,7 +41,7 @@ import numpy as np
 from ..model import mass as mk
 from .cut import Cut
 from .massprops import _given_inertia, element_moments, node_indices
-from .stiffness import StiffnessResult, _transverse_loads, build_static, solve_named
+from .stiffness import StiffnessResult, build_static, solve_named, transverse_loads, transverse_stiffnesses
 
 _NODES = {"shells": lambda t: t.nodes, "solids": lambda t: t.nodes, "beams": lambda t: t.nodes[:, :2]}
 
@@ -145,7 +145,7 @@ def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interfac
     c = (m[carry, None] * xyz[carry]).sum(axis=0) / big_m
     i_c = mk.combine(mk.point_moments(xyz[carry], m[carry])).inertia
     p = ls.position(master)
-    across = {} if transverse is None else _transverse_loads(d, *transverse)
+    across = {} if transverse is None else transverse_loads(d, *transverse)
     pushes = [(force * d, np.zeros(3))] + list(across.values())
     cases = []
     for f, mom in pushes:  # the interface load and the d'Alembert forces that balance it
@@ -167,13 +167,7 @@ def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interfac
     u_def = float(relative(sol)[0] @ d)
     if not u_def > 0:
         raise ValueError(f"the interface moves {u_def:.3g} along the load relative to the structure: not stable")
-    trans = None
-    if across:
-        trans = {}
-        for (key, (f, mom)), o in zip(across.items(), others):
-            du, dth = relative(o)
-            trans[key] = float(mom @ mom) / float(dth @ mom) if key == "roll" else float(f @ f) / float(du @ f)
-        trans["shear"] = min(trans["lateral"], trans["vertical"])
+    trans = transverse_stiffnesses(across, [relative(o) for o in others]) if across else None
     for s in [sol] + others:
         if np.linalg.norm(s.reaction_force) > 1e-6 * force:
             notes.append(f"the 3-2-1 support reacts {np.linalg.norm(s.reaction_force):.3g} (loads not in "

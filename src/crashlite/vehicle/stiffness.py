@@ -258,7 +258,7 @@ def solve_named(ls: LinearStatic, model: Model, cases: list) -> list:
         raise MechanismError(f"{e} (deck node IDs {ids[:10].tolist()})", e.nodes) from None
 
 
-def _transverse_loads(axis: np.ndarray, force: float, moment: float) -> dict:
+def transverse_loads(axis: np.ndarray, force: float, moment: float) -> dict:
     """The rigid interface's transverse load cases: name -> (force (3,), moment (3,))."""
     ref = np.array([0.0, 0.0, 1.0]) if abs(axis[2]) < 0.9 else np.array([0.0, 1.0, 0.0])
     e_lat = np.cross(ref, axis)
@@ -266,6 +266,17 @@ def _transverse_loads(axis: np.ndarray, force: float, moment: float) -> dict:
     e_ver = np.cross(axis, e_lat)
     return {"lateral": (e_lat * force, np.zeros(3)), "vertical": (e_ver * force, np.zeros(3)),
             "roll": (np.zeros(3), axis * moment)}
+
+
+def transverse_stiffnesses(across: dict, motions) -> dict:
+    """Lateral, vertical and roll stiffness from the ``transverse_loads``
+    cases and the interface's (displacement (3,), rotation (3,)) in each;
+    shear is the softer of lateral and vertical."""
+    out = {}
+    for (key, (f, m)), (du, dth) in zip(across.items(), motions):
+        out[key] = float(m @ m) / float(dth @ m) if key == "roll" else float(f @ f) / float(du @ f)
+    out["shear"] = min(out["lateral"], out["vertical"])
+    return out
 
 
 def structure_stiffness(model: Model, support, load_nodes, force: float = 1000.0, direction=(-1.0, 0.0, 0.0),
@@ -281,20 +292,14 @@ def structure_stiffness(model: Model, support, load_nodes, force: float = 1000.0
     ls, master, counts, notes = borne_structure(model, support, load_nodes, select, support_dofs, load_point, drill)
     dvec = np.asarray(direction, float).reshape(3)
     dvec = dvec / np.linalg.norm(dvec)
-    across = {} if transverse is None else _transverse_loads(dvec, *transverse)
+    across = {} if transverse is None else transverse_loads(dvec, *transverse)
     cases = [{master: np.concatenate([force * dvec, np.zeros(3)])}] + \
         [{master: np.concatenate(fm)} for fm in across.values()]
     sol, *others = solve_named(ls, model, cases)
     u = float(sol.u[master, :3] @ dvec)
     if not u > 0:
         raise ValueError(f"the load point moves {u:.3g} along the load: the structure is not stable under it")
-    trans = None
-    if across:
-        trans = {}
-        for (key, (f, m)), o in zip(across.items(), others):
-            um = o.u[master]
-            trans[key] = float(m @ m) / float(um[3:] @ m) if key == "roll" else float(f @ f) / float(um[:3] @ f)
-        trans["shear"] = min(trans["lateral"], trans["vertical"])
+    trans = transverse_stiffnesses(across, [(o.u[master, :3], o.u[master, 3:]) for o in others]) if across else None
     return StiffnessResult(force / u, float(force), u, dvec, ls.position(master), sol.u[master].copy(),
                            sol.reaction_force, counts, sol.n_dofs, notes + sol.notes, sol,
                            np.flatnonzero(ls.in_structure), trans)
