@@ -90,14 +90,19 @@ def _interface(args) -> int:
 
     p = propose_interface(read_deck(args.deck), args.results, strain=args.strain / 100.0,
                           allowed=args.allowed / 100.0, energy=args.energy / 100.0, step=args.step, also=args.at)
+    bent = any("interface_warping_max" in c for c in p.candidates)
     print(f"{'x':>9} {'energy behind':>14} {'strained area':>14} {'p99 εp':>8} {'mass replaced':>14} "
-          f"{'elements replaced':>18}  most energy behind")
+          f"{'elements replaced':>18}" + (f" {'cut bends max/rms':>18}" if bent else "") + "  most energy behind")
     for c in p.candidates:
         mark = "  <- proposed" if p.x is not None and c["x"] == p.x else ""
         most = ", ".join(f"{k} {v:.2f} %" for k, v in c["most_energy_behind"].items())
+        warp = f" {c['interface_warping_max']:9.2f} /{c['interface_warping_rms']:6.2f}" if bent else ""
         print(f"{c['x']:9.1f} {c['energy_behind_percent']:13.2f}% {c['strained_area_percent_behind']:13.2f}% "
               f"{100 * c['p99_plastic_strain_behind']:7.2f}% {c['replaced_mass_percent']:13.1f}% "
-              f"{c['replaced_elements_percent']:17.1f}%  {most}{mark}")
+              f"{c['replaced_elements_percent']:17.1f}%{warp}  {most}{mark}")
+    if bent:
+        print("cut bends: how far the cut's nodes move along the axis out of the rigid motion that best fits them "
+              "(largest value and largest rms over the run) [length]: a rigid interface holds the cut flat")
     for n in p.notes:
         print(f"note: {n}")
     if args.json is not None:

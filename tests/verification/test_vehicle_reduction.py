@@ -119,7 +119,8 @@ def test_simplified_car_follows_the_full_car(study):
     (measured 50 % and 14 %: the simplified car's right rail folds harder
     and it yaws the other way, README),
     what the interface carries within 10 % (the full car's cell hardly
-    moves it), the crash-box energy within 15 %; both runs conserve energy
+    moves it), the full car's cut bending out of a rigid motion where the
+    surrogate's stays flat, the crash-box energy within 15 %; both runs conserve energy
     within 3 %, the simplified one runs in less time; summary.json carries
     the figures under their keys. (Issue 8's 5 % intrusion and 2 %
     crash-box bounds are not met here: README.)"""
@@ -130,6 +131,10 @@ def test_simplified_car_follows_the_full_car(study):
     assert fi["max_intrusion_full"] > 10.0  # mm
     assert fi["max_deviation_percent"] < 60.0 and fi["mean_deviation_percent"] < 20.0
     assert fi["split"]["carried_by_interface"]["max_deviation_percent"] < 10.0
+    # the full car's cut bends out of a rigid motion (measured 8.5 mm, 15 % of the largest intrusion); the
+    # surrogate's rigid interface does not
+    bend = fi["split"]["interface_warping"]
+    assert bend["max_full"] > 2.0 and bend["max_simplified"] < 1e-3
     assert f["time"]["simplified"]["wall_time"] < f["time"]["full"]["wall_time"]
     r = _results(study, "simplified")
     tot = r["kinetic"] + r["internal"] + r["hourglass"] + r["sliding"]

@@ -30,7 +30,12 @@ For every candidate it reports both shares, the largest and the 99th
 percentile plastic strain behind it, the parts holding most of the energy
 behind it, and the mass and the share of the elements the reduction would
 replace: with the time step unchanged, the run time scales with the
-elements kept, so the share replaced is the expected time saving.
+elements kept, so the share replaced is the expected time saving. Where
+the run has field states, also how far the cut's nodes bend along the axis
+out of the rigid motion that best fits them (largest value and largest
+root mean square over the run): elastic as the structure behind may be, a
+rigid interface holds the cut flat, and the kept structure's deformation
+(the firewall's intrusion) cannot follow the full model's closer than that.
 """
 
 from __future__ import annotations
@@ -95,21 +100,29 @@ def _shell_material(model: Model) -> tuple[np.ndarray, np.ndarray]:
     return ey, sy
 
 
-def _membrane_strain(model: Model, results) -> np.ndarray:
-    """(n_shells,) largest edge or diagonal strain over the field states of
-    ``results`` (nodes matched by ID)."""
+def _aligned_states(model: Model, results) -> np.ndarray | None:
+    """(m, n_nodes, 3) field states of ``results`` in the deck's node order
+    (nodes matched by ID), the first the initial one; None without states."""
     from ..verify.fields import load_states
 
-    st = load_states(results, model)
+    st = load_states(results, model) if results is not None else None
     if st is None:
-        raise ValueError(f"{results}: neither plastic strains nor field states (*DATABASE_BINARY_D3PLOT) "
-                         "to rate the shells by")
+        return None
     idx = {int(n): k for k, n in enumerate(st.ids)}
     missing = [int(n) for n in model.nodes.ids if int(n) not in idx]
     if missing:
         raise ValueError(f"{results}: {len(missing)} node(s) of the deck are not in the field states "
                          f"(e.g. {missing[:5]}): not a run of this deck")
-    xs = st.x[:, np.array([idx[int(n)] for n in model.nodes.ids])]
+    return st.x[:, np.array([idx[int(n)] for n in model.nodes.ids])]
+
+
+def _membrane_strain(model: Model, results) -> np.ndarray:
+    """(n_shells,) largest edge or diagonal strain over the field states of
+    ``results`` (nodes matched by ID)."""
+    xs = _aligned_states(model, results)
+    if xs is None:
+        raise ValueError(f"{results}: neither plastic strains nor field states (*DATABASE_BINARY_D3PLOT) "
+                         "to rate the shells by")
     return shell_strain(xs[0], xs[1:], model.shells.nodes.astype(np.int64))
 
 
@@ -177,6 +190,7 @@ def propose_interface(model: Model, results, strain: float = 0.01, allowed: floa
     reading them from ``results``."""
     from .cut import cut_behind
     from .massprops import element_moments, replaced_mass
+    from .rigidfit import warping_history
 
     a = np.asarray(axis, float)
     a = a / np.linalg.norm(a)
@@ -198,6 +212,7 @@ def propose_interface(model: Model, results, strain: float = 0.01, allowed: floa
     titles = np.array([str(model.parts.get(int(p), {}).get("heading", "") or f"part {int(p)}")
                        for p in model.shells.pid])
     moments = element_moments(model)  # once: every candidate sums its own share of them
+    xs = _aligned_states(model, results)
     out, proposed = [], None
     first = np.ceil(hi / step) * step - step  # candidates on multiples of the step
     planes = np.concatenate([np.arange(first, lo, -step), [float(x) for x in also if lo < float(x) < hi]])
@@ -218,6 +233,9 @@ def propose_interface(model: Model, results, strain: float = 0.01, allowed: floa
                     "most_energy_behind": {t: 100.0 * v / total for t, v in top if total > 0},
                     "replaced_mass_percent": 100.0 * replaced_mass(cut, moments=moments).structure.mass / full_mass,
                     "replaced_elements_percent": 100.0 * n_rep / max(n_el, 1)})
+        if xs is not None:  # how far the cut bends out of a rigid motion: what a rigid interface cannot follow
+            wh = warping_history(xs[1:], xs[0], cut.interface_nodes, a)
+            out[-1].update(interface_warping_max=wh["max"], interface_warping_rms=wh["rms"])
         if proposed is None and e_share <= energy and a_share <= allowed:
             proposed = float(x)
     notes = [f"{k.replace('_', ' ')}: {v}" for k, v in how.items() if v != "recorded"]

@@ -65,6 +65,14 @@ def verification_page(v) -> str:
                  num(c["mean_deviation_percent"], 3)]
                 for label, c in (("carried by the interface", sp["carried_by_interface"]),
                                  ("own deformation of the kept structure", sp["own_deformation"]))]))
+            warp = sp.get("interface_warping")
+            if warp:
+                body.append(f"<p>The interface's own bending at that state, along the axis, away from the rigid "
+                            f"motion that best fits its nodes: {esc(names[0])} max {num(warp['max_full'])}, rms "
+                            f"{num(warp['rms_full'])} ({num(warp['max_full_percent'], 3)} % and "
+                            f"{num(warp['rms_full_percent'], 3)} % of its largest intrusion); {esc(names[1])} max "
+                            f"{num(warp['max_simplified'])}. A rigid interface holds the cut flat: the kept structure "
+                            "next to it cannot follow the full model closer than this.</p>")
         if v.intrusion is not None:
             body.append(image(intrusion_plot(v.intrusion, names), "firewall intrusion"))
     t = f["time"]

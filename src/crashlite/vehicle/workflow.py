@@ -65,7 +65,9 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
                                      f"beyond {100 * prop.strain:g} % behind it, {said['replaced_elements_percent']:.0f} % "
                                      "of the elements replaced)" if said else "none (" + prop.notes[-1] + ")")
         + f"; at the interface used, x = {at['x']:.0f}: {at['energy_behind_percent']:.2f} % and "
-          f"{at['strained_area_percent_behind']:.2f} %")
+          f"{at['strained_area_percent_behind']:.2f} %"
+        + (f", the cut bends up to {at['interface_warping_max']:.1f} mm out of a rigid motion (rms "
+           f"{at['interface_warping_rms']:.1f})" if "interface_warping_max" in at else ""))
     t0 = time.perf_counter()
     red = reduce_vehicle(car, [out / "full"], load_cases=["US NCAP"], interface=v.interface_x,
                          axle_parts=["rear axle"], **reduce_options)

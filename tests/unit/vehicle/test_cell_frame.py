@@ -5,7 +5,9 @@ import numpy as np
 import pytest
 
 from crashlite.solver.rigid import rotation
-from crashlite.vehicle.verification import _in_cell, cell_motion
+from crashlite.vehicle.rigidfit import rearward_in_frame as _in_cell
+from crashlite.vehicle.rigidfit import rigid_motion as cell_motion
+from crashlite.vehicle.rigidfit import warping, warping_history
 
 CELL = np.array([[-2200.0, 350.0, 350.0], [-2200.0, -350.0, 350.0], [-1490.0, 700.0, 300.0],
                  [-1490.0, -700.0, 300.0]])  # rear seats and B-pillar sills of the generic car
@@ -71,3 +73,31 @@ def test_the_split_separates_the_interface_motion_from_the_kept_structures_own_d
     np.testing.assert_allclose(carried, carried_expect, atol=0.5 * 0.02**2 * 40.0)  # less the dent's d(1 − cos θ)
     np.testing.assert_allclose(carried + own, _in_cell(x, x0, fw, frame, 0), atol=1e-9)
     assert carried.min() < 12.0 < carried.max()  # the pitch: the top is carried less far back
+
+
+def test_a_plane_that_moves_rigidly_does_not_bend_one_that_bows_does():
+    """A grid of interface nodes in the plane x = −600, turned and shifted
+    as one body: no warping. Bowed back by u = −κ(y² + z²) on top of that
+    (symmetric in y and z, so the best fit adds no turn): the warping is
+    κ(y² + z² − mean) rearwards at every node, and over a history of such
+    states the largest value and the largest rms are those of the most
+    bowed state."""
+    y, z = np.meshgrid(np.linspace(-700.0, 700.0, 8), np.linspace(150.0, 1050.0, 5))
+    x0 = np.column_stack([np.full(y.size, -600.0), y.ravel(), z.ravel()])
+    nodes = np.arange(len(x0))
+    r = rotation(np.array([0.01, 0.05, -0.03]))
+    c = x0.mean(axis=0)
+
+    def moved(kappa):
+        bow = x0.copy()
+        bow[:, 0] -= kappa * ((x0[:, 1]) ** 2 + (x0[:, 2] - c[2]) ** 2)
+        return (bow - c) @ r.T + c + [350.0, -8.0, 22.0]
+
+    np.testing.assert_allclose(warping(moved(0.0), x0, nodes, 0), 0.0, atol=1e-9)
+    kappa = 1e-5  # 4.9 mm at the corners
+    q = x0[:, 1] ** 2 + (x0[:, 2] - c[2]) ** 2
+    expect = kappa * (q - q.mean())
+    np.testing.assert_allclose(warping(moved(kappa), x0, nodes, 0), expect, atol=1e-6 * np.abs(expect).max())
+    h = warping_history(np.stack([moved(0.0), moved(kappa), moved(0.4 * kappa)]), x0, nodes, 0)
+    assert h["max"] == pytest.approx(np.abs(expect).max(), rel=1e-6) and h["state_of_max"] == 1
+    assert h["rms"] == pytest.approx(np.sqrt((expect ** 2).mean()), rel=1e-6) and h["state_of_rms"] == 1

@@ -213,6 +213,37 @@ def test_interface_proposal_finds_the_elastic_rear(tmp_path):
     assert {c["x"]: c for c in q.candidates}[337.5]["energy_behind_percent"] == pytest.approx(100.0 * 1 / 8)
 
 
+def test_interface_proposal_reports_how_far_the_cut_bends(tmp_path):
+    """Field states of the tube whose rear (x < 300) bows back by
+    κ·y² while the whole tube moves on: every candidate plane behind 300
+    cuts a ring of nodes that bends κ(y² − mean) out of its rigid motion
+    (the largest value and the rms over the ring), the planes ahead of it
+    cut rings that only translate: no bending."""
+    from crashlite.vehicle.interface import propose_interface
+
+    m, _, _ = _tube(per_side=4, n_len=20, masses=False)
+    x0 = m.nodes.xyz
+    kappa = 1e-3
+    x1 = x0.copy()
+    x1[:, 0] -= 50.0
+    rear = x0[:, 0] < 300.0
+    x1[rear, 0] -= kappa * x0[rear, 1] ** 2
+    np.savez(tmp_path / "results.npz", states_time=np.array([0.0, 0.01]), states_x=np.stack([x0, x1]),
+             node_ids=m.nodes.ids)
+    ring = x0[np.isclose(x0[:, 0], 200.0), 1] ** 2  # y² of one ring's nodes
+    bent = kappa * (ring - ring.mean())
+    at = {round(c["x"]): c for c in propose_interface(m, tmp_path, step=50.0).candidates}
+    for x in (100, 200, 250):
+        assert at[x]["interface_warping_max"] == pytest.approx(np.abs(bent).max(), rel=1e-6)
+        assert at[x]["interface_warping_rms"] == pytest.approx(np.sqrt((bent ** 2).mean()), rel=1e-6)
+    for x in (350, 400):
+        assert at[x]["interface_warping_max"] < 1e-9
+    # without field states (measures given) nothing is said about it
+    eps = np.zeros(len(m.shells))
+    assert all("interface_warping_max" not in c
+               for c in propose_interface(m, None, step=50.0, measures=(eps, eps + 1.0)).candidates)
+
+
 def test_interface_proposal_takes_both_criteria():
     """Given measures on the tube (8 strained rings ahead of x = 300, 1 unit
     of energy per shell): a ring behind that absorbs as much but strains
