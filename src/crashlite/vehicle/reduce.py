@@ -35,6 +35,7 @@ from ..model.model import Model
 from . import loadpaths as lp
 from .cut import Cut, cut_behind
 from .massprops import ReplacedMass, replaced_mass
+from .connection import compare_connection, connection_stiffness
 from .relief import relieved_stiffness
 from .stiffness import StiffnessResult, longitudinal_stiffness
 from .surrogate import Surrogate, build_surrogate
@@ -57,6 +58,7 @@ class Reduction:
     notes: list = field(default_factory=list)
     relief: StiffnessResult | None = None  # K under inertia relief
     springs: str = "relief"  # the K the springs share: "relief" or "axle" (the paper's step 3)
+    connection: dict | None = None  # the surrogate's 6×6 connection against the structure's (connection.py)
 
     @property
     def spring_stiffness(self) -> float:
@@ -82,6 +84,7 @@ class Reduction:
                                     **self.relief.table(), "transverse": dict(self.relief.transverse or {})},
                                 "springs_from": self.springs},
             "step4_surrogate": self.surrogate.summary(),
+            "connection_against_structure": self.connection,
             "model_size": {"full_elements": n_full, "simplified_elements": n_sur,
                            "element_reduction_percent": 100.0 * (1 - n_sur / n_full) if n_full else None,
                            "full_parts": len(full.parts), "simplified_parts": len(sur.parts),
@@ -237,6 +240,12 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
                           spring_length=spring_length, damping_ratio=damping_ratio, mass_split=mass_split)
     seconds["step 4 surrogate"] = time.perf_counter() - t0
     say(f"step 4: {len(sur.springs)} springs, {len(sur.model.shells)} of {len(model.shells)} shells kept")
+    conn = None
+    if interface_mode == "rigid" and rel.flexibility is not None:
+        conn = compare_connection(connection_stiffness(sur, rel.load_point), rel.flexibility, cut.axis)
+        worst = conn["largest_compliance_misfit"]
+        say(f"  the springs and beam against the replaced structure: {worst['direction']} compliance "
+            f"x{worst['ratio']:.3g} (the largest misfit)")
     notes += mass.notes + k.notes + [n for n in rel.notes if n not in k.notes]
     return Reduction(str(getattr(model, "source", "") or ""), paths, used, basis, deviation, cut, mass, k, sur,
-                     seconds, notes, rel, springs)
+                     seconds, notes, rel, springs, conn)

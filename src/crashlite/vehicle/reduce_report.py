@@ -61,6 +61,16 @@ def reduction_page(r) -> str:
     b = sur["beam"]
     body.append(f"<p>Anti-rotation beam: length {num(b['length'])}, axial stiffness {num(b['axial_stiffness'])}, "
                 f"EI {num(b['EI'])}, GJ {num(b['GJ'])}; interface: {esc(sur['interface'])} rigid body.</p>")
+    conn = s.get("connection_against_structure")
+    if conn:
+        body.append("<p>The springs and the beam join the interface body to the rear body: the front structure "
+                    "feels them as one 6×6 stiffness at the interface. Against the replaced structure's own, held "
+                    "by its inertia (step 3 under inertia relief), per direction: the compliance under that load "
+                    "alone (the rest free) and the stiffness with the rest held, surrogate over structure.</p>")
+        body.append(table(["direction", "structure compliance", "surrogate compliance", "compliance ratio",
+                           "stiffness ratio (rest held)"], [
+            [name, num(d["structure_compliance"]), num(d["surrogate_compliance"]), num(d["compliance_ratio"], 3),
+             num(d["stiffness_ratio_held"], 3)] for name, d in conn["directions"].items()]))
     body.append("<p>Run time of the steps: " + ", ".join(f"{esc(k)} {v:.1f} s" for k, v in s["seconds"].items())
                 + "</p>")
     notes = s["notes"] + sur["notes"]

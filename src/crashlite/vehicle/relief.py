@@ -125,7 +125,11 @@ def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interfac
     reacting it. ``transverse`` = (force, moment): also pushed across the
     direction and twisted about it, each reacted by the inertia likewise, on
     the same factorisation (``StiffnessResult.transverse``: lateral,
-    vertical, shear = the softer, roll)."""
+    vertical, shear = the softer, roll) and, with the interface also twisted
+    about both transverse directions, its whole 6×6 flexibility
+    (``StiffnessResult.flexibility``: the interface's displacement and
+    rotation relative to the structure's best-fit rigid motion per unit
+    force and moment on it, global axes, at ``load_point``)."""
     model = cut.model
     d = -cut.axis if direction is None else np.asarray(direction, float)
     d = d / np.linalg.norm(d)
@@ -146,7 +150,8 @@ def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interfac
     i_c = mk.combine(mk.point_moments(xyz[carry], m[carry])).inertia
     p = ls.position(master)
     across = {} if transverse is None else transverse_loads(d, *transverse)
-    pushes = [(force * d, np.zeros(3))] + list(across.values())
+    turns = {} if transverse is None else _turns(across, transverse[1])
+    pushes = [(force * d, np.zeros(3))] + list(across.values()) + list(turns.values())
     cases = []
     for f, mom in pushes:  # the interface load and the d'Alembert forces that balance it
         alpha = np.linalg.pinv(i_c) @ (np.cross(p - c, f) + mom)
@@ -167,11 +172,26 @@ def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interfac
     u_def = float(relative(sol)[0] @ d)
     if not u_def > 0:
         raise ValueError(f"the interface moves {u_def:.3g} along the load relative to the structure: not stable")
-    trans = transverse_stiffnesses(across, [relative(o) for o in others]) if across else None
+    motions = [relative(o) for o in others]
+    trans = transverse_stiffnesses(across, motions[:len(across)]) if across else None
+    flex = None
+    if across:  # response = C · load over the six independent load cases: C = R G⁻¹
+        g = np.array([np.concatenate(fm) for fm in pushes]).T
+        r = np.array([np.concatenate(relative(x)) for x in [sol] + others]).T
+        flex = r @ np.linalg.inv(g)
+        flex = 0.5 * (flex + flex.T)  # symmetric to round-off (Maxwell–Betti)
     for s in [sol] + others:
         if np.linalg.norm(s.reaction_force) > 1e-6 * force:
             notes.append(f"the 3-2-1 support reacts {np.linalg.norm(s.reaction_force):.3g} (loads not in "
                          "equilibrium)")
     return StiffnessResult(force / u_def, float(force), u_def, d, p, sol.u[master].copy(), sol.reaction_force,
                            counts, sol.n_dofs, list(cut.notes) + notes + mnotes + sol.notes, sol,
-                           np.flatnonzero(ls.in_structure), trans)
+                           np.flatnonzero(ls.in_structure), trans, flex)
+
+
+def _turns(across: dict, moment: float) -> dict:
+    """The interface twisted about the two transverse directions (pitch and
+    yaw for a car): with the ``transverse_loads`` cases, six independent
+    loads that give the interface's whole 6×6 flexibility."""
+    return {"pitch": (np.zeros(3), across["lateral"][0] / np.linalg.norm(across["lateral"][0]) * moment),
+            "yaw": (np.zeros(3), across["vertical"][0] / np.linalg.norm(across["vertical"][0]) * moment)}

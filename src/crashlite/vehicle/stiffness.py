@@ -55,6 +55,7 @@ class StiffnessResult:
     solution: StaticSolution | None = None
     nodes: np.ndarray | None = None  # (n,) node indices of the model in the static model
     transverse: dict | None = None  # lateral, vertical, shear and roll stiffness on the same factorisation
+    flexibility: np.ndarray | None = None  # (6, 6) [u; θ] per unit [F; M] at load_point (inertia relief)
 
     def table(self) -> dict:
         """The paper's table 3."""

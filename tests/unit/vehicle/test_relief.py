@@ -87,7 +87,8 @@ def test_slender_tube_across_and_twisted():
     deflection against the best-fit rigid motion is P·L³/(105·EI), so the
     lateral and vertical stiffness are 105·EI/L³ (the tube's shear adds
     0.1 % at L/B = 24); twisted, 3·GJ/L (Bredt's J = B³·t for the thin
-    square tube). Against the tube held at its far end: 35 and 3 times."""
+    square tube). Against the tube held at its far end: 35 and 3 times. The
+    same solve gives the whole 6×6 flexibility (turned: 13·L/(35·EI))."""
     length, x_cut = 1500.0, 1200.0
     xyz, q = tube_mesh(B, length, 4, 120)
     model = shell_model(xyz, q, thickness=T, poisson=0.0)
@@ -104,3 +105,18 @@ def test_slender_tube_across_and_twisted():
     assert tr["lateral"] / held["lateral"] == pytest.approx(35.0, rel=0.03)
     assert tr["roll"] / held["roll"] == pytest.approx(3.0, rel=0.03)
     assert r.stiffness == pytest.approx(3.0 * E * 4 * B * T / x_cut, rel=2e-3)  # the axial case, same solve
+    # turned about y or z by an end moment and held by its rotary inertia, the end rotates 13·M·L/(35·EI)
+    # against the best-fit rigid motion; pushed across, it turns (and turned, moves) by 11·L²/(210·EI) per
+    # unit load (Maxwell–Betti); the whole 6×6 flexibility at the interface from six loads on one solve
+    c = r.flexibility
+    assert c[4, 4] == pytest.approx(13.0 * x_cut / (35.0 * ei), rel=0.03)
+    assert c[5, 5] == pytest.approx(c[4, 4], rel=1e-6)
+    assert abs(c[1, 5]) == pytest.approx(11.0 * x_cut**2 / (210.0 * ei), rel=0.03)
+    assert abs(c[2, 4]) == pytest.approx(abs(c[1, 5]), rel=1e-6)
+    assert c[1, 1] == pytest.approx(1.0 / tr["lateral"], rel=1e-9) and c[3, 3] == pytest.approx(1.0 / tr["roll"])
+    assert c[0, 0] == pytest.approx(1.0 / r.stiffness, rel=1e-9)
+    assert np.all(np.linalg.eigvalsh(c) > 0)
+    off = c.copy()  # no other coupling in a doubly symmetric tube
+    for i, j in ((1, 5), (5, 1), (2, 4), (4, 2)):
+        off[i, j] = 0.0
+    assert np.abs(off - np.diag(np.diag(off))).max() < 1e-3 * np.abs(c[1, 5])
