@@ -54,7 +54,7 @@ def _reduce(args) -> int:
                          t_end=None if args.t_end is None else args.t_end / 1000.0 * _seconds(args.deck),
                          interface_mode=args.interface_mode, spring_length=args.spring_length,
                          damping_ratio=args.damping_ratio, mass_split=args.mass_split, springs=args.springs,
-                         quiet=False)
+                         modes=args.modes, quiet=False)
     files = red.write(args.output, args.report, fmt=args.format)
     s = red.summary()["model_size"]
     print(f"wrote {files['deck']} ({s['simplified_elements']} of {s['full_elements']} elements, "
@@ -203,6 +203,9 @@ def add_commands(sub) -> None:
     r.add_argument("--springs", choices=("relief", "axle"), default="relief",
                    help="the K the springs share: the replaced structure's under inertia relief (held by its own "
                         "mass, as in the crash), or step 3's, borne at the rear axle (the paper)")
+    r.add_argument("--modes", type=int, default=0,
+                   help="also the replaced structure's lowest N free modes, where they live and the share of the "
+                        "interface's compliance each carries (a rigid rear leaves them out; costs a minute on a car)")
     r.add_argument("--format", choices=("fixed", "long", "i10", "free"), default="fixed")
     r.set_defaults(func=_reduce)
     w = vsub.add_parser("verify", formatter_class=fmt,

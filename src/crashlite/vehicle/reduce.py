@@ -36,6 +36,7 @@ from . import loadpaths as lp
 from .cut import Cut, cut_behind
 from .massprops import ReplacedMass, replaced_mass
 from .connection import compare_connection, connection_stiffness
+from .modes import free_modes
 from .relief import relieved_stiffness
 from .stiffness import StiffnessResult, longitudinal_stiffness
 from .surrogate import Surrogate, build_surrogate
@@ -59,6 +60,7 @@ class Reduction:
     relief: StiffnessResult | None = None  # K under inertia relief
     springs: str = "relief"  # the K the springs share: "relief" or "axle" (the paper's step 3)
     connection: dict | None = None  # the surrogate's 6×6 connection against the structure's (connection.py)
+    modes: dict | None = None  # the replaced structure's free modes (modes.FreeModes.summary), when asked for
 
     @property
     def spring_stiffness(self) -> float:
@@ -85,6 +87,7 @@ class Reduction:
                                 "springs_from": self.springs},
             "step4_surrogate": self.surrogate.summary(),
             "connection_against_structure": self.connection,
+            "replaced_structure_modes": self.modes,
             "model_size": {"full_elements": n_full, "simplified_elements": n_sur,
                            "element_reduction_percent": 100.0 * (1 - n_sur / n_full) if n_full else None,
                            "full_parts": len(full.parts), "simplified_parts": len(sur.parts),
@@ -152,7 +155,7 @@ def _support(model: Model, support):
 def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.0, 0.0), assemblies=None,
                    support=None, axle_parts=None, shares="combined", t_end: float | None = None,
                    interface_mode: str = "rigid", spring_length: float = 100.0, damping_ratio: float = 0.0,
-                   mass_split: str = "axle", springs: str = "relief", quiet: bool = True) -> Reduction:
+                   mass_split: str = "axle", springs: str = "relief", modes: int = 0, quiet: bool = True) -> Reduction:
     """Steps 1–4 (module docstring).
 
     deck        the full vehicle deck (path or Model)
@@ -168,6 +171,7 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     mass_split  "axle" or "cog" (``surrogate.build_surrogate``)
     springs     the K the springs share: "relief" (default), the replaced structure held by its own
                 inertia as in the crash (``relief``), or "axle", the paper's step 3 (borne at the rear axle)
+    modes       also the replaced structure's lowest free modes (``modes.free_modes``; 0: none)
     """
     from ..keyword.reader import read_deck
 
@@ -246,6 +250,14 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
         worst = conn["largest_compliance_misfit"]
         say(f"  the springs and beam against the replaced structure: {worst['direction']} compliance "
             f"x{worst['ratio']:.3g} (the largest misfit)")
+    free = None
+    if modes > 0:
+        t0 = time.perf_counter()
+        fm = free_modes(cut, count=modes)
+        free = fm.summary(rel.flexibility, cut.axis)
+        seconds["free modes"] = time.perf_counter() - t0
+        say(f"  free modes of the replaced structure: {', '.join(f'{f:.3g}' for f in fm.frequencies[:4])} ... "
+            f"(time unit⁻¹)")
     notes += mass.notes + k.notes + [n for n in rel.notes if n not in k.notes]
     return Reduction(str(getattr(model, "source", "") or ""), paths, used, basis, deviation, cut, mass, k, sur,
-                     seconds, notes, rel, springs, conn)
+                     seconds, notes, rel, springs, conn, free)

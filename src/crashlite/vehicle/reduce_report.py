@@ -71,6 +71,19 @@ def reduction_page(r) -> str:
                            "stiffness ratio (rest held)"], [
             [name, num(d["structure_compliance"]), num(d["surrogate_compliance"]), num(d["compliance_ratio"], 3),
              num(d["stiffness_ratio_held"], 3)] for name, d in conn["directions"].items()]))
+    fm = s.get("replaced_structure_modes")
+    if fm:
+        shares = fm.get("compliance_share_percent") or {}
+        body.append("<p>Free modes of the replaced structure (its interface one rigid body): a rigid rear leaves "
+                    "them out. Each mode's share of the interface's compliance under inertia relief, and the parts "
+                    "holding most of its kinetic energy; a slow mode (a period longer than the crash) deflects "
+                    "little in the crash however much of the static compliance it carries.</p>")
+        body.append(table(["mode", "frequency", "axial %", "lateral %", "vertical %", "roll %", "pitch %", "yaw %",
+                           "where"], [
+            [j + 1, num(f, 3)] + [num(shares[d][j], 3) if d in shares else "" for d in
+                                  ("axial", "lateral", "vertical", "roll", "pitch", "yaw")]
+            + [", ".join(f"{k} {v:.0f} %" for k, v in fm["kinetic_energy_share_percent"][j].items())]
+            for j, f in enumerate(fm["frequencies"])]))
     body.append("<p>Run time of the steps: " + ", ".join(f"{esc(k)} {v:.1f} s" for k, v in s["seconds"].items())
                 + "</p>")
     notes = s["notes"] + sur["notes"]

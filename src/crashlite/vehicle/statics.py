@@ -212,9 +212,11 @@ class LinearStatic:
         """Solve for the loads given with ``load``."""
         return self.solve_cases([self._loads])[0]
 
-    def solve_cases(self, cases) -> list[StaticSolution]:
-        """Solve several load cases on one factorisation: ``cases`` a list
-        of {node: (6,) force and moment}; one StaticSolution each."""
+    def reduction(self):
+        """(t, fixed, slave_of, notes): the map t (6·n_total, n_q) of the
+        independent DOFs (free, not tied to a rigid group's master) to all
+        DOFs, with u_slave = u_master + θ_master × r; the held DOFs and each
+        node's master (−1: none)."""
         notes = []
         n_all = self.n_total
         size = 6 * n_all
@@ -231,11 +233,6 @@ class LinearStatic:
                 fixed[master] = True
                 notes.append(f"a rigid group of {len(nodes)} nodes holds a support: the group is fixed")
             fixed[members] = False
-        k_full = self.stiffness_matrix()
-        f_full = np.zeros((size, len(cases)))
-        for c, loads in enumerate(cases):
-            for node, v in loads.items():
-                f_full[6 * node:6 * node + 6, c] += v
         # transformation: independent DOFs (free, not slaves) -> all DOFs
         indep = (slave_of < 0)[:, None] & ~fixed
         col = np.full((n_all, 6), -1)
@@ -269,6 +266,21 @@ class LinearStatic:
                     vals.append(coef[ok])
         n_q = int(indep.sum())
         t = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(size, n_q))
+        return t, fixed, slave_of, notes
+
+    def solve_cases(self, cases) -> list[StaticSolution]:
+        """Solve several load cases on one factorisation: ``cases`` a list
+        of {node: (6,) force and moment}; one StaticSolution each."""
+        n_all = self.n_total
+        size = 6 * n_all
+        t, fixed, slave_of, notes = self.reduction()
+        indep = (slave_of < 0)[:, None] & ~fixed
+        n_q = t.shape[1]
+        k_full = self.stiffness_matrix()
+        f_full = np.zeros((size, len(cases)))
+        for c, loads in enumerate(cases):
+            for node, v in loads.items():
+                f_full[6 * node:6 * node + 6, c] += v
         kr = (t.T @ k_full @ t).tocsr()
         fr = t.T @ f_full
         diag = kr.diagonal()
