@@ -204,8 +204,9 @@ def add_commands(sub) -> None:
                    help="the K the springs share: the replaced structure's under inertia relief (held by its own "
                         "mass, as in the crash), or step 3's, borne at the rear axle (the paper)")
     r.add_argument("--modes", type=int, default=0,
-                   help="also the replaced structure's lowest N free modes, where they live and the share of the "
-                        "interface's compliance each carries (a rigid rear leaves them out; costs a minute on a car)")
+                   help="also the replaced structure's lowest N modes, held at the interface (effective masses) "
+                        "and free (share of the interface's compliance), and where they live: what a rigid rear "
+                        "leaves out (a minute or two on a car)")
     r.add_argument("--format", choices=("fixed", "long", "i10", "free"), default="fixed")
     r.set_defaults(func=_reduce)
     w = vsub.add_parser("verify", formatter_class=fmt,

@@ -36,7 +36,7 @@ from . import loadpaths as lp
 from .cut import Cut, cut_behind
 from .massprops import ReplacedMass, replaced_mass
 from .connection import compare_connection, connection_stiffness
-from .modes import free_modes
+from .modes import free_modes, held_modes
 from .relief import relieved_stiffness
 from .stiffness import StiffnessResult, longitudinal_stiffness
 from .surrogate import Surrogate, build_surrogate
@@ -60,7 +60,7 @@ class Reduction:
     relief: StiffnessResult | None = None  # K under inertia relief
     springs: str = "relief"  # the K the springs share: "relief" or "axle" (the paper's step 3)
     connection: dict | None = None  # the surrogate's 6×6 connection against the structure's (connection.py)
-    modes: dict | None = None  # the replaced structure's free modes (modes.FreeModes.summary), when asked for
+    modes: dict | None = None  # the replaced structure's modes, "free" and "held" at the interface (modes.py)
 
     @property
     def spring_stiffness(self) -> float:
@@ -171,7 +171,8 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     mass_split  "axle" or "cog" (``surrogate.build_surrogate``)
     springs     the K the springs share: "relief" (default), the replaced structure held by its own
                 inertia as in the crash (``relief``), or "axle", the paper's step 3 (borne at the rear axle)
-    modes       also the replaced structure's lowest free modes (``modes.free_modes``; 0: none)
+    modes       also the replaced structure's lowest modes, free and held at the interface
+                (``modes.free_modes``, ``modes.held_modes``; 0: none)
     """
     from ..keyword.reader import read_deck
 
@@ -254,10 +255,13 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     if modes > 0:
         t0 = time.perf_counter()
         fm = free_modes(cut, count=modes)
-        free = fm.summary(rel.flexibility, cut.axis)
-        seconds["free modes"] = time.perf_counter() - t0
-        say(f"  free modes of the replaced structure: {', '.join(f'{f:.3g}' for f in fm.frequencies[:4])} ... "
-            f"(time unit⁻¹)")
+        hm = held_modes(cut, count=modes)
+        free = {"free": fm.summary(rel.flexibility, cut.axis), "held": hm.summary()}
+        seconds["modes"] = time.perf_counter() - t0
+        eff = hm.summary()["effective_mass_percent"]
+        say(f"  modes of the replaced structure held at the interface up to {hm.frequencies[-1]:.3g} (time unit⁻¹) "
+            "hold " + ", ".join(f"{sum(v):.1f} % of its {d}" for d, v in eff.items() if d in ("axial", "vertical",
+                                                                                               "pitch")))
     notes += mass.notes + k.notes + [n for n in rel.notes if n not in k.notes]
     return Reduction(str(getattr(model, "source", "") or ""), paths, used, basis, deviation, cut, mass, k, sur,
                      seconds, notes, rel, springs, conn, free)

@@ -71,7 +71,20 @@ def reduction_page(r) -> str:
                            "stiffness ratio (rest held)"], [
             [name, num(d["structure_compliance"]), num(d["surrogate_compliance"]), num(d["compliance_ratio"], 3),
              num(d["stiffness_ratio_held"], 3)] for name, d in conn["directions"].items()]))
-    fm = s.get("replaced_structure_modes")
+    both = s.get("replaced_structure_modes") or {}
+    hm = both.get("held")
+    if hm:
+        eff = hm["effective_mass_percent"]
+        body.append("<p>Modes of the replaced structure held at the interface (a rear joined to the front there "
+                    "rings in these): each one's effective mass along and inertia about the vehicle axes through "
+                    "the interface centre, in % of the structure's; where the modes below the crash's "
+                    "frequencies (a 70 ms pulse: below about 30 Hz) hold little, a rigid rear is right.</p>")
+        body.append(table(["mode", "frequency", "axial %", "lateral %", "vertical %", "roll %", "pitch %", "yaw %",
+                           "where"], [
+            [j + 1, num(f, 3)] + [num(eff[d][j], 3) for d in ("axial", "lateral", "vertical", "roll", "pitch", "yaw")]
+            + [", ".join(f"{k} {v:.0f} %" for k, v in hm["kinetic_energy_share_percent"][j].items())]
+            for j, f in enumerate(hm["frequencies"])]))
+    fm = both.get("free")
     if fm:
         shares = fm.get("compliance_share_percent") or {}
         body.append("<p>Free modes of the replaced structure (its interface one rigid body): a rigid rear leaves "
