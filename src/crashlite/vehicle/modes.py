@@ -84,6 +84,8 @@ class HeldModes:
     effective: np.ndarray  # (k, 6) effective mass along axis, lateral, vertical [mass] and inertia about them
     #                        through the interface centre [mass·length²], of each mass-normalised mode
     totals: np.ndarray  # (6,) the structure's mass (three times) and its inertia about those axes
+    participation: np.ndarray | None = None  # (k, 6) L = Ψᵀ M φ, signed (effective = L²), vehicle frame
+    point: np.ndarray | None = None  # (3,) the interface centre the rotations are about
     where: list = field(default_factory=list)
     notes: list = field(default_factory=list)
 
@@ -121,7 +123,7 @@ def held_modes(cut: Cut, count: int = 8, interface_nodes=None, drill: float = 1e
     freq = np.sqrt(np.maximum(lam[el], 0.0)) / (2.0 * np.pi)
     if rigid:
         notes.append(f"{rigid} modes at zero frequency with the interface held: a part not joined to it")
-    return HeldModes(freq, eff, totals, _where(cut.model, cut, m, u[:ls.n, :3, el]), notes)
+    return HeldModes(freq, eff, totals, np.hstack([lt, lr]), p, _where(cut.model, cut, m, u[:ls.n, :3, el]), notes)
 
 
 def _eigen(cut: Cut, count: int, hold: bool, interface_nodes, drill: float):

@@ -74,10 +74,13 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
     red.write(out / "simplified.k", out)
     seconds["reduction"] = time.perf_counter() - t0
     s = red.summary()
+    worst = (red.connection or {}).get("largest_compliance_misfit")
     say(f"  steps 1-4: K = {red.stiffness.stiffness:.5g} N/mm borne at the axle, {red.relief.stiffness:.5g} under "
         f"inertia relief (springs: {red.springs}), replaced {red.mass.structure.mass * 1e3:.1f} kg, "
         f"{len(red.surrogate.springs)} springs; {s['model_size']['simplified_elements']} of "
-        f"{s['model_size']['full_elements']} elements kept")
+        f"{s['model_size']['full_elements']} elements kept"
+        + (f"; against the structure the springs and beam misfit most in {worst['direction']} (compliance "
+           f"x{worst['ratio']:.2g})" if worst else ""))
     sim_deck = usncap_deck(out / "simplified.k", out / "usncap_simplified.k", speed_kmh=speed_kmh, end_time=end_time)
     t0 = time.perf_counter()
     sim = run(sim_deck, out=out / "simplified", quiet=quiet)
