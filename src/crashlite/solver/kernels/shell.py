@@ -105,7 +105,7 @@ N_WORK = 65
 N_CHUNKS = 64  # fixed number of element chunks: thread-count independent results
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _geometry(x, v, conn, e, nn, shift, w):
     """Frame, local coordinates, B (and γ for quads) of element e at the
     positions x − shift·v into w; returns the area (≤ 0: degenerate)."""
@@ -175,7 +175,7 @@ def _geometry(x, v, conn, e, nn, shift, w):
     return area
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _kill(e, fe, me):
     for a in range(4):
         for i in range(3):
@@ -183,7 +183,7 @@ def _kill(e, fe, me):
             me[e, a, i] = 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _local_velocities(v, w_ang, conn, e, nn, w):
     for a in range(nn):
         nd = conn[e, a]
@@ -196,7 +196,7 @@ def _local_velocities(v, w_ang, conn, e, nn, w):
         w[_TY + a] = w[_E + 3] * ox + w[_E + 4] * oy + w[_E + 5] * oz
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _warp_coef(w, area):
     """2 z_γ / A² of the warping correction, z_γ = ¼ Σ γ_I ẑ_I."""
     zg = 0.0
@@ -205,7 +205,7 @@ def _warp_coef(w, area):
     return 0.5 * zg / (area * area)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _bc(w, a, c):
     """B^c_1, B^c_2 of node a (c = 2 z_γ / A²): c·[x13, x42, x31, x24] (and y)."""
     j = (a + 2) % 4
@@ -368,7 +368,7 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
                 me[e, 3, i] = 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _hourglass(e, w, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, sx, sy, hgq, hg_energy):
     """Hourglass generalized stresses of the step (see the module docstring);
     returns them (membrane x, y, out-of-plane, bending x, y)."""
