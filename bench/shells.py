@@ -1,7 +1,7 @@
 """Shell throughput of the explicit solver, with self-contact.
 
 An array of square steel tubes (Belytschko–Lin–Tsay shells, MAT_024,
-NIP 5, IHQ 4) standing side by side a few millimetres apart, struck by a
+NIP 5 (``--nip``), IHQ 4) standing side by side a few millimetres apart, struck by a
 moving rigid wall, all parts in one *CONTACT_AUTOMATIC_SINGLE_SURFACE: by
 default 8 x 8 tubes of 1600 shells, 102 400 shells. The deck is written and
 read once; each run builds a fresh Setup and integrates a fixed number of
@@ -11,7 +11,7 @@ apart: a run of cycles/10 cycles is subtracted. Prints µs per
 element-cycle for the whole cycle, per group (shells, contact, rest of the
 loop), the contact share and the 2-thread speed-up. Usage::
 
-    python bench/shells.py [--tubes 8] [--cycles 300]
+    python bench/shells.py [--tubes 8] [--cycles 300] [--nip 5]
 """
 
 from __future__ import annotations
@@ -52,8 +52,9 @@ def tube_array(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.concatenate(xyz), np.concatenate(conn), np.concatenate(pid)
 
 
-def write_deck(path: Path, n: int, cycles: int) -> int:
-    """The deck of n x n tubes run for ``cycles`` cycles; its shell count."""
+def write_deck(path: Path, n: int, cycles: int, nip: int = 5) -> int:
+    """The deck of n x n tubes run for ``cycles`` cycles (``nip`` points
+    through the thickness); its shell count."""
     xyz, conn, pid = tube_array(n)
     nodes = np.arange(1, len(xyz) + 1)
     bottom = nodes[np.abs(xyz[:, 2]) < 1e-9]
@@ -66,7 +67,7 @@ def write_deck(path: Path, n: int, cycles: int) -> int:
         f.write("\n")
         for p in range(1, n * n + 1):
             f.write(f"*PART\ntube {p}\n{p},1,1,0,1\n")
-        f.write(f"*SECTION_SHELL\n1,2,0.8333,5\n{T},{T},{T},{T}\n"
+        f.write(f"*SECTION_SHELL\n1,2,0.8333,{nip}\n{T},{T},{T},{T}\n"
                 "*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,7.85e-9,210000.0,0.3,250.0,1.0\n0,0,0,0\n"
                 "*HOURGLASS\n1,4,0.05\n"
                 "*SET_NODE_LIST\n1\n" + "\n".join(",".join(map(str, bottom[k:k + 8]))
@@ -123,15 +124,16 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--tubes", type=int, default=8, help="tubes per row (n x n tubes of 1600 shells)")
     ap.add_argument("--cycles", type=int, default=300)
+    ap.add_argument("--nip", type=int, default=5, help="integration points through the thickness (car decks: 2-3)")
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         write_deck(Path(tmp) / "warm.k", 1, 20)
         _run(read_deck(Path(tmp) / "warm.k"), 20)  # compile before any timing
         path = Path(tmp) / "tubes.k"
         t0 = time.perf_counter()
-        n = write_deck(path, args.tubes, args.cycles)
+        n = write_deck(path, args.tubes, args.cycles, args.nip)
         model = read_deck(path)
-        print(f"{args.tubes}x{args.tubes} tubes: {n:,} shells, {len(model.nodes):,} nodes "
+        print(f"{args.tubes}x{args.tubes} tubes: {n:,} shells (NIP {args.nip}), {len(model.nodes):,} nodes "
               f"(deck written and read in {time.perf_counter() - t0:.1f} s)")
     results = {}
     for threads in sorted({1, min(2, numba.config.NUMBA_NUM_THREADS)}):
