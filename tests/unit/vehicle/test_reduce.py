@@ -70,7 +70,7 @@ def reduced(tmp_path_factory):
     m, rear, front = _two_rails()
     full_deck = write_deck(m, d / "full.k")[0]
     full = run(full_deck, out=d / "full")
-    red = reduce_vehicle(full_deck, [d / "full"], load_cases=["wall"])
+    red = reduce_vehicle(full_deck, [d / "full"], load_cases=["wall"], modes=4)
     files = red.write(d / "simplified.k")
     sur = run(files["deck"], out=d / "simplified")
     return m, full, red, files, sur, d
@@ -103,8 +103,15 @@ def test_reduction_figures(reduced):
     # rails shorten nearly to their far ends, a little stiffer than borne there
     assert red.stiffness.stiffness < red.spring_stiffness < 1.25 * red.stiffness.stiffness
     assert summary["model_size"]["simplified_elements"] < summary["model_size"]["full_elements"]
+    # the springs share the rails' K as the rails do (shares from the impulses, near their thickness ratio):
+    # along the axis the surrogate is about as compliant as the structure it replaces
+    conn = summary["connection_against_structure"]
+    assert 0.8 < conn["directions"]["axial"]["compliance_ratio"] < 1.25
+    modes = summary["replaced_structure_modes"]
+    assert len(modes["held"]["frequencies"]) == len(modes["free"]["frequencies"]) == 4
+    assert all(sum(v) <= 100.0 + 1e-6 for v in modes["held"]["effective_mass_percent"].values())
     page = files["html"].read_text()
-    assert "Step 3" in page and "data:image/png;base64" in page
+    assert "Step 3" in page and "data:image/png;base64" in page and "effective mass" in page
     assert read_deck(files["deck"]) == red.surrogate.model
 
 
