@@ -13,7 +13,7 @@ update is ξ = (I + Δγ(C·P + ⅔H_k I))⁻¹ ξ*, diagonal in the basis
 (ξx + ξy, ξy − ξx, shears). The plastic multiplier Δγ solves
 ξ_eq(Δγ) = R·σ_y(ε̄p + ⅔Δγ ξ_eq(Δγ)) by Halley's iteration (third order,
 from the function's first and second derivatives; Newton's where Halley's
-would leave the bracket) kept inside its bracket, started from the root
+denominator is not positive) kept inside its bracket, started from the root
 for equal eigenvalues and converged to 1e-10 of the yield stress (mostly
 one step: 1.04 iterations a plastic step against Newton's 1.73, on
 MAT_024 steps of Δε = 4e-5): the plane-stress condition σ_zz = 0 is exact
