@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .stiffness import transverse_loads
+from .stiffness import vehicle_axes
 
 DIRECTIONS = ("axial", "lateral", "vertical", "roll", "pitch", "yaw")
 
@@ -88,10 +88,8 @@ def connection_stiffness(sur, point: np.ndarray) -> np.ndarray:
 
 
 def vehicle_frame(axis) -> np.ndarray:
-    """6×6 rotation into the frame (axis, lateral, vertical) of ``transverse_loads``."""
-    a = np.asarray(axis, float) / np.linalg.norm(axis)
-    loads = transverse_loads(a, 1.0, 1.0)
-    f = np.array([a, loads["lateral"][0], loads["vertical"][0]])
+    """6×6 rotation into the frame (axis, lateral, vertical) of ``stiffness.vehicle_axes``."""
+    f = vehicle_axes(axis)
     r = np.zeros((6, 6))
     r[:3, :3] = r[3:, 3:] = f
     return r

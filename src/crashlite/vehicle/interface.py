@@ -116,10 +116,10 @@ def _aligned_states(model: Model, results) -> np.ndarray | None:
     return st.x[:, np.array([idx[int(n)] for n in model.nodes.ids])]
 
 
-def _membrane_strain(model: Model, results) -> np.ndarray:
+def _membrane_strain(model: Model, results, xs=None) -> np.ndarray:
     """(n_shells,) largest edge or diagonal strain over the field states of
-    ``results`` (nodes matched by ID)."""
-    xs = _aligned_states(model, results)
+    ``results`` (nodes matched by ID; ``xs``: those already aligned)."""
+    xs = _aligned_states(model, results) if xs is None else xs
     if xs is None:
         raise ValueError(f"{results}: neither plastic strains nor field states (*DATABASE_BINARY_D3PLOT) "
                          "to rate the shells by")
@@ -165,14 +165,15 @@ def shell_volumes(model: Model) -> np.ndarray:
     return shell_areas(model) * shell_thickness(model)
 
 
-def shell_measures(model: Model, results) -> tuple[np.ndarray, np.ndarray, dict]:
+def shell_measures(model: Model, results, states=None) -> tuple[np.ndarray, np.ndarray, dict]:
     """(plastic strain, absorbed energy, how each was obtained) of every
-    shell in the run ``results`` (module docstring)."""
+    shell in the run ``results`` (module docstring); ``states``: its field
+    states already in the deck's node order (``_aligned_states``)."""
     ey, sy = _shell_material(model)
     eps = shell_plastic_strain(model, results)
     how = {"plastic_strain": "recorded", "energy": "recorded"}
     if eps is None:
-        eps = np.maximum(_membrane_strain(model, results) - ey, 0.0)  # inf yield strain: 0
+        eps = np.maximum(_membrane_strain(model, results, states) - ey, 0.0)  # inf yield strain: 0
         how["plastic_strain"] = "estimated from the field states' membrane strain"
     energy = _shell_field(model, results, "shell_internal_energy")
     if energy is None:
@@ -194,8 +195,9 @@ def propose_interface(model: Model, results, strain: float = 0.01, allowed: floa
 
     a = np.asarray(axis, float)
     a = a / np.linalg.norm(a)
+    xs = _aligned_states(model, results)  # read once: the estimated measures and the cut's bending
     if measures is None:
-        eps, absorbed, how = shell_measures(model, results)
+        eps, absorbed, how = shell_measures(model, results, xs)
     else:
         eps, absorbed = (np.asarray(m, float) for m in measures)
         how = {"plastic_strain": "given", "energy": "given"}
@@ -212,7 +214,6 @@ def propose_interface(model: Model, results, strain: float = 0.01, allowed: floa
     titles = np.array([str(model.parts.get(int(p), {}).get("heading", "") or f"part {int(p)}")
                        for p in model.shells.pid])
     moments = element_moments(model)  # once: every candidate sums its own share of them
-    xs = _aligned_states(model, results)
     out, proposed = [], None
     first = np.ceil(hi / step) * step - step  # candidates on multiples of the step
     planes = np.concatenate([np.arange(first, lo, -step), [float(x) for x in also if lo < float(x) < hi]])

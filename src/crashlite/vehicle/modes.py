@@ -66,12 +66,12 @@ class FreeModes:
 def free_modes(cut: Cut, count: int = 8, interface_nodes=None, drill: float = 1e-3) -> FreeModes:
     """The ``count`` lowest elastic modes of the replaced structure of ``cut``,
     free, its interface nodes one rigid body (module docstring)."""
-    ls, master, m, u, lam, rigid, notes = _eigen(cut, count, False, interface_nodes, drill)
+    ls, master, _, m, u, lam, rigid, notes = _eigen(cut, count, False, interface_nodes, drill)
     if rigid != 6:
         notes.append(f"{rigid} modes at zero frequency (six for one free rigid structure; more: a mechanism)")
     el = slice(rigid, rigid + count)
     freq = np.sqrt(np.maximum(lam[el], 0.0)) / (2.0 * np.pi)
-    where = _where(cut.model, cut, m, u[:ls.n, :3, el])
+    where = _where(cut, m, u[:ls.n, :3, el])
     return FreeModes(freq, u[master, :, el].T.copy(), rigid, ls.position(master), where, notes)
 
 
@@ -107,9 +107,8 @@ def held_modes(cut: Cut, count: int = 8, interface_nodes=None, drill: float = 1e
     first bending mode holds 61.3 % of its mass, its first axial mode
     8/π² = 81 % (test): where the modes below the crash's frequencies hold
     little, a rigid rear is right."""
-    ls, _, m, u, lam, rigid, notes = _eigen(cut, count, True, interface_nodes, drill)
+    ls, _, nodes, m, u, lam, rigid, notes = _eigen(cut, count, True, interface_nodes, drill)
     el = slice(rigid, rigid + count)
-    nodes = cut.interface_nodes if interface_nodes is None else np.asarray(interface_nodes, np.int64)
     xyz = cut.model.nodes.xyz
     p = xyz[nodes].mean(axis=0)
     f = vehicle_frame(cut.axis)[:3, :3]
@@ -123,13 +122,14 @@ def held_modes(cut: Cut, count: int = 8, interface_nodes=None, drill: float = 1e
     freq = np.sqrt(np.maximum(lam[el], 0.0)) / (2.0 * np.pi)
     if rigid:
         notes.append(f"{rigid} modes at zero frequency with the interface held: a part not joined to it")
-    return HeldModes(freq, eff, totals, np.hstack([lt, lr]), p, _where(cut.model, cut, m, u[:ls.n, :3, el]), notes)
+    return HeldModes(freq, eff, totals, np.hstack([lt, lr]), p, _where(cut, m, u[:ls.n, :3, el]), notes)
 
 
 def _eigen(cut: Cut, count: int, hold: bool, interface_nodes, drill: float):
     """Eigen solve on the step-3 static model, the interface held or one
-    rigid body: (model, its master or None, node masses, mode shapes
-    (n_total, 6, k) mass-normalised, eigenvalues, number at zero, notes)."""
+    rigid body: (model, its master or None, the interface nodes in it, node
+    masses, mode shapes (n_total, 6, k) mass-normalised, eigenvalues, number
+    at zero, notes)."""
     model = cut.model
     ls, _, notes = build_static(model, cut.replaced, drill)
     nodes = cut.interface_nodes if interface_nodes is None else np.asarray(interface_nodes, np.int64)
@@ -162,12 +162,13 @@ def _eigen(cut: Cut, count: int, hold: bool, interface_nodes, drill: float):
     rigid = int((lam < 1e-8 * max(float(lam.max()), 1e-300)).sum())
     q = np.zeros((t.shape[1], vec.shape[1]))
     q[keep] = vec
-    return ls, master, m, (t @ q).reshape(ls.n_total, 6, -1), lam, rigid, notes + mnotes + rnotes
+    return ls, master, nodes, m, (t @ q).reshape(ls.n_total, 6, -1), lam, rigid, notes + mnotes + rnotes
 
 
-def _where(model, cut: Cut, m: np.ndarray, u: np.ndarray, top: int = 3) -> list:
+def _where(cut: Cut, m: np.ndarray, u: np.ndarray, top: int = 3) -> list:
     """Per mode the parts holding most of its kinetic energy m·|φ|² (each
     node counted for the part of the first replaced element on it)."""
+    model = cut.model
     part_of = np.full(len(m), -1, np.int64)
     for table in ("beams", "discretes", "solids", "shells"):  # shells last: they win a shared node
         tab = getattr(model, table)

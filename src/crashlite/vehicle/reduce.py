@@ -258,7 +258,7 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
         hm = held_modes(cut, count=modes)
         free = {"free": fm.summary(rel.flexibility, cut.axis), "held": hm.summary()}
         seconds["modes"] = time.perf_counter() - t0
-        eff = hm.summary()["effective_mass_percent"]
+        eff = free["held"]["effective_mass_percent"]
         say(f"  modes of the replaced structure held at the interface up to {hm.frequencies[-1]:.3g} (time unit⁻¹) "
             "hold " + ", ".join(f"{sum(v):.1f} % of its {d}" for d, v in eff.items() if d in ("axial", "vertical",
                                                                                                "pitch")))

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from ..report.html import Raw, esc, image, num, page, table
 from . import loadpaths as lp
+from .connection import DIRECTIONS
 
 
 def reduction_page(r) -> str:
@@ -72,34 +73,30 @@ def reduction_page(r) -> str:
             [name, num(d["structure_compliance"]), num(d["surrogate_compliance"]), num(d["compliance_ratio"], 3),
              num(d["stiffness_ratio_held"], 3)] for name, d in conn["directions"].items()]))
     both = s.get("replaced_structure_modes") or {}
-    hm = both.get("held")
-    if hm:
-        eff = hm["effective_mass_percent"]
+    if both.get("held"):
         body.append("<p>Modes of the replaced structure held at the interface (a rear joined to the front there "
                     "rings in these): each one's effective mass along and inertia about the vehicle axes through "
                     "the interface centre, in % of the structure's; where the modes below the crash's "
                     "frequencies (a 70 ms pulse: below about 30 Hz) hold little, a rigid rear is right.</p>")
-        body.append(table(["mode", "frequency", "axial %", "lateral %", "vertical %", "roll %", "pitch %", "yaw %",
-                           "where"], [
-            [j + 1, num(f, 3)] + [num(eff[d][j], 3) for d in ("axial", "lateral", "vertical", "roll", "pitch", "yaw")]
-            + [", ".join(f"{k} {v:.0f} %" for k, v in hm["kinetic_energy_share_percent"][j].items())]
-            for j, f in enumerate(hm["frequencies"])]))
-    fm = both.get("free")
-    if fm:
-        shares = fm.get("compliance_share_percent") or {}
+        body.append(_modes_table(both["held"], both["held"]["effective_mass_percent"]))
+    if both.get("free"):
         body.append("<p>Free modes of the replaced structure (its interface one rigid body): a rigid rear leaves "
                     "them out. Each mode's share of the interface's compliance under inertia relief, and the parts "
                     "holding most of its kinetic energy; a slow mode (a period longer than the crash) deflects "
                     "little in the crash however much of the static compliance it carries.</p>")
-        body.append(table(["mode", "frequency", "axial %", "lateral %", "vertical %", "roll %", "pitch %", "yaw %",
-                           "where"], [
-            [j + 1, num(f, 3)] + [num(shares[d][j], 3) if d in shares else "" for d in
-                                  ("axial", "lateral", "vertical", "roll", "pitch", "yaw")]
-            + [", ".join(f"{k} {v:.0f} %" for k, v in fm["kinetic_energy_share_percent"][j].items())]
-            for j, f in enumerate(fm["frequencies"])]))
+        body.append(_modes_table(both["free"], both["free"].get("compliance_share_percent") or {}))
     body.append("<p>Run time of the steps: " + ", ".join(f"{esc(k)} {v:.1f} s" for k, v in s["seconds"].items())
                 + "</p>")
     notes = s["notes"] + sur["notes"]
     if notes:
         body.append("<h2>Notes</h2><ul>" + "".join(f"<li>{esc(n)}</li>" for n in notes) + "</ul>")
     return page("crashlite simplified vehicle: the four steps", body)
+
+
+def _modes_table(modes: dict, percent: dict) -> str:
+    """One row per mode: frequency, ``percent`` per direction (blank where
+    absent) and the parts it lives in."""
+    return table(["mode", "frequency"] + [f"{d} %" for d in DIRECTIONS] + ["where"], [
+        [j + 1, num(f, 3)] + [num(percent[d][j], 3) if d in percent else "" for d in DIRECTIONS]
+        + [", ".join(f"{k} {v:.0f} %" for k, v in modes["kinetic_energy_share_percent"][j].items())]
+        for j, f in enumerate(modes["frequencies"])])

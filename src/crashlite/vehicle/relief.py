@@ -41,7 +41,8 @@ import numpy as np
 from ..model import mass as mk
 from .cut import Cut
 from .massprops import _given_inertia, element_moments, node_indices
-from .stiffness import StiffnessResult, build_static, solve_named, transverse_loads, transverse_stiffnesses
+from .stiffness import (StiffnessResult, build_static, solve_named, transverse_loads, transverse_stiffnesses,
+                        vehicle_axes)
 
 _NODES = {"shells": lambda t: t.nodes, "solids": lambda t: t.nodes, "beams": lambda t: t.nodes[:, :2]}
 
@@ -150,7 +151,7 @@ def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interfac
     i_c = mk.combine(mk.point_moments(xyz[carry], m[carry])).inertia
     p = ls.position(master)
     across = {} if transverse is None else transverse_loads(d, *transverse)
-    turns = {} if transverse is None else _turns(across, transverse[1])
+    turns = {} if transverse is None else _turns(d, transverse[1])
     pushes = [(force * d, np.zeros(3))] + list(across.values()) + list(turns.values())
     cases = []
     for f, mom in pushes:  # the interface load and the d'Alembert forces that balance it
@@ -189,9 +190,9 @@ def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interfac
                            np.flatnonzero(ls.in_structure), trans, flex)
 
 
-def _turns(across: dict, moment: float) -> dict:
+def _turns(axis: np.ndarray, moment: float) -> dict:
     """The interface twisted about the two transverse directions (pitch and
     yaw for a car): with the ``transverse_loads`` cases, six independent
     loads that give the interface's whole 6×6 flexibility."""
-    return {"pitch": (np.zeros(3), across["lateral"][0] / np.linalg.norm(across["lateral"][0]) * moment),
-            "yaw": (np.zeros(3), across["vertical"][0] / np.linalg.norm(across["vertical"][0]) * moment)}
+    _, e_lat, e_ver = vehicle_axes(axis)
+    return {"pitch": (np.zeros(3), e_lat * moment), "yaw": (np.zeros(3), e_ver * moment)}

@@ -259,14 +259,21 @@ def solve_named(ls: LinearStatic, model: Model, cases: list) -> list:
         raise MechanismError(f"{e} (deck node IDs {ids[:10].tolist()})", e.nodes) from None
 
 
+def vehicle_axes(axis) -> np.ndarray:
+    """(3, 3) rows: the unit ``axis``, the lateral and the vertical direction
+    (lateral = z × axis unless the axis is near z)."""
+    a = np.asarray(axis, float) / np.linalg.norm(axis)
+    ref = np.array([0.0, 0.0, 1.0]) if abs(a[2]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    e_lat = np.cross(ref, a)
+    e_lat /= np.linalg.norm(e_lat)
+    return np.array([a, e_lat, np.cross(a, e_lat)])
+
+
 def transverse_loads(axis: np.ndarray, force: float, moment: float) -> dict:
     """The rigid interface's transverse load cases: name -> (force (3,), moment (3,))."""
-    ref = np.array([0.0, 0.0, 1.0]) if abs(axis[2]) < 0.9 else np.array([0.0, 1.0, 0.0])
-    e_lat = np.cross(ref, axis)
-    e_lat /= np.linalg.norm(e_lat)
-    e_ver = np.cross(axis, e_lat)
+    a, e_lat, e_ver = vehicle_axes(axis)
     return {"lateral": (e_lat * force, np.zeros(3)), "vertical": (e_ver * force, np.zeros(3)),
-            "roll": (np.zeros(3), axis * moment)}
+            "roll": (np.zeros(3), a * moment)}
 
 
 def transverse_stiffnesses(across: dict, motions) -> dict:
