@@ -17,7 +17,7 @@ from .groups import part_energy
 
 class PartAccount:
     def __init__(self, groups, bodies, n_nodes: int):
-        self.groups = [g for g in groups if len(g)]
+        self.groups = [g for g in groups if len(g) and getattr(g, "in_parts", True)]
         pids = [np.asarray(g.pid, np.int64) for g in self.groups] + [np.array([b.body_id for b in bodies],
                                                                               np.int64)]
         self.part_ids = np.unique(np.concatenate(pids)) if pids else np.zeros(0, np.int64)

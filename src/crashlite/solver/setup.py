@@ -523,6 +523,11 @@ def _element_groups(model: Model, rigid: np.ndarray, n: int, problems: list) -> 
     shells = build_shells(model, rigid, problems)
     if shells is not None and len(shells.ids):
         groups.append(shells)
+    from .superelement import build_superelements
+
+    matrices = build_superelements(model, problems)
+    if matrices is not None:
+        groups.append(matrices)
     from .contact import build_contacts
 
     return groups + build_contacts(model, groups, problems)  # after the elements: they add to their forces

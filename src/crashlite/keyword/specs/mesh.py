@@ -111,3 +111,9 @@ def _inertia_layout(options: frozenset) -> Layout:
 register(Spec("ELEMENT_INERTIA", _inertia_layout, options=("OFFSET",),
               group="inertias", bulk=True, title_option=False,
               doc="Lumped mass and inertia tensor on a node (CSID: local system)."))
+
+register(Spec("ELEMENT_DIRECT_MATRIX_INPUT",
+              fixed(card("eid:i@elem ifrmt:i=0"), card("filename:s80"), card("mass:s damp:s stif:s inert:s")),
+              title_option=False,
+              doc="A linear superelement: the stiffness (and mass, damping) matrices named MASS, DAMP, STIF "
+                  "in the NASTRAN DMIG file FILENAME (relative to the deck), on the grid points' DOFs."))

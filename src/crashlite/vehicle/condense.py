@@ -1,0 +1,144 @@
+"""The replaced structure condensed onto the cut's nodes under inertia relief.
+
+The springs of step 4 and the rigid interface hold the cut flat: the cut
+moves as one rigid body relative to the rear body. The structure behind a
+real cut bends (the generic car's cut bends by 15 % of the firewall's
+largest intrusion out of a rigid motion), and the kept structure next to
+it cannot follow the full car closer than that. This module keeps it.
+
+``relieved_condensation`` computes the flexibility of the free replaced
+structure at every translational DOF of the cut nodes, in the frame of its
+own mean rigid motion (inertia relief, as ``relief`` does for a rigid
+interface): a unit force on one cut DOF, balanced by the nodes' d'Alembert
+forces −m_i φ_i (ΦᵀMΦ)⁻¹ φ_bᵀ (Φ the six rigid motions about the CoG), is
+solved on the 3-2-1-supported static model of step 3, and the rigid motion
+that best fits the displacements in the mass metric is taken out. With
+P = I − MΦ(ΦᵀMΦ)⁻¹Φᵀ the loads' projection and S the supported inverse,
+G = E_bᵀ Pᵀ S P E_b: symmetric, positive definite where every cut node is
+joined to a structure with mass behind it. Its inverse K_s = G⁻¹ maps the
+cut's displacements relative to the structure's mean rigid motion to the
+forces the structure returns; the cut nodes' rotations stay free (shell
+edges hinge on it).
+
+On a rigid interface (cut nodes moving as one body about a point, T) the
+condensed stiffness reduces to Tᵀ K_s T, which is the relieved 6×6 of
+``relief`` where the cut nodes carry no rotations (solids; test against
+3·EA/L for a bar). ``surrogate.build_surrogate(connection="condensed")``
+joins the cut to the rear body with it (a linear superelement,
+*ELEMENT_DIRECT_MATRIX_INPUT).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from .cut import Cut
+from .massprops import node_indices
+from .relief import _support_321, replaced_node_masses
+from .statics import _factor_solve
+from .stiffness import build_static
+
+
+def rigid_modes(r: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """(k, 3, 6): translations of points ``r`` (k, 3) under the six rigid
+    motions (translation, small rotation θ) about ``c``: u = t + θ × (r − c)."""
+    d = np.asarray(r, float) - c
+    out = np.zeros((len(d), 3, 6))
+    out[:, :, :3] = np.eye(3)
+    out[:, 0, 4], out[:, 0, 5] = d[:, 2], -d[:, 1]
+    out[:, 1, 3], out[:, 1, 5] = -d[:, 2], d[:, 0]
+    out[:, 2, 3], out[:, 2, 4] = d[:, 1], -d[:, 0]
+    return out
+
+
+@dataclass
+class Condensation:
+    """The replaced structure seen from the cut nodes (module docstring)."""
+
+    nodes: np.ndarray  # (k,) node indices of the cut the structure is condensed on
+    flexibility: np.ndarray  # (3k, 3k) G: displacement relative to the mean rigid motion per unit force
+    stiffness: np.ndarray  # (3k, 3k) K_s = G⁻¹ [force/length]
+    mass: float  # the replaced structure's mass (as the static model carries it)
+    cog: np.ndarray  # (3,)
+    node_mass: np.ndarray  # (n_nodes,) the replaced mass lumped to the model's nodes
+    left_out: np.ndarray  # cut nodes not condensed (tied to a rigid group, or outside the static model)
+    notes: list = field(default_factory=list)
+    xyz_nodes: np.ndarray | None = None  # (k, 3) coordinates of ``nodes``
+
+    def rigid_stiffness(self, point) -> np.ndarray:
+        """(6, 6) stiffness of the cut held rigid about ``point`` (force and
+        moment against translation and rotation): Tᵀ K_s T."""
+        t = rigid_modes(self.xyz_nodes, np.asarray(point, float)).reshape(-1, 6)
+        return t.T @ self.stiffness @ t
+
+    def summary(self) -> dict:
+        lam = np.linalg.eigvalsh(self.stiffness)
+        return {"nodes": int(len(self.nodes)), "dofs": int(3 * len(self.nodes)), "left_out": int(len(self.left_out)),
+                "stiffness_eigenvalues": [float(lam[0]), float(lam[-1])], "mass": self.mass,
+                "cog": self.cog.tolist(), "notes": list(self.notes)}
+
+
+def relieved_condensation(cut: Cut, nodes=None, drill: float = 1e-3) -> Condensation:
+    """The replaced structure of ``cut`` condensed onto the translations of
+    the cut nodes (default: all its interface nodes) under inertia relief
+    (module docstring)."""
+    model = cut.model
+    ls, _, notes = build_static(model, cut.replaced, drill)
+    b = cut.interface_nodes if nodes is None else node_indices(model, nodes)
+    ok = ls.in_structure[b] & ~ls.tied()[b]  # a tied node moves with its group's master: no DOFs of its own
+    b, left = b[ok], b[~ok]
+    if not len(b):
+        raise ValueError("no cut node is a free node of the replaced structure")
+    if len(left):
+        notes.append(f"{len(left)} cut node(s) of rigid groups or outside the replaced structure not condensed")
+    m, mnotes = replaced_node_masses(cut)
+    m[~ls.in_structure] = 0.0
+    carry = np.flatnonzero(m > 0)
+    big_m = float(m.sum())
+    if not big_m > 0:
+        raise ValueError("the replaced structure has no mass")
+    xyz = model.nodes.xyz
+    c = (m[carry, None] * xyz[carry]).sum(axis=0) / big_m
+    phi_c = rigid_modes(xyz[carry], c)  # (n_carry, 3, 6)
+    a = np.linalg.inv(np.einsum("n,nai,naj->ij", m[carry], phi_c, phi_c))  # (ΦᵀMΦ)⁻¹
+    nb3 = 3 * len(b)
+    phi_b = rigid_modes(xyz[b], c).reshape(nb3, 6)
+    accel = a @ phi_b.T  # (6, 3k): the rigid acceleration each unit cut force gives the free structure
+    cand = np.flatnonzero(ls.in_structure & ~ls.tied())
+    for n, dofs in _support_321(xyz, cand):
+        ls.fix([n], dofs)
+    t, fixed, slave_of, rnotes = ls.reduction()
+    k_full = ls.stiffness_matrix()
+    kr = (t.T @ k_full @ t).tocsr()
+    diag = kr.diagonal()
+    live = np.flatnonzero(diag > 1e-12 * max(float(np.abs(diag).max(initial=0.0)), 1e-300))
+    kk = kr[live][:, live].tocsc()
+    size = 6 * ls.n_total
+    # loads: the unit cut forces and the d'Alembert forces that balance each (P E_b)
+    rows = (6 * b[:, None] + np.arange(3)).ravel()
+    f = sp.csr_matrix((np.ones(nb3), (rows, np.arange(nb3))), shape=(size, nb3)).toarray()
+    inertia = -np.einsum("n,nai,ij->naj", m[carry], phi_c, accel)  # (n_carry, 3, 3k)
+    f[(6 * carry[:, None] + np.arange(3)).ravel()] += inertia.reshape(-1, nb3)
+    fr = (t.T @ f)[live]
+    indep = (slave_of < 0)[:, None] & ~fixed
+    dof_node = np.repeat(np.arange(ls.n_total), 6)[indep.ravel()][live]  # (a mechanism is named by its nodes)
+    q_live, _ = _factor_solve(kk, fr, dof_node)
+    q = np.zeros((t.shape[1], nb3))
+    q[live] = q_live.reshape(len(live), nb3)
+    u = (t @ q).reshape(ls.n_total, 6, nb3)[:ls.n, :3]  # translations
+    fit = a @ np.einsum("n,nai,nak->ik", m[carry], phi_c, u[carry])  # (6, 3k) mean rigid motion (PᵀS...)
+    g = u[b].reshape(nb3, nb3) - phi_b @ fit
+    asym = float(np.abs(g - g.T).max() / np.abs(g).max())
+    if asym > 1e-6:
+        notes.append(f"the condensed flexibility is unsymmetric by {asym:.2g} (relative)")
+    g = 0.5 * (g + g.T)
+    lam = np.linalg.eigvalsh(g)
+    if not lam[0] > 1e-12 * lam[-1]:
+        raise ValueError(f"the condensed flexibility is singular (eigenvalues {lam[0]:.3g} to {lam[-1]:.3g}): "
+                         "cut nodes that move together (tied) or a cut node joined to nothing with mass")
+    ks = np.linalg.inv(g)
+    ks = 0.5 * (ks + ks.T)
+    return Condensation(b, g, ks, big_m, c, m, left, list(cut.notes) + notes + mnotes + rnotes, xyz[b].copy())

@@ -1,0 +1,142 @@
+"""Step 4 with the condensed structure instead of springs (beyond the paper).
+
+``build_condensed_surrogate`` keeps the front structure up to the cut as
+``surrogate.build_surrogate`` does, but leaves the cut nodes free (no
+interface rigid body) and joins each of them to the rear body through the
+replaced structure's condensed stiffness (``condense``): one linear
+superelement (*ELEMENT_DIRECT_MATRIX_INPUT, the matrix in a NASTRAN DMIG
+file next to the deck) on the cut nodes' translations and on four anchor
+nodes of the rear body, whose translations stand for its rigid motion q
+(q = L·u_anchor, L the least-squares inverse of the anchors' rigid modes):
+
+    K = [[K_s, −K_s B L], [−Lᵀ Bᵀ K_s, Lᵀ Bᵀ K_s B L]]
+
+with B the cut nodes' rigid modes about the CoG: the cut's displacement
+relative to the rear body's rigid motion, u_b − B q, meets the structure's
+stiffness, and any rigid motion of the whole is free. So the cut bends as
+the elastic structure behind it would under the crash's quasi-static
+deceleration, which a rigid interface holds flat; the springs' load-path
+shares are not needed (the condensed matrix distributes the load).
+
+Mass: the replaced elements' share at the cut nodes (``relief.
+replaced_node_masses``) stays on them (*ELEMENT_MASS), so the cut's nodes
+are as heavy as in the full model; the rear body (*CONSTRAINED_NODAL_RIGID_
+BODY_INERTIA) carries the rest with its own CoG and inertia: mass, CoG and
+inertia of the whole are exact.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..model.mesh import Masses, Nodes
+from .condense import Condensation, rigid_modes
+from .cut import Cut
+from .massprops import ReplacedMass
+from .records import id_list, record
+from .surrogate import Surrogate, _history_nodes, _Ids, _whole_vehicle_sets
+from .truncate import truncate
+
+ANCHOR = 300.0  # [length] distance of the rear body's four anchor nodes from its CoG
+
+
+def _point_inertia(xyz: np.ndarray, m: np.ndarray, about: np.ndarray) -> np.ndarray:
+    d = xyz - about
+    return np.einsum("n,ij->ij", m * (d**2).sum(axis=1), np.eye(3)) - np.einsum("n,ni,nj->ij", m, d, d)
+
+
+def superelement_matrix(cond: Condensation, anchors: np.ndarray) -> np.ndarray:
+    """(3k + 12, 3k + 12) the superelement on the cut nodes' and the four
+    anchors' translations (module docstring)."""
+    b = rigid_modes(cond.xyz_nodes, cond.cog).reshape(-1, 6)
+    lmap = np.linalg.pinv(rigid_modes(anchors, cond.cog).reshape(-1, 6))  # (6, 12)
+    kb = cond.stiffness @ b @ lmap  # K_s B L
+    k = np.block([[cond.stiffness, -kb], [-kb.T, lmap.T @ (b.T @ cond.stiffness @ b) @ lmap]])
+    return 0.5 * (k + k.T)
+
+
+class CondensedSurrogate(Surrogate):
+    """A Surrogate whose deck needs its matrix file beside it."""
+
+    matrix: tuple = None  # (dofs (k, 2) [node ID, component], K)
+
+    def write(self, path, fmt: str = "fixed") -> Path:
+        from ..keyword.dmig import write_dmig
+
+        path = Path(path)
+        name = path.stem + ".dmig"
+        for rec in self.model.find("ELEMENT_DIRECT_MATRIX_INPUT"):
+            rec["filename"] = name
+        write_dmig(path.parent / name, {"KCUT": self.matrix})
+        return super().write(path, fmt)
+
+
+def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, keep_nodes=None) -> Surrogate:
+    """The surrogate deck joined at the cut by the condensed structure (module docstring)."""
+    full = cut.model
+    notes = list(cut.notes) + [n for n in cond.notes if n not in cut.notes]
+    hist = _history_nodes(full)
+    ride = hist[cut.removed_nodes[hist]]
+    if keep_nodes is not None:
+        ride = np.union1d(ride, np.asarray(keep_nodes, np.int64))
+    tr = truncate(cut, keep=ride)
+    notes += tr.notes
+    m = tr.model
+    ids = _Ids(m)
+    st = mass.structure
+    # the cut nodes keep the replaced elements' share of their mass; the rear body the rest
+    mb = cond.node_mass[cond.nodes]
+    xb = cond.xyz_nodes
+    rest = float(st.mass - mb.sum())
+    c = (st.mass * st.cog - (mb[:, None] * xb).sum(axis=0)) / rest
+    inertia = st.inertia - _point_inertia(xb, mb, st.cog)  # the rest about the whole's CoG
+    e = c - st.cog
+    inertia = inertia - rest * ((e @ e) * np.eye(3) - np.outer(e, e))  # ... moved to its own CoG
+    tet = np.array([[1.0, 1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, -1.0], [-1.0, -1.0, 1.0]]) / np.sqrt(3.0)
+    anchors = cond.cog + ANCHOR * tet
+    new_xyz = np.vstack([[c], anchors])
+    new_ids = np.arange(ids.node, ids.node + len(new_xyz), dtype=np.int64)
+    ids.node += len(new_xyz)
+    nodes = Nodes.zeros(len(new_ids))
+    nodes.ids, nodes.xyz = new_ids, new_xyz
+    m.nodes = Nodes.concat([m.nodes, nodes])
+    _whole_vehicle_sets(full, cut, m, new_ids, notes)
+    g_id, a_ids = int(new_ids[0]), new_ids[1:]
+    # the cut nodes' masses
+    lumps = Masses.zeros(len(mb))
+    lumps.ids = np.arange(ids.element, ids.element + len(mb), dtype=np.int64)
+    ids.element += len(mb)
+    lumps.node = m.node_index(full.nodes.ids[cond.nodes]).astype(np.int32)
+    lumps.mass = mb
+    m.masses = Masses.concat([m.masses, lumps])
+    # the superelement
+    dofs = np.concatenate([np.repeat(full.nodes.ids[cond.nodes], 3), np.repeat(a_ids, 3)])
+    comps = np.tile([1, 2, 3], len(cond.nodes) + len(a_ids))
+    k = superelement_matrix(cond, anchors)
+    eid = ids.take("element")
+    m.keywords.append(record("ELEMENT_DIRECT_MATRIX_INPUT", eid=eid, ifrmt=1, filename="simplified.dmig",
+                             stif="KCUT"))
+    # the rear body
+    pid = ids.take("part")
+    sid = ids.take("set")
+    members = np.unique(np.concatenate([[g_id], a_ids, full.nodes.ids[ride]]))
+    m.sets[("NODE", sid)] = id_list("SET_NODE_LIST_TITLE", sid, members, title="surrogate rear body")
+    m.keywords.append(record("CONSTRAINED_NODAL_RIGID_BODY_INERTIA", pid=pid, nsid=sid, xc=float(c[0]),
+                             yc=float(c[1]), zc=float(c[2]), tm=rest, nodeid=g_id,
+                             ixx=float(inertia[0, 0]), ixy=float(inertia[0, 1]), ixz=float(inertia[0, 2]),
+                             iyy=float(inertia[1, 1]), iyz=float(inertia[1, 2]), izz=float(inertia[2, 2])))
+    title = next((r for r in m.keywords if getattr(r, "keyword", "") == "TITLE"), None)
+    if title is not None:
+        title["title"] = (str(title.get("title", "")) + " - simplified (condensed)").strip(" -")[:80]
+    notes.append(f"the replaced structure condensed on {len(cond.nodes)} cut nodes ({3 * len(cond.nodes)} DOFs), "
+                 f"{1e3 * mb.sum():.1f} kg of it on them, the rest on the rear body")
+    if len(cond.left_out):
+        notes.append(f"{len(cond.left_out)} cut node(s) left free (not condensed)")
+    sur = CondensedSurrogate(m, [], float(cond.rigid_stiffness(cond.cog)[0, 0]), mass, tr,
+                             {"cog": g_id, **{f"anchor {i + 1}": int(a) for i, a in enumerate(a_ids)}},
+                             {"rear body": pid}, {}, "condensed", notes,
+                             {"rear body": type(st)(rest, c, inertia)})
+    sur.matrix = (np.stack([dofs, comps], axis=1), k)
+    return sur

@@ -1,0 +1,41 @@
+"""NASTRAN DMIG matrices (``keyword.dmig``): written and read back."""
+
+import numpy as np
+import pytest
+
+from crashlite.keyword.dmig import read_dmig, write_dmig
+
+
+def test_symmetric_matrix_round_trip_to_ten_digits(tmp_path):
+    rng = np.random.default_rng(3)
+    a = rng.normal(size=(9, 9))
+    k = a @ a.T * 1e5
+    k[0, 5] = k[5, 0] = 0.0  # zeros are not written
+    dofs = np.array([[n, c] for n in (12, 40, 7) for c in (1, 2, 3)])
+    write_dmig(tmp_path / "k.dmig", {"KAAX": (dofs, k), "M1": (dofs[:3], np.eye(3) * 0.5)})
+    got = read_dmig(tmp_path / "k.dmig")
+    d, m = got["KAAX"]
+    order = np.lexsort((dofs[:, 1], dofs[:, 0]))  # read back in (grid, component) order
+    np.testing.assert_array_equal(d, dofs[order])
+    np.testing.assert_allclose(m, k[np.ix_(order, order)], rtol=1e-9, atol=1e-9 * np.abs(k).max())
+    np.testing.assert_allclose(got["M1"][1], np.eye(3) * 0.5)
+    assert all(len(line) <= 72 for line in (tmp_path / "k.dmig").read_text().splitlines())
+
+
+def test_small_field_with_nastran_exponents(tmp_path):
+    text = ("DMIG    STIF    0       6       2\n"
+            "DMIG    STIF    27      1               27      1       3.+5\n"
+            "        28      1       -1.5+5\n"
+            "DMIG    STIF    28      1               28      1       2.5+5\n")
+    (tmp_path / "s.dmig").write_text(text)
+    dofs, k = read_dmig(tmp_path / "s.dmig")["STIF"]
+    np.testing.assert_array_equal(dofs, [[27, 1], [28, 1]])
+    np.testing.assert_allclose(k, [[3e5, -1.5e5], [-1.5e5, 2.5e5]])
+
+
+def test_errors_name_file_and_line(tmp_path):
+    (tmp_path / "b.dmig").write_text("DMIG    STIF    0       6       2\nGRID    1\n")
+    with pytest.raises(ValueError, match=r"b.dmig:2"):
+        read_dmig(tmp_path / "b.dmig")
+    with pytest.raises(ValueError, match="not symmetric"):
+        write_dmig(tmp_path / "u.dmig", {"K": (np.array([[1, 1], [2, 1]]), np.array([[1.0, 2.0], [0.0, 1.0]]))})
