@@ -38,7 +38,7 @@ import scipy.sparse as sp
 from .cut import Cut
 from .massprops import node_indices
 from .relief import _support_321, replaced_node_masses
-from .statics import _factor_solve
+from .statics import factor as _factor
 from .stiffness import build_static
 
 
@@ -106,31 +106,29 @@ def relieved_condensation(cut: Cut, nodes=None, drill: float = 1e-3) -> Condensa
     a = np.linalg.inv(np.einsum("n,nai,naj->ij", m[carry], phi_c, phi_c))  # (ΦᵀMΦ)⁻¹
     nb3 = 3 * len(b)
     phi_b = rigid_modes(xyz[b], c).reshape(nb3, 6)
-    accel = a @ phi_b.T  # (6, 3k): the rigid acceleration each unit cut force gives the free structure
     cand = np.flatnonzero(ls.in_structure & ~ls.tied())
+    cand = np.setdiff1d(cand, b) if len(np.setdiff1d(cand, b)) >= 3 else cand  # (the cut's DOFs stay free)
     for n, dofs in _support_321(xyz, cand):
         ls.fix([n], dofs)
     t, fixed, slave_of, rnotes = ls.reduction()
-    k_full = ls.stiffness_matrix()
-    kr = (t.T @ k_full @ t).tocsr()
-    diag = kr.diagonal()
-    live = np.flatnonzero(diag > 1e-12 * max(float(np.abs(diag).max(initial=0.0)), 1e-300))
-    kk = kr[live][:, live].tocsc()
-    size = 6 * ls.n_total
-    # loads: the unit cut forces and the d'Alembert forces that balance each (P E_b)
-    rows = (6 * b[:, None] + np.arange(3)).ravel()
-    f = sp.csr_matrix((np.ones(nb3), (rows, np.arange(nb3))), shape=(size, nb3)).toarray()
-    inertia = -np.einsum("n,nai,ij->naj", m[carry], phi_c, accel)  # (n_carry, 3, 3k)
-    f[(6 * carry[:, None] + np.arange(3)).ravel()] += inertia.reshape(-1, nb3)
-    fr = (t.T @ f)[live]
     indep = (slave_of < 0)[:, None] & ~fixed
-    dof_node = np.repeat(np.arange(ls.n_total), 6)[indep.ravel()][live]  # (a mechanism is named by its nodes)
-    q_live, _ = _factor_solve(kk, fr, dof_node)
-    q = np.zeros((t.shape[1], nb3))
-    q[live] = q_live.reshape(len(live), nb3)
-    u = (t @ q).reshape(ls.n_total, 6, nb3)[:ls.n, :3]  # translations
-    fit = a @ np.einsum("n,nai,nak->ik", m[carry], phi_c, u[carry])  # (6, 3k) mean rigid motion (PᵀS...)
-    g = u[b].reshape(nb3, nb3) - phi_b @ fit
+    col = np.full(6 * ls.n_total, -1)
+    col[np.flatnonzero(indep.ravel())] = np.arange(int(indep.sum()))
+    kr = (t.T @ ls.stiffness_matrix() @ t).tocsr()
+    diag = kr.diagonal()
+    live = diag > 1e-12 * max(float(np.abs(diag).max(initial=0.0)), 1e-300)
+    bdofs = col[(6 * b[:, None] + np.arange(3)).ravel()]
+    if np.any(bdofs < 0) or not live[bdofs].all():
+        raise ValueError("a cut node's translation is held or has no stiffness: it cannot be condensed")
+    # the d'Alembert loads of the rigid accelerations, in the reduced DOFs: M Φ
+    mphi = np.zeros((6 * ls.n_total, 6))
+    mphi[(6 * carry[:, None] + np.arange(3)).ravel()] = (m[carry, None, None] * phi_c).reshape(-1, 6)
+    mphi = t.T @ mphi
+    s_b, w = _schur_inverse(kr, live, bdofs, mphi, ls.n_total, indep)
+    # G = E_bᵀ Pᵀ S P E_b with P = I − MΦAΦ_bᵀ...: S_b − W_b A Φ_bᵀ − Φ_b A W_bᵀ + Φ_b A Q A Φ_bᵀ
+    w_b = w[bdofs]
+    q = mphi.T @ w
+    g = s_b - w_b @ a @ phi_b.T - phi_b @ a @ w_b.T + phi_b @ a @ q @ a @ phi_b.T
     asym = float(np.abs(g - g.T).max() / np.abs(g).max())
     if asym > 1e-6:
         notes.append(f"the condensed flexibility is unsymmetric by {asym:.2g} (relative)")
@@ -142,3 +140,44 @@ def relieved_condensation(cut: Cut, nodes=None, drill: float = 1e-3) -> Condensa
     ks = np.linalg.inv(g)
     ks = 0.5 * (ks + ks.T)
     return Condensation(b, g, ks, big_m, c, m, left, list(cut.notes) + notes + mnotes + rnotes, xyz[b].copy())
+
+
+def _schur_inverse(kr, live, bdofs, loads, n_total, indep):
+    """(S_b, W): the supported inverse S = K⁻¹ at the cut DOFs ``bdofs``
+    (the inverse of K's Schur complement on them) and S applied to the
+    few columns ``loads``, on one factorisation. The interior is ordered
+    for little fill (minimum degree on K_ii) and the cut DOFs last, so that
+    the factor's trailing block is the Schur complement: L_bb U_bb."""
+    n = kr.shape[0]
+    keep = np.flatnonzero(live)
+    pos = np.full(n, -1)
+    pos[keep] = np.arange(len(keep))
+    bl = pos[bdofs]
+    inner = np.setdiff1d(np.arange(len(keep)), bl)
+    k = kr[keep][:, keep].tocsc()
+    dof_node = np.repeat(np.arange(n_total), 6)[indep.ravel()][keep]  # a mechanism is named by its nodes
+    kii = k[inner][:, inner].tocsc()
+    order = inner[_ordering(kii, dof_node[inner])]
+    perm = np.concatenate([order, bl])
+    kp = k[perm][:, perm].tocsc()
+    lu = _factor(kp, dof_node[perm], "NATURAL")
+    nb = len(bl)
+    if not np.array_equal(lu.perm_c[-nb:], np.arange(len(perm) - nb, len(perm))):
+        raise RuntimeError("the factorisation reordered the cut DOFs")  # (SuperLU's postorder keeps roots last)
+    low = lu.L.tocsc()[-nb:, -nb:].toarray()
+    up = lu.U.tocsc()[-nb:, -nb:].toarray()
+    s_b = np.linalg.inv(low @ up)
+    s_b = 0.5 * (s_b + s_b.T)
+    rhs = loads[keep][perm]
+    x = lu.solve(np.asarray(rhs))
+    for _ in range(2):  # iterative refinement of the few columns
+        x = x + lu.solve(np.asarray(rhs - kp @ x))
+    w = np.zeros((n, loads.shape[1]))
+    w[keep[perm]] = x
+    # S_b in the order of bdofs: perm's last nb entries are bl, in bdofs' order
+    return s_b, w
+
+
+def _ordering(k, dof_node) -> np.ndarray:
+    """A fill-reducing symmetric ordering of ``k`` (SuperLU's minimum degree on Kᵀ+K)."""
+    return _factor(k, dof_node, "MMD_AT_PLUS_A").perm_c.argsort()

@@ -45,14 +45,15 @@ class MechanismError(ValueError):
 PIVOT_RATIO = 1e-12  # a pivot below this fraction of its diagonal term: a free motion
 
 
-def _factor_solve(k, f, dof_node):
-    """Solve the SPD system k q = f by sparse LU with a symmetric ordering and
-    diagonal pivots, two steps of iterative refinement; a pivot much smaller
-    than its diagonal term means a mechanism (MechanismError naming nodes)."""
+def factor(k, dof_node, permc_spec: str = "MMD_AT_PLUS_A"):
+    """Sparse LU of the SPD matrix k with a symmetric ordering (``permc_spec``;
+    "NATURAL": k's own) and diagonal pivots; a pivot much smaller than its
+    diagonal term means a mechanism (MechanismError naming the nodes of
+    ``dof_node``)."""
     with warnings.catch_warnings():
         warnings.simplefilter("error", MatrixRankWarning)
         try:
-            lu = splu(k, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
+            lu = splu(k, permc_spec=permc_spec, diag_pivot_thresh=0.0, options={"SymmetricMode": True})
         except (MatrixRankWarning, RuntimeError) as e:
             raise MechanismError(f"the structure is a mechanism (singular stiffness: {e}); check that it is "
                                  "supported and that every part is connected") from None
@@ -66,6 +67,12 @@ def _factor_solve(k, f, dof_node):
         raise MechanismError(f"the structure is a mechanism: {len(bad)} free motion(s) (singular stiffness) "
                              f"at {len(nodes)} node(s), node indices {nodes[:10].tolist()}; check that it is "
                              "supported and that every part is connected", nodes)
+    return lu
+
+
+def _factor_solve(k, f, dof_node):
+    """Solve the SPD system k q = f (``factor``) with iterative refinement."""
+    lu = factor(k, dof_node)
     q = lu.solve(f)
     absk = abs(k)
     for _ in range(3):  # iterative refinement; residual as the componentwise backward error
