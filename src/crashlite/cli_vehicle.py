@@ -54,7 +54,7 @@ def _reduce(args) -> int:
                          t_end=None if args.t_end is None else args.t_end / 1000.0 * _seconds(args.deck),
                          interface_mode=args.interface_mode, spring_length=args.spring_length,
                          damping_ratio=args.damping_ratio, mass_split=args.mass_split, springs=args.springs,
-                         modes=args.modes, quiet=False)
+                         modes=args.modes, connection=args.connection, quiet=False)
     files = red.write(args.output, args.report, fmt=args.format)
     s = red.summary()["model_size"]
     print(f"wrote {files['deck']} ({s['simplified_elements']} of {s['full_elements']} elements, "
@@ -194,6 +194,10 @@ def add_commands(sub) -> None:
     r.add_argument("--axle-parts", nargs="+", default=None, help="rear-axle parts (titles or IDs), for table 2")
     r.add_argument("--shares", default="combined", help="'combined' (mean over the load cases) or a load case")
     r.add_argument("--t-end", type=float, default=None, help="ignore section forces after this time [ms]")
+    r.add_argument("--connection", choices=("condensed", "springs"), default="condensed",
+                   help="join the cut to the rear body by the replaced structure condensed onto the cut nodes "
+                        "(a linear superelement: the cut bends as the structure behind it), or by a rigid "
+                        "interface and one spring per load path (the paper; the options below)")
     r.add_argument("--interface-mode", choices=("rigid", "assembly"), default="rigid",
                    help="one rigid body over the cut, or one per assembly")
     r.add_argument("--spring-length", type=float, default=100.0, help="spring length [deck length unit]")

@@ -118,6 +118,9 @@ def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, 
     eid = ids.take("element")
     m.keywords.append(record("ELEMENT_DIRECT_MATRIX_INPUT", eid=eid, ifrmt=1, filename="simplified.dmig",
                              stif="KCUT"))
+    sid = ids.take("set")  # the cut nodes, for the verification's split (no rigid body on them)
+    m.sets[("NODE", sid)] = id_list("SET_NODE_LIST_TITLE", sid, full.nodes.ids[cond.nodes],
+                                    title="surrogate interface (condensed)")
     # the rear body
     pid = ids.take("part")
     sid = ids.take("set")
@@ -134,7 +137,9 @@ def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, 
                  f"{1e3 * mb.sum():.1f} kg of it on them, the rest on the rear body")
     if len(cond.left_out):
         notes.append(f"{len(cond.left_out)} cut node(s) left free (not condensed)")
-    sur = CondensedSurrogate(m, [], float(cond.rigid_stiffness(cond.cog)[0, 0]), mass, tr,
+    # along the axis, the cut held rigid and free to turn (as step 3 loads its interface)
+    flex = np.linalg.inv(cond.rigid_stiffness(cond.xyz_nodes.mean(axis=0)))[:3, :3]
+    sur = CondensedSurrogate(m, [], float(1.0 / (cut.axis @ flex @ cut.axis)), mass, tr,
                              {"cog": g_id, **{f"anchor {i + 1}": int(a) for i, a in enumerate(a_ids)}},
                              {"rear body": pid}, {}, "condensed", notes,
                              {"rear body": type(st)(rest, c, inertia)})

@@ -15,7 +15,11 @@ binout or ASCII folders), and runs:
    the replaced structure on one factorisation (``stiffness``), and K under
    inertia relief (``relief``), which the springs share by default
    (``springs="axle"``: the paper's K, borne at the rear axle);
-4. the surrogate deck (``surrogate``).
+4. the surrogate deck: by default the cut joined to the rear body by the
+   replaced structure condensed onto the cut nodes under inertia relief
+   (``condense``, ``condensed``: the cut bends as the elastic structure
+   behind it would); ``connection="springs"`` is the paper's form, a rigid
+   interface and one spring per load path (``surrogate``).
 
 ``Reduction.write`` writes the simplified deck, ``reduction.json`` with
 every figure and a page ``reduction.html`` with the paper's tables 2–3
@@ -39,6 +43,8 @@ from .connection import compare_connection, connection_stiffness
 from .modes import free_modes, held_modes
 from .relief import relieved_stiffness
 from .stiffness import StiffnessResult, longitudinal_stiffness
+from .condense import relieved_condensation
+from .condensed import build_condensed_surrogate
 from .surrogate import Surrogate, build_surrogate
 
 
@@ -61,6 +67,8 @@ class Reduction:
     springs: str = "relief"  # the K the springs share: "relief" or "axle" (the paper's step 3)
     connection: dict | None = None  # the surrogate's 6×6 connection against the structure's (connection.py)
     modes: dict | None = None  # the replaced structure's modes, "free" and "held" at the interface (modes.py)
+    connection_kind: str = "springs"  # "condensed" (the structure condensed on the cut) or "springs" (the paper)
+    condensation: dict | None = None  # condense.Condensation.summary() of the condensed connection
 
     @property
     def spring_stiffness(self) -> float:
@@ -85,7 +93,8 @@ class Reduction:
                                 "inertia_relief": None if self.relief is None else {
                                     **self.relief.table(), "transverse": dict(self.relief.transverse or {})},
                                 "springs_from": self.springs},
-            "step4_surrogate": self.surrogate.summary(),
+            "step4_surrogate": {"connection": self.connection_kind, **self.surrogate.summary(),
+                                **({"condensation": self.condensation} if self.condensation else {})},
             "connection_against_structure": self.connection,
             "replaced_structure_modes": self.modes,
             "model_size": {"full_elements": n_full, "simplified_elements": n_sur,
@@ -155,7 +164,8 @@ def _support(model: Model, support):
 def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.0, 0.0), assemblies=None,
                    support=None, axle_parts=None, shares="combined", t_end: float | None = None,
                    interface_mode: str = "rigid", spring_length: float = 100.0, damping_ratio: float = 0.0,
-                   mass_split: str = "axle", springs: str = "relief", modes: int = 0, quiet: bool = True) -> Reduction:
+                   mass_split: str = "axle", springs: str = "relief", modes: int = 0, connection: str = "condensed",
+                   quiet: bool = True) -> Reduction:
     """Steps 1–4 (module docstring).
 
     deck        the full vehicle deck (path or Model)
@@ -173,11 +183,16 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
                 inertia as in the crash (``relief``), or "axle", the paper's step 3 (borne at the rear axle)
     modes       also the replaced structure's lowest modes, free and held at the interface
                 (``modes.free_modes``, ``modes.held_modes``; 0: none)
+    connection  "condensed" (default): the cut joined to the rear body by the replaced structure
+                condensed onto it (``condensed``; shares, springs and the interface options then
+                only report); "springs": the paper's rigid interface and load-path springs
     """
     from ..keyword.reader import read_deck
 
     if springs not in ("axle", "relief"):
         raise ValueError(f"springs={springs!r}: 'axle' or 'relief'")
+    if connection not in ("condensed", "springs"):
+        raise ValueError(f"connection={connection!r}: 'condensed' or 'springs'")
     say = (lambda *a: None) if quiet else (lambda *a: print(*a, flush=True))
     model = deck if isinstance(deck, Model) else read_deck(deck)
     results = list(results) if isinstance(results, (list, tuple)) else [results]
@@ -241,12 +256,21 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     # step 4
     t0 = time.perf_counter()
     k_springs = rel.stiffness if springs == "relief" else k.stiffness
-    sur = build_surrogate(cut, assemblies, used, k_springs, mass, trans, interface=interface_mode,
-                          spring_length=spring_length, damping_ratio=damping_ratio, mass_split=mass_split)
+    cond = None
+    if connection == "condensed":
+        cond = relieved_condensation(cut)
+        sur = build_condensed_surrogate(cut, cond, mass)
+        say(f"step 4: the replaced structure condensed on {len(cond.nodes)} cut nodes, "
+            f"{len(sur.model.shells)} of {len(model.shells)} shells kept")
+    else:
+        sur = build_surrogate(cut, assemblies, used, k_springs, mass, trans, interface=interface_mode,
+                              spring_length=spring_length, damping_ratio=damping_ratio, mass_split=mass_split)
+        say(f"step 4: {len(sur.springs)} springs, {len(sur.model.shells)} of {len(model.shells)} shells kept")
     seconds["step 4 surrogate"] = time.perf_counter() - t0
-    say(f"step 4: {len(sur.springs)} springs, {len(sur.model.shells)} of {len(model.shells)} shells kept")
     conn = None
-    if interface_mode == "rigid" and rel.flexibility is not None:
+    if cond is not None and rel.flexibility is not None:  # the condensed cut held rigid against the structure
+        conn = compare_connection(cond.rigid_stiffness(rel.load_point), rel.flexibility, cut.axis)
+    elif interface_mode == "rigid" and rel.flexibility is not None:
         conn = compare_connection(connection_stiffness(sur, rel.load_point), rel.flexibility, cut.axis)
         worst = conn["largest_compliance_misfit"]
         say(f"  the springs and beam against the replaced structure: {worst['direction']} compliance "
@@ -264,4 +288,5 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
                                                                                                "pitch")))
     notes += mass.notes + k.notes + [n for n in rel.notes if n not in k.notes]
     return Reduction(str(getattr(model, "source", "") or ""), paths, used, basis, deviation, cut, mass, k, sur,
-                     seconds, notes, rel, springs, conn, free)
+                     seconds, notes, rel, springs, conn, free, connection,
+                     cond.summary() if cond is not None else None)

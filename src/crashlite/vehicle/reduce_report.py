@@ -55,19 +55,34 @@ def reduction_page(r) -> str:
                     "K; the anti-rotation beam takes the same kind's shear and roll stiffness.</p>")
     body.append("<h2>Step 4: the surrogate</h2>")
     sur = s["step4_surrogate"]
-    body.append(table(["assembly", "share [%]", "stiffness", "damping", "direction", "interface nodes"],
-                      [[sp["assembly"], num(sp["share_percent"], 3), num(sp["stiffness"], 6), num(sp["damping"]),
-                        Raw(esc([round(v, 3) for v in sp["direction"]])), sp["interface_nodes"]]
-                       for sp in sur["springs"]]))
-    b = sur["beam"]
-    body.append(f"<p>Anti-rotation beam: length {num(b['length'])}, axial stiffness {num(b['axial_stiffness'])}, "
-                f"EI {num(b['EI'])}, GJ {num(b['GJ'])}; interface: {esc(sur['interface'])} rigid body.</p>")
     conn = s.get("connection_against_structure")
+    if sur.get("connection") == "condensed":
+        c = sur["condensation"]
+        body.append(f"<p>The cut is joined to the rear body by the replaced structure condensed onto its "
+                    f"{c['nodes']} nodes ({c['dofs']} translations; {c['left_out']} left free): the structure's "
+                    "flexibility at every cut DOF relative to its own mean rigid motion, held by its inertia as in "
+                    "the crash, inverted into one linear superelement (*ELEMENT_DIRECT_MATRIX_INPUT) between the "
+                    "cut nodes and the rear body, so the cut bends as the elastic structure behind it would. "
+                    f"Stiffness eigenvalues {num(c['stiffness_eigenvalues'][0])} to "
+                    f"{num(c['stiffness_eigenvalues'][1])}. The load-path shares of step 1 are reported, not "
+                    "needed: the condensed matrix distributes the load.</p>")
+        lead = ("Held rigid, the condensed cut is one 6×6 stiffness at the interface; against the rigid "
+                "interface of step 3 under inertia relief, per direction (the cut's shell rotations stay free "
+                "in the condensed one, so it comes out a little softer across):")
+    else:
+        body.append(table(["assembly", "share [%]", "stiffness", "damping", "direction", "interface nodes"],
+                          [[sp["assembly"], num(sp["share_percent"], 3), num(sp["stiffness"], 6), num(sp["damping"]),
+                            Raw(esc([round(v, 3) for v in sp["direction"]])), sp["interface_nodes"]]
+                           for sp in sur["springs"]]))
+        b = sur["beam"]
+        body.append(f"<p>Anti-rotation beam: length {num(b['length'])}, axial stiffness {num(b['axial_stiffness'])}, "
+                    f"EI {num(b['EI'])}, GJ {num(b['GJ'])}; interface: {esc(sur['interface'])} rigid body.</p>")
+        lead = ("The springs and the beam join the interface body to the rear body: the front structure "
+                "feels them as one 6×6 stiffness at the interface. Against the replaced structure's own, held "
+                "by its inertia (step 3 under inertia relief), per direction:")
     if conn:
-        body.append("<p>The springs and the beam join the interface body to the rear body: the front structure "
-                    "feels them as one 6×6 stiffness at the interface. Against the replaced structure's own, held "
-                    "by its inertia (step 3 under inertia relief), per direction: the compliance under that load "
-                    "alone (the rest free) and the stiffness with the rest held, surrogate over structure.</p>")
+        body.append(f"<p>{lead} the compliance under that load alone (the rest free) and the stiffness with the "
+                    "rest held, surrogate over structure.</p>")
         body.append(table(["direction", "structure compliance", "surrogate compliance", "compliance ratio",
                            "stiffness ratio (rest held)"], [
             [name, num(d["structure_compliance"]), num(d["surrogate_compliance"]), num(d["compliance_ratio"], 3),

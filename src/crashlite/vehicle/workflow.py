@@ -75,11 +75,13 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
     seconds["reduction"] = time.perf_counter() - t0
     s = red.summary()
     worst = (red.connection or {}).get("largest_compliance_misfit")
+    joined = (f"{len(red.surrogate.springs)} springs" if red.connection_kind == "springs" else
+              f"the structure condensed on {red.condensation['nodes']} cut nodes")
     say(f"  steps 1-4: K = {red.stiffness.stiffness:.5g} N/mm borne at the axle, {red.relief.stiffness:.5g} under "
-        f"inertia relief (springs: {red.springs}), replaced {red.mass.structure.mass * 1e3:.1f} kg, "
-        f"{len(red.surrogate.springs)} springs; {s['model_size']['simplified_elements']} of "
+        f"inertia relief, replaced {red.mass.structure.mass * 1e3:.1f} kg, "
+        f"{joined}; {s['model_size']['simplified_elements']} of "
         f"{s['model_size']['full_elements']} elements kept"
-        + (f"; against the structure the springs and beam misfit most in {worst['direction']} (compliance "
+        + (f"; held rigid, the connection against the structure misfits most in {worst['direction']} (compliance "
            f"x{worst['ratio']:.2g})" if worst else ""))
     sim_deck = usncap_deck(out / "simplified.k", out / "usncap_simplified.k", speed_kmh=speed_kmh, end_time=end_time)
     t0 = time.perf_counter()

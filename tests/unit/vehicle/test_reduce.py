@@ -65,12 +65,18 @@ def _two_rails():
 
 
 @pytest.fixture(scope="module")
-def reduced(tmp_path_factory):
+def full_run(tmp_path_factory):
     d = tmp_path_factory.mktemp("reduce")
     m, rear, front = _two_rails()
     full_deck = write_deck(m, d / "full.k")[0]
-    full = run(full_deck, out=d / "full")
-    red = reduce_vehicle(full_deck, [d / "full"], load_cases=["wall"], modes=4)
+    return m, run(full_deck, out=d / "full"), full_deck, d
+
+
+@pytest.fixture(scope="module", params=["condensed", "springs"])
+def reduced(full_run, request):
+    m, full, full_deck, root = full_run
+    d = root / request.param
+    red = reduce_vehicle(full_deck, [root / "full"], load_cases=["wall"], modes=4, connection=request.param)
     files = red.write(d / "simplified.k")
     sur = run(files["deck"], out=d / "simplified")
     return m, full, red, files, sur, d
@@ -97,6 +103,18 @@ def test_reduction_figures(reduced):
     shells = m.mass_properties().mass - 0.35  # less the point masses
     assert rep == pytest.approx(0.3 + shells / 2, rel=1e-6)  # the rear masses and the rear halves
     summary = json.loads(files["summary"].read_text())
+    conn = summary["connection_against_structure"]
+    assert summary["step4_surrogate"]["connection"] == red.connection_kind
+    if red.connection_kind == "condensed":
+        # the condensed cut held rigid is the inertia-relief stiffness of step 3, a little softer across
+        # (its shell rotations are free)
+        c = summary["step4_surrogate"]["condensation"]
+        assert c["nodes"] == 2 * 16 and c["left_out"] == 0
+        assert summary["step4_surrogate"]["longitudinal_stiffness"] == pytest.approx(red.relief.stiffness, rel=0.03)
+        assert conn["directions"]["axial"]["compliance_ratio"] == pytest.approx(1.0, rel=0.03)
+        sim = read_deck(files["deck"])
+        assert len(sim.find("ELEMENT_DIRECT_MATRIX_INPUT")) == 1 and not len(sim.discretes)
+        return
     assert summary["step4_surrogate"]["longitudinal_stiffness"] == pytest.approx(red.spring_stiffness)
     assert red.springs == "relief" and summary["step3_stiffness"]["springs_from"] == "relief"
     # the rear point masses (0.3 of 0.35 + shells) dominate the replaced halves: under inertia relief the
@@ -105,7 +123,6 @@ def test_reduction_figures(reduced):
     assert summary["model_size"]["simplified_elements"] < summary["model_size"]["full_elements"]
     # the springs share the rails' K as the rails do (shares from the impulses, near their thickness ratio):
     # along the axis the surrogate is about as compliant as the structure it replaces
-    conn = summary["connection_against_structure"]
     assert 0.8 < conn["directions"]["axial"]["compliance_ratio"] < 1.25
     modes = summary["replaced_structure_modes"]
     assert len(modes["held"]["frequencies"]) == len(modes["free"]["frequencies"]) == 4
@@ -141,7 +158,7 @@ def test_verification_figures(reduced):
     the front ring's compression towards the rear body (the "intrusion"
     here) within 5 % of the full model's at every node."""
     m, full, red, files, sur, d = reduced
-    v = verify_vehicle(d / "full", d / "simplified", d / "full.k", files["deck"], load_case="wall",
+    v = verify_vehicle(d.parent / "full", d / "simplified", d.parent / "full.k", files["deck"], load_case="wall",
                        crash_boxes=("rail left", "rail right"), reference="rear", engine="front")
     f = v.figures
     t_stop = f["deceleration_phase_end"]
