@@ -81,17 +81,13 @@ class Condensation:
                 "cog": self.cog.tolist(), "notes": list(self.notes)}
 
 
-def relieved_condensation(cut: Cut, nodes=None, also=None, drill: float = 1e-3) -> Condensation:
+def relieved_condensation(cut: Cut, nodes=None, drill: float = 1e-3) -> Condensation:
     """The replaced structure of ``cut`` condensed onto the translations of
-    the cut nodes (default: all its interface nodes) and of the nodes
-    ``also`` (indices: points of the replaced structure whose motion is
-    measured, kept as the superelement's output DOFs) under inertia relief
+    the cut nodes (default: all its interface nodes) under inertia relief
     (module docstring)."""
     model = cut.model
     ls, _, notes = build_static(model, cut.replaced, drill)
     b = cut.interface_nodes if nodes is None else node_indices(model, nodes)
-    if also is not None:
-        b = np.concatenate([b, np.setdiff1d(np.asarray(also, np.int64), b)])
     ok = ls.in_structure[b] & ~ls.tied()[b]  # a tied node moves with its group's master: no DOFs of its own
     b, left = b[ok], b[~ok]
     if not len(b):

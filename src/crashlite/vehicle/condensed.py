@@ -73,25 +73,15 @@ class CondensedSurrogate(Surrogate):
         return super().write(path, fmt)
 
 
-def measured_nodes(cut: Cut) -> np.ndarray:
-    """History nodes of the replaced structure: condensed with the cut, they
-    move as the elastic structure carries them (rear seats, sills: the
-    passenger cell's frame of the intrusion), not with the rear body."""
-    hist = _history_nodes(cut.model)
-    return hist[cut.removed_nodes[hist]]
-
-
 def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, keep_nodes=None) -> Surrogate:
-    """The surrogate deck joined at the cut by the condensed structure
-    (module docstring); history nodes behind the cut that ``cond`` holds
-    (``measured_nodes``) are its nodes, the others ride on the rear body."""
+    """The surrogate deck joined at the cut by the condensed structure (module docstring)."""
     full = cut.model
     notes = list(cut.notes) + [n for n in cond.notes if n not in cut.notes]
-    kept = measured_nodes(cut)
+    hist = _history_nodes(full)
+    ride = hist[cut.removed_nodes[hist]]
     if keep_nodes is not None:
-        kept = np.union1d(kept, np.asarray(keep_nodes, np.int64))
-    tr = truncate(cut, keep=kept)
-    ride = np.setdiff1d(kept, cond.nodes)
+        ride = np.union1d(ride, np.asarray(keep_nodes, np.int64))
+    tr = truncate(cut, keep=ride)
     notes += tr.notes
     m = tr.model
     ids = _Ids(m)
@@ -129,8 +119,7 @@ def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, 
     m.keywords.append(record("ELEMENT_DIRECT_MATRIX_INPUT", eid=eid, ifrmt=1, filename="simplified.dmig",
                              stif="KCUT"))
     sid = ids.take("set")  # the cut nodes, for the verification's split (no rigid body on them)
-    on_cut = cond.nodes[np.isin(cond.nodes, cut.interface_nodes)]
-    m.sets[("NODE", sid)] = id_list("SET_NODE_LIST_TITLE", sid, full.nodes.ids[on_cut],
+    m.sets[("NODE", sid)] = id_list("SET_NODE_LIST_TITLE", sid, full.nodes.ids[cond.nodes],
                                     title="surrogate interface (condensed)")
     # the rear body
     pid = ids.take("part")
@@ -144,9 +133,8 @@ def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, 
     title = next((r for r in m.keywords if getattr(r, "keyword", "") == "TITLE"), None)
     if title is not None:
         title["title"] = (str(title.get("title", "")) + " - simplified (condensed)").strip(" -")[:80]
-    notes.append(f"the replaced structure condensed on {len(on_cut)} cut nodes and {len(cond.nodes) - len(on_cut)} "
-                 f"measured node(s) behind it ({3 * len(cond.nodes)} DOFs), {1e3 * mb.sum():.1f} kg of it on them, "
-                 "the rest on the rear body")
+    notes.append(f"the replaced structure condensed on {len(cond.nodes)} cut nodes ({3 * len(cond.nodes)} DOFs), "
+                 f"{1e3 * mb.sum():.1f} kg of it on them, the rest on the rear body")
     if len(cond.left_out):
         notes.append(f"{len(cond.left_out)} cut node(s) left free (not condensed)")
     # along the axis, the cut held rigid and free to turn (as step 3 loads its interface)

@@ -44,7 +44,7 @@ from .modes import free_modes, held_modes
 from .relief import relieved_stiffness
 from .stiffness import StiffnessResult, longitudinal_stiffness
 from .condense import relieved_condensation
-from .condensed import build_condensed_surrogate, measured_nodes
+from .condensed import build_condensed_surrogate
 from .surrogate import Surrogate, build_surrogate
 
 
@@ -258,7 +258,7 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     k_springs = rel.stiffness if springs == "relief" else k.stiffness
     cond = None
     if connection == "condensed":
-        cond = relieved_condensation(cut, also=measured_nodes(cut))
+        cond = relieved_condensation(cut)
         sur = build_condensed_surrogate(cut, cond, mass)
         say(f"step 4: the replaced structure condensed on {len(cond.nodes)} cut nodes, "
             f"{len(sur.model.shells)} of {len(model.shells)} shells kept")
