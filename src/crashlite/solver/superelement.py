@@ -22,6 +22,7 @@ from ..keyword.dmig import read_dmig
 from ..keyword.errors import Problem
 from ..model.model import Model
 from .groups import ElementGroup
+from .kernels.matrix import matrix_forces
 
 
 class SuperelementGroup(ElementGroup):
@@ -43,7 +44,8 @@ class SuperelementGroup(ElementGroup):
         for e, n in enumerate(self.nodes):
             self.conn[e, :len(n)] = n
         self.energy = np.zeros(len(self.ids))
-        self._f = [np.zeros(len(n)) for n in dof_nodes]
+        self._f = [np.zeros(len(n)) for n in dof_nodes]  # force on each DOF
+        self._u = [np.zeros(len(n)) for n in dof_nodes]
         self._x0 = None
         self._dt = np.zeros(len(self.ids))
         self._dt_done = False
@@ -61,11 +63,7 @@ class SuperelementGroup(ElementGroup):
         if self._x0 is None:
             self._x0 = [st.x[n, c].copy() for n, c in zip(self.dof_nodes, self.dof_comps)]
         for e, (n, c, k) in enumerate(zip(self.dof_nodes, self.dof_comps, self.k)):
-            u = st.x[n, c] - self._x0[e]
-            f = k @ u
-            self._f[e] = -f
-            st.f[n, c] -= f  # (node, component) pairs are distinct
-            self.energy[e] = 0.5 * float(u @ f)
+            self.energy[e] = matrix_forces(k, st.x, self._x0[e], n, c, self._u[e], self._f[e], st.f)
 
     def critical_dt(self, st) -> float:
         if not self._dt_done:

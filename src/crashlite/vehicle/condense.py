@@ -37,6 +37,7 @@ import scipy.sparse as sp
 
 from .cut import Cut
 from .massprops import node_indices
+from .modes import _eigen
 from .relief import _support_321, replaced_node_masses
 from .statics import factor as _factor
 from .stiffness import build_static
@@ -67,6 +68,15 @@ class Condensation:
     left_out: np.ndarray  # cut nodes not condensed (tied to a rigid group, or outside the static model)
     notes: list = field(default_factory=list)
     xyz_nodes: np.ndarray | None = None  # (k, 3) coordinates of ``nodes``
+    modal: np.ndarray | None = None  # (3k, N) the cut's translations in the N lowest free elastic modes
+    #                                  (mass-normalised)
+    omega2: np.ndarray | None = None  # (N,) their ω² [1/time²]
+    residual: np.ndarray | None = None  # (3k, 3k) (G − Φ Ω⁻² Φᵀ)⁻¹: the stiffness of what the modes leave
+
+    @property
+    def frequencies(self) -> np.ndarray:
+        """(N,) the kept modes' frequencies [1/time]."""
+        return np.sqrt(self.omega2) / (2.0 * np.pi) if self.omega2 is not None else np.zeros(0)
 
     def rigid_stiffness(self, point) -> np.ndarray:
         """(6, 6) stiffness of the cut held rigid about ``point`` (force and
@@ -78,13 +88,16 @@ class Condensation:
         lam = np.linalg.eigvalsh(self.stiffness)
         return {"nodes": int(len(self.nodes)), "dofs": int(3 * len(self.nodes)), "left_out": int(len(self.left_out)),
                 "stiffness_eigenvalues": [float(lam[0]), float(lam[-1])], "mass": self.mass,
-                "cog": self.cog.tolist(), "notes": list(self.notes)}
+                "cog": self.cog.tolist(), "modes": int(len(self.frequencies)),
+                "mode_frequencies": self.frequencies.tolist(), "notes": list(self.notes)}
 
 
-def relieved_condensation(cut: Cut, nodes=None, drill: float = 1e-3) -> Condensation:
+def relieved_condensation(cut: Cut, nodes=None, modes: int = 0, drill: float = 1e-3) -> Condensation:
     """The replaced structure of ``cut`` condensed onto the translations of
     the cut nodes (default: all its interface nodes) under inertia relief
-    (module docstring)."""
+    (module docstring); with ``modes`` > 0 also its lowest free elastic
+    modes and the residual stiffness of what they leave (residual
+    flexibility, module docstring)."""
     model = cut.model
     ls, _, notes = build_static(model, cut.replaced, drill)
     b = cut.interface_nodes if nodes is None else node_indices(model, nodes)
@@ -139,7 +152,23 @@ def relieved_condensation(cut: Cut, nodes=None, drill: float = 1e-3) -> Condensa
                          "cut nodes that move together (tied) or a cut node joined to nothing with mass")
     ks = np.linalg.inv(g)
     ks = 0.5 * (ks + ks.T)
-    return Condensation(b, g, ks, big_m, c, m, left, list(cut.notes) + notes + mnotes + rnotes, xyz[b].copy())
+    out = Condensation(b, g, ks, big_m, c, m, left, list(cut.notes) + notes + mnotes + rnotes, xyz[b].copy())
+    if modes > 0:
+        _, _, _, _, u, lam, rigid, enotes = _eigen(cut, modes, "free", None, drill)
+        if rigid != 6:
+            out.notes.append(f"{rigid} free modes at zero frequency (six for one free structure)")
+        el = slice(rigid, rigid + modes)
+        phi = u[b, :3, el].reshape(nb3, -1)
+        w2 = lam[el]
+        g_res = g - (phi / w2) @ phi.T
+        g_res = 0.5 * (g_res + g_res.T)
+        low = np.linalg.eigvalsh(g_res)[0]
+        if not low > 0:
+            raise ValueError(f"the residual flexibility is not positive ({low:.3g}): the modes are not accurate "
+                             "enough; ask for fewer")
+        res = np.linalg.inv(g_res)
+        out.modal, out.omega2, out.residual = phi, w2, 0.5 * (res + res.T)
+    return out
 
 
 def _schur_inverse(kr, live, bdofs, loads, n_total, indep):

@@ -40,6 +40,7 @@ from .surrogate import Surrogate, _history_nodes, _Ids, _whole_vehicle_sets
 from .truncate import truncate
 
 ANCHOR = 300.0  # [length] distance of the rear body's four anchor nodes from its CoG
+MODAL_MASS = 1e-6  # [mass] of each modal node (1 g in mm–t–s): η = √μ·y, its kinetic energy ½μẏ² = ½η̇²
 
 
 def _point_inertia(xyz: np.ndarray, m: np.ndarray, about: np.ndarray) -> np.ndarray:
@@ -47,13 +48,19 @@ def _point_inertia(xyz: np.ndarray, m: np.ndarray, about: np.ndarray) -> np.ndar
     return np.einsum("n,ij->ij", m * (d**2).sum(axis=1), np.eye(3)) - np.einsum("n,ni,nj->ij", m, d, d)
 
 
-def superelement_matrix(cond: Condensation, anchors: np.ndarray) -> np.ndarray:
-    """(3k + 12, 3k + 12) the superelement on the cut nodes' and the four
-    anchors' translations (module docstring)."""
+def superelement_matrix(cond: Condensation, anchors: np.ndarray, modal_mass: float = MODAL_MASS) -> np.ndarray:
+    """(3k + 12 + N, 3k + 12 + N) the superelement on the cut nodes' and the
+    four anchors' translations and the N modal nodes' y (module docstring):
+    Cᵀ K_r C + diag(0, μΩ²), C = [I, −B L, −√μ Φ]."""
     b = rigid_modes(cond.xyz_nodes, cond.cog).reshape(-1, 6)
     lmap = np.linalg.pinv(rigid_modes(anchors, cond.cog).reshape(-1, 6))  # (6, 12)
-    kb = cond.stiffness @ b @ lmap  # K_s B L
-    k = np.block([[cond.stiffness, -kb], [-kb.T, lmap.T @ (b.T @ cond.stiffness @ b) @ lmap]])
+    n = 0 if cond.modal is None else cond.modal.shape[1]
+    parts = [np.eye(len(b)), -b @ lmap] + ([-np.sqrt(modal_mass) * cond.modal] if n else [])
+    c = np.hstack(parts)
+    kr = cond.stiffness if not n else cond.residual
+    k = c.T @ kr @ c
+    if n:
+        k[-n:, -n:] += np.diag(modal_mass * cond.omega2)
     return 0.5 * (k + k.T)
 
 
@@ -104,16 +111,27 @@ def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, 
     m.nodes = Nodes.concat([m.nodes, nodes])
     _whole_vehicle_sets(full, cut, m, new_ids, notes)
     g_id, a_ids = int(new_ids[0]), new_ids[1:]
+    # one node per kept mode: its y is the modal coordinate (x and z held, so a vehicle's initial velocity
+    # along x leaves it at rest); its mass μ comes off the rear body
+    n_modes = 0 if cond.modal is None else cond.modal.shape[1]
+    modal_ids = np.arange(ids.node, ids.node + n_modes, dtype=np.int64)
+    ids.node += n_modes
+    if n_modes:
+        mn = Nodes.zeros(n_modes)
+        mn.ids, mn.xyz = modal_ids, np.repeat(c[None], n_modes, axis=0)
+        mn.tc[:], mn.rc[:] = 6, 7
+        m.nodes = Nodes.concat([m.nodes, mn])
+        rest -= n_modes * MODAL_MASS
     # the cut nodes' masses
-    lumps = Masses.zeros(len(mb))
-    lumps.ids = np.arange(ids.element, ids.element + len(mb), dtype=np.int64)
-    ids.element += len(mb)
-    lumps.node = m.node_index(full.nodes.ids[cond.nodes]).astype(np.int32)
-    lumps.mass = mb
+    lumps = Masses.zeros(len(mb) + n_modes)
+    lumps.ids = np.arange(ids.element, ids.element + len(lumps.ids), dtype=np.int64)
+    ids.element += len(lumps.ids)
+    lumps.node = m.node_index(np.concatenate([full.nodes.ids[cond.nodes], modal_ids])).astype(np.int32)
+    lumps.mass = np.concatenate([mb, np.full(n_modes, MODAL_MASS)])
     m.masses = Masses.concat([m.masses, lumps])
     # the superelement
-    dofs = np.concatenate([np.repeat(full.nodes.ids[cond.nodes], 3), np.repeat(a_ids, 3)])
-    comps = np.tile([1, 2, 3], len(cond.nodes) + len(a_ids))
+    dofs = np.concatenate([np.repeat(full.nodes.ids[cond.nodes], 3), np.repeat(a_ids, 3), modal_ids])
+    comps = np.concatenate([np.tile([1, 2, 3], len(cond.nodes) + len(a_ids)), np.full(n_modes, 2)])
     k = superelement_matrix(cond, anchors)
     eid = ids.take("element")
     m.keywords.append(record("ELEMENT_DIRECT_MATRIX_INPUT", eid=eid, ifrmt=1, filename="simplified.dmig",
@@ -134,13 +152,16 @@ def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, 
     if title is not None:
         title["title"] = (str(title.get("title", "")) + " - simplified (condensed)").strip(" -")[:80]
     notes.append(f"the replaced structure condensed on {len(cond.nodes)} cut nodes ({3 * len(cond.nodes)} DOFs), "
-                 f"{1e3 * mb.sum():.1f} kg of it on them, the rest on the rear body")
+                 f"{1e3 * mb.sum():.1f} kg of it on them, the rest on the rear body"
+                 + (f"; its {n_modes} lowest free modes ({cond.frequencies[0]:.3g} to {cond.frequencies[-1]:.3g} per "
+                    "time unit) move on their own, the rest as residual stiffness" if n_modes else ""))
     if len(cond.left_out):
         notes.append(f"{len(cond.left_out)} cut node(s) left free (not condensed)")
     # along the axis, the cut held rigid and free to turn (as step 3 loads its interface)
     flex = np.linalg.inv(cond.rigid_stiffness(cond.xyz_nodes.mean(axis=0)))[:3, :3]
     sur = CondensedSurrogate(m, [], float(1.0 / (cut.axis @ flex @ cut.axis)), mass, tr,
-                             {"cog": g_id, **{f"anchor {i + 1}": int(a) for i, a in enumerate(a_ids)}},
+                             {"cog": g_id, **{f"anchor {i + 1}": int(a) for i, a in enumerate(a_ids)},
+                              **({"modes": [int(i) for i in modal_ids]} if n_modes else {})},
                              {"rear body": pid}, {}, "condensed", notes,
                              {"rear body": type(st)(rest, c, inertia)})
     sur.matrix = (np.stack([dofs, comps], axis=1), k)

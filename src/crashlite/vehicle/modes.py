@@ -66,7 +66,7 @@ class FreeModes:
 def free_modes(cut: Cut, count: int = 8, interface_nodes=None, drill: float = 1e-3) -> FreeModes:
     """The ``count`` lowest elastic modes of the replaced structure of ``cut``,
     free, its interface nodes one rigid body (module docstring)."""
-    ls, master, _, m, u, lam, rigid, notes = _eigen(cut, count, False, interface_nodes, drill)
+    ls, master, _, m, u, lam, rigid, notes = _eigen(cut, count, "rigid", interface_nodes, drill)
     if rigid != 6:
         notes.append(f"{rigid} modes at zero frequency (six for one free rigid structure; more: a mechanism)")
     el = slice(rigid, rigid + count)
@@ -107,7 +107,7 @@ def held_modes(cut: Cut, count: int = 8, interface_nodes=None, drill: float = 1e
     first bending mode holds 61.3 % of its mass, its first axial mode
     8/π² = 81 % (test): where the modes below the crash's frequencies hold
     little, a rigid rear is right."""
-    ls, _, nodes, m, u, lam, rigid, notes = _eigen(cut, count, True, interface_nodes, drill)
+    ls, _, nodes, m, u, lam, rigid, notes = _eigen(cut, count, "held", interface_nodes, drill)
     el = slice(rigid, rigid + count)
     xyz = cut.model.nodes.xyz
     p = xyz[nodes].mean(axis=0)
@@ -125,11 +125,12 @@ def held_modes(cut: Cut, count: int = 8, interface_nodes=None, drill: float = 1e
     return HeldModes(freq, eff, totals, np.hstack([lt, lr]), p, _where(cut, m, u[:ls.n, :3, el]), notes)
 
 
-def _eigen(cut: Cut, count: int, hold: bool, interface_nodes, drill: float):
-    """Eigen solve on the step-3 static model, the interface held or one
-    rigid body: (model, its master or None, the interface nodes in it, node
-    masses, mode shapes (n_total, 6, k) mass-normalised, eigenvalues, number
-    at zero, notes)."""
+def _eigen(cut: Cut, count: int, interface: str, interface_nodes, drill: float):
+    """Eigen solve on the step-3 static model, the interface "held", one
+    "rigid" body or "free" (its nodes as any other): (model, the rigid
+    interface's master or None, the interface nodes in it, node masses,
+    mode shapes (n_total, 6, k) mass-normalised, eigenvalues, number at
+    zero, notes)."""
     model = cut.model
     ls, _, notes = build_static(model, cut.replaced, drill)
     nodes = cut.interface_nodes if interface_nodes is None else np.asarray(interface_nodes, np.int64)
@@ -137,9 +138,9 @@ def _eigen(cut: Cut, count: int, hold: bool, interface_nodes, drill: float):
     if not len(nodes):
         raise ValueError("no interface node is a node of the replaced structure")
     master = None
-    if hold:
+    if interface == "held":
         ls.fix(nodes)
-    else:
+    elif interface == "rigid":
         master = ls.add_rigid(nodes)
     m, mnotes = replaced_node_masses(cut)
     m[~ls.in_structure] = 0.0

@@ -1,0 +1,27 @@
+"""Dense linear element (superelement) forces: f = −K (x − x₀) on listed DOFs.
+
+Rows are summed in parallel, each by one thread in a fixed order, so the
+forces are the same bit for bit on any number of threads. (A BLAS matvec
+here would start its own thread pool beside Numba's and slow both.)
+"""
+
+from numba import njit, prange
+
+
+@njit(cache=True, parallel=True)
+def matrix_forces(k, x, x0, nodes, comps, u, fe, f):
+    """u = x[nodes, comps] − x0; fe = −K u (force on each DOF); f += fe.
+    Returns the strain energy ½uᵀKu."""
+    n = nodes.shape[0]
+    for i in range(n):
+        u[i] = x[nodes[i], comps[i]] - x0[i]
+    for i in prange(n):
+        s = 0.0
+        for j in range(n):
+            s += k[i, j] * u[j]
+        fe[i] = -s
+    e = 0.0
+    for i in range(n):
+        e -= 0.5 * u[i] * fe[i]
+        f[nodes[i], comps[i]] += fe[i]
+    return e
