@@ -54,7 +54,8 @@ def _reduce(args) -> int:
                          t_end=None if args.t_end is None else args.t_end / 1000.0 * _seconds(args.deck),
                          interface_mode=args.interface_mode, spring_length=args.spring_length,
                          damping_ratio=args.damping_ratio, mass_split=args.mass_split, springs=args.springs,
-                         modes=args.modes, connection=args.connection, quiet=False)
+                         modes=args.modes, connection=args.connection, condensed_modes=args.condensed_modes,
+                         quiet=False)
     files = red.write(args.output, args.report, fmt=args.format)
     s = red.summary()["model_size"]
     print(f"wrote {files['deck']} ({s['simplified_elements']} of {s['full_elements']} elements, "
@@ -198,6 +199,9 @@ def add_commands(sub) -> None:
                    help="join the cut to the rear body by the replaced structure condensed onto the cut nodes "
                         "(a linear superelement: the cut bends as the structure behind it), or by a rigid "
                         "interface and one spring per load path (the paper; the options below)")
+    r.add_argument("--condensed-modes", type=int, default=0,
+                   help="with the condensed connection, the replaced structure's N lowest free modes move on their "
+                        "own beside the residual stiffness of the rest (0: quasi-static)")
     r.add_argument("--interface-mode", choices=("rigid", "assembly"), default="rigid",
                    help="one rigid body over the cut, or one per assembly")
     r.add_argument("--spring-length", type=float, default=100.0, help="spring length [deck length unit]")

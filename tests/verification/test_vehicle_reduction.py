@@ -106,35 +106,36 @@ def test_reduction_conserves_mass_and_builds_the_surrogate(study):
     # held by its own mass the rear structure (seats to axle) carries only the inertia behind it
     assert 5.0 < red.relief.stiffness / red.stiffness.stiffness < 40.0
     assert red.spring_stiffness == red.relief.stiffness
-    assert len(red.surrogate.springs) >= 8
+    # the default connection: the replaced structure condensed on the cut nodes (a superelement in a DMIG file)
+    assert red.connection_kind == "condensed" and red.condensation["nodes"] > 100
+    assert len(sim.find("ELEMENT_DIRECT_MATRIX_INPUT")) == 1 and (study.out / "simplified.dmig").exists()
+    held = s["connection_against_structure"]["directions"]["axial"]["compliance_ratio"]
+    assert 0.95 < held < 1.3  # held rigid, the condensed cut is the relieved structure (its rotations free)
     assert s["model_size"]["simplified_elements"] < 0.5 * s["model_size"]["full_elements"]
 
 
 @pytest.mark.slow
 def test_simplified_car_follows_the_full_car(study):
-    """At the default interface (x = −600 mm), springs from K under inertia
-    relief: kinetic and internal energy rated ≥ 0.9 over the deceleration
-    phase (issue 8's bound); the firewall intrusion field within 60 % of
-    the full car's largest intrusion at every node and 20 % on average
-    (measured 50 % and 14 %: the simplified car's right rail folds harder
-    and it yaws the other way, README),
-    what the interface carries within 10 % (the full car's cell hardly
-    moves it), the full car's cut bending out of a rigid motion where the
-    surrogate's stays flat, the crash-box energy within 15 %; both runs conserve energy
-    within 3 %, the simplified one runs in less time; summary.json carries
-    the figures under their keys. (Issue 8's 5 % intrusion and 2 %
-    crash-box bounds are not met here: README.)"""
+    """At the default interface (x = −600 mm), the replaced structure
+    condensed on the cut: kinetic and internal energy rated ≥ 0.9 over the
+    deceleration phase (issue 8's bound); the firewall intrusion field
+    within 25 % of the full car's largest intrusion at every node and 6 %
+    on average (measured 12.8 % and 2.7 %; the springs' rigid interface
+    gave 41 % and 11.4 %, README), what the interface carries within 5 %
+    (0.9 %), the condensed cut bending out of a rigid motion as the full
+    car's does (6.7 mm both), the crash-box energy within 8 % (−3.0 %);
+    both runs conserve energy within 3 %, the simplified one runs in less
+    time; summary.json carries the figures under their keys. (Issue 8's
+    5 % intrusion and 2 % crash-box bounds are not met here: README.)"""
     f = json.loads((study.out / "verify" / "summary.json").read_text())
     assert f["energy_rating_min"] >= 0.9
-    assert abs(f["crash_box_internal_energy_deviation_percent"]) < 15.0
+    assert abs(f["crash_box_internal_energy_deviation_percent"]) < 8.0
     fi = f["firewall_intrusion"]
     assert fi["max_intrusion_full"] > 10.0  # mm
-    assert fi["max_deviation_percent"] < 60.0 and fi["mean_deviation_percent"] < 20.0
-    assert fi["split"]["carried_by_interface"]["max_deviation_percent"] < 10.0
-    # the full car's cut bends out of a rigid motion (measured 8.5 mm, 15 % of the largest intrusion); the
-    # surrogate's rigid interface does not
+    assert fi["max_deviation_percent"] < 25.0 and fi["mean_deviation_percent"] < 6.0
+    assert fi["split"]["carried_by_interface"]["max_deviation_percent"] < 5.0
     bend = fi["split"]["interface_warping"]
-    assert bend["max_full"] > 2.0 and bend["max_simplified"] < 1e-3
+    assert bend["max_full"] > 2.0 and bend["max_simplified"] == pytest.approx(bend["max_full"], rel=0.5)
     assert f["time"]["simplified"]["wall_time"] < f["time"]["full"]["wall_time"]
     r = _results(study, "simplified")
     tot = r["kinetic"] + r["internal"] + r["hourglass"] + r["sliding"]

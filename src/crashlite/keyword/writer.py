@@ -10,6 +10,7 @@ the same double, and LS-DYNA accepts every line.
 from __future__ import annotations
 
 import os
+import shutil
 import tempfile
 from pathlib import Path
 
@@ -207,15 +208,44 @@ def write_deck(model: Model, path, fmt: str = "fixed", split: bool = False) -> l
     for t in targets:
         if os.path.realpath(t) in inputs:
             raise FileExistsError(f"{t}: refusing to write over an input file of the model")
-    if split:
-        mesh_path = targets[1]
-        _atomic_write(mesh_path, [_header(fmt), *deck_lines(model, fmt, mesh=True, rest=False), "*END"])
-        body = [_header(fmt), *deck_lines(model, fmt, mesh=False, rest=True),
-                "*INCLUDE", mesh_path.name, "*END"]
-    else:
-        body = [_header(fmt), *deck_lines(model, fmt), "*END"]
-    _atomic_write(path, body)
+    moved = _matrix_files_from(model, path.parent)
+    try:
+        if split:
+            mesh_path = targets[1]
+            _atomic_write(mesh_path, [_header(fmt), *deck_lines(model, fmt, mesh=True, rest=False), "*END"])
+            body = [_header(fmt), *deck_lines(model, fmt, mesh=False, rest=True),
+                    "*INCLUDE", mesh_path.name, "*END"]
+        else:
+            body = [_header(fmt), *deck_lines(model, fmt), "*END"]
+        _atomic_write(path, body)
+    finally:
+        for rec, name in moved:
+            rec["filename"] = name
     return targets
+
+
+def _matrix_files_from(model: Model, out_dir: Path) -> list:
+    """Point the relative FILENAME of each *ELEMENT_DIRECT_MATRIX_INPUT read
+    from a deck elsewhere at its file from ``out_dir`` (or copy the file
+    there where that path would not fit the card); returns (record, old
+    name) to restore after writing."""
+    moved = []
+    for rec in model.find("ELEMENT_DIRECT_MATRIX_INPUT"):
+        name = str(rec.get("filename", "") or "").strip()
+        src = rec.source[0] if rec.source else ""
+        if not name or os.path.isabs(name) or not src:
+            continue
+        orig = Path(src).parent / name
+        if os.path.realpath(orig.parent) == os.path.realpath(out_dir) or not orig.exists():
+            continue
+        rel = os.path.relpath(orig, out_dir)
+        if len(rel) > 80:
+            out_dir.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(orig, out_dir / orig.name)
+            rel = orig.name
+        moved.append((rec, rec["filename"]))
+        rec["filename"] = rel
+    return moved
 
 
 def _atomic_write(path: Path, lines: list[str]) -> None:

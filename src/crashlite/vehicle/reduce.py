@@ -165,7 +165,7 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
                    support=None, axle_parts=None, shares="combined", t_end: float | None = None,
                    interface_mode: str = "rigid", spring_length: float = 100.0, damping_ratio: float = 0.0,
                    mass_split: str = "axle", springs: str = "relief", modes: int = 0, connection: str = "condensed",
-                   quiet: bool = True) -> Reduction:
+                   condensed_modes: int = 0, quiet: bool = True) -> Reduction:
     """Steps 1–4 (module docstring).
 
     deck        the full vehicle deck (path or Model)
@@ -186,6 +186,8 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     connection  "condensed" (default): the cut joined to the rear body by the replaced structure
                 condensed onto it (``condensed``; shares, springs and the interface options then
                 only report); "springs": the paper's rigid interface and load-path springs
+    condensed_modes  with the condensed connection, the replaced structure's lowest free modes that
+                move on their own (residual flexibility, ``condense``; 0: quasi-static)
     """
     from ..keyword.reader import read_deck
 
@@ -258,7 +260,7 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     k_springs = rel.stiffness if springs == "relief" else k.stiffness
     cond = None
     if connection == "condensed":
-        cond = relieved_condensation(cut)
+        cond = relieved_condensation(cut, modes=condensed_modes)
         sur = build_condensed_surrogate(cut, cond, mass)
         say(f"step 4: the replaced structure condensed on {len(cond.nodes)} cut nodes, "
             f"{len(sur.model.shells)} of {len(model.shells)} shells kept")

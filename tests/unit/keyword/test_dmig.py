@@ -39,3 +39,20 @@ def test_errors_name_file_and_line(tmp_path):
         read_dmig(tmp_path / "b.dmig")
     with pytest.raises(ValueError, match="not symmetric"):
         write_dmig(tmp_path / "u.dmig", {"K": (np.array([[1, 1], [2, 1]]), np.array([[1.0, 2.0], [0.0, 1.0]]))})
+
+
+def test_deck_written_elsewhere_still_finds_its_matrix(tmp_path):
+    """*ELEMENT_DIRECT_MATRIX_INPUT names its file relative to the deck: a
+    deck read from one folder and written to another points at the same
+    file from there (the Model keeps its own name)."""
+    from crashlite import read_deck, write_deck
+
+    (tmp_path / "a").mkdir()
+    write_dmig(tmp_path / "a" / "m.dmig", {"K": (np.array([[1, 1], [2, 1]]), np.array([[1.0, -1.0], [-1.0, 1.0]]))})
+    (tmp_path / "a" / "x.k").write_text("*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n*ELEMENT_DIRECT_MATRIX_INPUT\n5,1\n"
+                                        "m.dmig\n,,K\n*END\n")
+    m = read_deck(tmp_path / "a" / "x.k")
+    out = write_deck(m, tmp_path / "b" / "y.k")[0]
+    name = read_deck(out).find("ELEMENT_DIRECT_MATRIX_INPUT")[0]["filename"]
+    assert (out.parent / name).resolve() == (tmp_path / "a" / "m.dmig").resolve()
+    assert m.find("ELEMENT_DIRECT_MATRIX_INPUT")[0]["filename"] == "m.dmig"
