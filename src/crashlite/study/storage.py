@@ -126,7 +126,7 @@ class StudyStore:
         if diffs:
             raise StudyError(f"{self.cfg.path}: the study file no longer matches study {self.cfg.name!r} in "
                              f"{self.cfg.storage} (" + "; ".join(diffs) + "); give [study] name a new "
-                             f"name to start another study")
+                             "name to start another study")
 
     # --- the running session's claim ---------------------------------------------
     def claim(self, force: bool = False) -> None:

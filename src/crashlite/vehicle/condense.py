@@ -33,12 +33,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.sparse as sp
 
 from .cut import Cut
 from .massprops import node_indices
 from .modes import _eigen
-from .relief import _support_321, replaced_node_masses
+from .relief import _support_321, static_masses
 from .statics import factor as _factor
 from .stiffness import build_static
 
@@ -107,14 +106,8 @@ def relieved_condensation(cut: Cut, nodes=None, modes: int = 0, drill: float = 1
         raise ValueError("no cut node is a free node of the replaced structure")
     if len(left):
         notes.append(f"{len(left)} cut node(s) of rigid groups or outside the replaced structure not condensed")
-    m, mnotes = replaced_node_masses(cut)
-    m[~ls.in_structure] = 0.0
-    carry = np.flatnonzero(m > 0)
-    big_m = float(m.sum())
-    if not big_m > 0:
-        raise ValueError("the replaced structure has no mass")
+    m, carry, big_m, c, mnotes = static_masses(cut, ls)
     xyz = model.nodes.xyz
-    c = (m[carry, None] * xyz[carry]).sum(axis=0) / big_m
     phi_c = rigid_modes(xyz[carry], c)  # (n_carry, 3, 6)
     a = np.linalg.inv(np.einsum("n,nai,naj->ij", m[carry], phi_c, phi_c))  # (ΦᵀMΦ)⁻¹
     nb3 = 3 * len(b)

@@ -36,8 +36,7 @@ from .condense import Condensation, rigid_modes
 from .cut import Cut
 from .massprops import ReplacedMass
 from .records import id_list, record
-from .surrogate import Surrogate, _history_nodes, _Ids, _whole_vehicle_sets
-from .truncate import truncate
+from .surrogate import Surrogate, _Ids, _whole_vehicle_sets, kept_front
 
 ANCHOR = 300.0  # [length] distance of the rear body's four anchor nodes from its CoG
 MODAL_MASS = 1e-6  # [mass] of each modal node (1 g in mm–t–s): η = √μ·y, its kinetic energy ½μẏ² = ½η̇²
@@ -84,11 +83,7 @@ def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, 
     """The surrogate deck joined at the cut by the condensed structure (module docstring)."""
     full = cut.model
     notes = list(cut.notes) + [n for n in cond.notes if n not in cut.notes]
-    hist = _history_nodes(full)
-    ride = hist[cut.removed_nodes[hist]]
-    if keep_nodes is not None:
-        ride = np.union1d(ride, np.asarray(keep_nodes, np.int64))
-    tr = truncate(cut, keep=ride)
+    tr, ride = kept_front(cut, keep_nodes)
     notes += tr.notes
     m = tr.model
     ids = _Ids(m)

@@ -74,6 +74,20 @@ def replaced_node_masses(cut: Cut) -> tuple[np.ndarray, list]:
     return m, notes
 
 
+def static_masses(cut: Cut, ls) -> tuple:
+    """The replaced mass on the nodes of the static model ``ls`` (masses on
+    nodes it lacks cannot be loaded): (node masses, the nodes with mass,
+    total, CoG, notes)."""
+    m, notes = replaced_node_masses(cut)
+    m[~ls.in_structure] = 0.0
+    carry = np.flatnonzero(m > 0)
+    big_m = float(m.sum())
+    if not big_m > 0:
+        raise ValueError("the replaced structure has no mass")
+    c = (m[carry, None] * cut.model.nodes.xyz[carry]).sum(axis=0) / big_m
+    return m, carry, big_m, c, notes
+
+
 def _support_321(xyz: np.ndarray, candidates: np.ndarray) -> list:
     """Three nodes and six DOFs among ``candidates`` that hold the rigid
     modes and nothing more: [(node, dofs), ...] with the best conditioning."""
@@ -140,14 +154,8 @@ def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interfac
     if not len(nodes):
         raise ValueError("no interface node is a node of the replaced structure")
     master = ls.add_rigid(nodes)
-    m, mnotes = replaced_node_masses(cut)
-    m[~ls.in_structure] = 0.0  # (masses on nodes the static model lacks cannot be loaded)
-    carry = np.flatnonzero(m > 0)
-    big_m = float(m.sum())
-    if not big_m > 0:
-        raise ValueError("the replaced structure has no mass")
+    m, carry, big_m, c, mnotes = static_masses(cut, ls)
     xyz = model.nodes.xyz
-    c = (m[carry, None] * xyz[carry]).sum(axis=0) / big_m
     i_c = mk.combine(mk.point_moments(xyz[carry], m[carry])).inertia
     p = ls.position(master)
     across = {} if transverse is None else transverse_loads(d, *transverse)

@@ -189,6 +189,18 @@ def _history_nodes(model: Model) -> np.ndarray:
     return np.unique(idx[idx >= 0]).astype(np.int64)
 
 
+def kept_front(cut: Cut, keep_nodes=None) -> tuple[Truncated, np.ndarray]:
+    """The kept structure (``truncate``) and the removed nodes that ride on
+    the rear body with it: the replaced structure's history nodes (so
+    nodout of the full and the simplified run compare node by node) and
+    ``keep_nodes``."""
+    hist = _history_nodes(cut.model)
+    ride = hist[cut.removed_nodes[hist]]
+    if keep_nodes is not None:
+        ride = np.union1d(ride, np.asarray(keep_nodes, np.int64))
+    return truncate(cut, keep=ride), ride
+
+
 def _whole_vehicle_sets(full: Model, cut: Cut, m: Model, new_ids: np.ndarray, notes: list) -> None:
     """Node sets that held the whole replaced structure (the vehicle's
     nodes for an initial velocity, a wall, gravity) take the surrogate's
@@ -248,11 +260,7 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
     if not total > 0:
         raise ValueError("no assembly has a load-path share")
     groups = cut.assembly_interface(assemblies)
-    hist = _history_nodes(full)
-    ride = hist[cut.removed_nodes[hist]]
-    if keep_nodes is not None:
-        ride = np.union1d(ride, np.asarray(keep_nodes, np.int64))
-    tr = truncate(cut, keep=ride)
+    tr, ride = kept_front(cut, keep_nodes)
     notes += tr.notes
     m = tr.model
     ids = _Ids(m)

@@ -60,7 +60,7 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
     seconds["interface proposal"] = time.perf_counter() - t0
     at = next(c for c in prop.candidates if c["x"] == v.interface_x)
     said = next((c for c in prop.candidates if c["x"] == prop.x), None)
-    say(f"  interface proposal: " + (f"x = {prop.x:.0f} mm ({said['energy_behind_percent']:.2f} % of the absorbed "
+    say("  interface proposal: " + (f"x = {prop.x:.0f} mm ({said['energy_behind_percent']:.2f} % of the absorbed "
                                      f"energy and {said['strained_area_percent_behind']:.2f} % of the area strained "
                                      f"beyond {100 * prop.strain:g} % behind it, {said['replaced_elements_percent']:.0f} % "
                                      "of the elements replaced)" if said else "none (" + prop.notes[-1] + ")")

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from crashlite import read_deck, write_deck
-from crashlite.barrier import ODBSpec, Placement, offset_placement, simplified_barrier
+from crashlite.barrier import ODBSpec, offset_placement, simplified_barrier
 from crashlite.keyword.equality import model_differences
 from crashlite.units import SYSTEMS
 
