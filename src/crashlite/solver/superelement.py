@@ -66,6 +66,8 @@ class SuperelementGroup(ElementGroup):
             self.energy[e] = matrix_forces(k, st.x, self._x0[e], n, c, self._u[e], self._f[e], st.f)
 
     def critical_dt(self, st) -> float:
+        if getattr(st, "mass", None) is None:  # asked for the elements' geometric steps only (contact SOFT = 1)
+            return np.inf
         if not self._dt_done:
             for e, (n, c, k) in enumerate(zip(self.dof_nodes, self.dof_comps, self.k)):
                 m = 0.5 * st.mass[n]  # shared with the elements beside it
