@@ -183,3 +183,25 @@ def test_verification_figures(reduced):
                 "time_reduction_percent"):
         assert key in summary
     assert "data:image/png;base64" in out["html"].read_text()
+
+
+def test_cli_reduce_with_modes_writes_a_deck_that_runs(full_run, tmp_path, capsys):
+    """`crashlite vehicle reduce --condensed-modes 2`: the deck, its DMIG
+    file beside it (two modal nodes with their y in the superelement),
+    and a run of it that conserves energy."""
+    from crashlite.cli import main
+
+    _, _, full_deck, root = full_run
+    out = tmp_path / "cut.k"
+    assert main(["vehicle", "reduce", str(full_deck), "--results", str(root / "full"), "-o", str(out),
+                 "--condensed-modes", "2"]) == 0
+    assert "wrote" in capsys.readouterr().out
+    sim = read_deck(out)
+    rec = sim.find("ELEMENT_DIRECT_MATRIX_INPUT")[0]
+    assert rec["filename"] == "cut.dmig" and (tmp_path / "cut.dmig").exists()
+    summary = json.loads((tmp_path / "reduction.json").read_text())
+    assert summary["step4_surrogate"]["condensation"]["modes"] == 2
+    modal = sim.node_index(summary["step4_surrogate"]["node_ids"]["modes"])
+    assert np.all(sim.nodes.tc[modal] == 6)  # x and z held: the modal coordinate is y
+    r = run(out, out=tmp_path / "run")
+    assert np.all(np.abs(r.energy_ratio - 1.0) < 0.01)
