@@ -55,7 +55,7 @@ def verification_page(v) -> str:
         if sp:
             body.append(f"<p>The intrusion split at the interface ({sp['interface_nodes']} nodes in both runs): what "
                         "the interface's own motion in the cell frame carries the firewall by (the replaced "
-                        "structure, or the surrogate's springs), and the kept structure's own deformation "
+                        "structure, or the surrogate's connection to it), and the kept structure's own deformation "
                         "between interface and firewall; deviations relative to the largest intrusion of "
                         f"{esc(names[0])}.</p>")
             body.append(table(["part of the intrusion", f"{names[0]} max / mean", f"{names[1]} max / mean",
@@ -71,8 +71,9 @@ def verification_page(v) -> str:
                             f"motion that best fits its nodes: {esc(names[0])} max {num(warp['max_full'])}, rms "
                             f"{num(warp['rms_full'])} ({num(warp['max_full_percent'], 3)} % and "
                             f"{num(warp['rms_full_percent'], 3)} % of its largest intrusion); {esc(names[1])} max "
-                            f"{num(warp['max_simplified'])}. A rigid interface holds the cut flat: the kept structure "
-                            "next to it cannot follow the full model closer than this.</p>")
+                            f"{num(warp['max_simplified'])}. A rigid interface holds the cut flat, and the kept "
+                            "structure next to it cannot follow the full model closer than this; a cut joined by the "
+                            "condensed structure (the default reduction) bends as the structure behind it.</p>")
         if v.intrusion is not None:
             body.append(image(intrusion_plot(v.intrusion, names), "firewall intrusion"))
     t = f["time"]
