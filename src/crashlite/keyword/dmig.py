@@ -55,6 +55,21 @@ def write_dmig(path, matrices: dict) -> Path:
     return path
 
 
+def matrix_file(rec, fallback_dir=None) -> Path | None:
+    """The file an *ELEMENT_DIRECT_MATRIX_INPUT record names: FILENAME as
+    given where absolute, else relative to the deck file the record was read
+    from (or ``fallback_dir`` for a record built in memory); None where the
+    record names none or nothing anchors a relative name."""
+    name = str(rec.get("filename", "") or "").strip()
+    if not name:
+        return None
+    path = Path(name)
+    if path.is_absolute():
+        return path
+    base = Path(rec.source[0]).parent if rec.source and rec.source[0] else fallback_dir
+    return None if base is None else Path(base) / path
+
+
 def _fields(line: str) -> list[str]:
     """The data fields of one line (name field dropped for continuations)."""
     if "," in line:

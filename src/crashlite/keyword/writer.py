@@ -229,13 +229,13 @@ def _matrix_files_from(model: Model, out_dir: Path) -> list:
     from a deck elsewhere at its file from ``out_dir`` (or copy the file
     there where that path would not fit the card); returns (record, old
     name) to restore after writing."""
+    from .dmig import matrix_file
+
     moved = []
     for rec in model.find("ELEMENT_DIRECT_MATRIX_INPUT"):
-        name = str(rec.get("filename", "") or "").strip()
-        src = rec.source[0] if rec.source else ""
-        if not name or os.path.isabs(name) or not src:
+        orig = matrix_file(rec)
+        if orig is None or os.path.isabs(str(rec["filename"]).strip()):
             continue
-        orig = Path(src).parent / name
         if os.path.realpath(orig.parent) == os.path.realpath(out_dir) or not orig.exists():
             continue
         rel = os.path.relpath(orig, out_dir)

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..keyword.dmig import read_dmig
+from ..keyword.dmig import matrix_file, read_dmig
 from ..keyword.errors import Problem
 from ..model.model import Model
 from .groups import ElementGroup
@@ -31,7 +31,7 @@ class SuperelementGroup(ElementGroup):
     kind = "superelement"
     in_parts = False  # no part: its energy counts in glstat, not matsum
 
-    def __init__(self, ids, dof_nodes: list, dof_comps: list, stiffness: list, masses: list, n_nodes: int):
+    def __init__(self, ids, dof_nodes: list, dof_comps: list, stiffness: list, masses: list, x0: np.ndarray):
         self.ids = np.asarray(ids, np.int64)
         self.pid = np.zeros(len(self.ids), np.int64)
         self.dof_nodes = dof_nodes  # per element (k,) node index of each DOF
@@ -46,10 +46,8 @@ class SuperelementGroup(ElementGroup):
         self.energy = np.zeros(len(self.ids))
         self._f = [np.zeros(len(n)) for n in dof_nodes]  # force on each DOF
         self._u = [np.zeros(len(n)) for n in dof_nodes]
-        self._x0 = None
-        self._dt = np.zeros(len(self.ids))
-        self._dt_done = False
-        self.n_nodes = n_nodes
+        self._x0 = [x0[n, c].copy() for n, c in zip(dof_nodes, dof_comps)]
+        self._dt = None  # (ne,) stable steps, computed once the masses are known
 
     def lumped(self, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
         mass = np.zeros(n_nodes)
@@ -60,23 +58,22 @@ class SuperelementGroup(ElementGroup):
         return mass, np.zeros(n_nodes)
 
     def forces(self, st) -> None:
-        if self._x0 is None:
-            self._x0 = [st.x[n, c].copy() for n, c in zip(self.dof_nodes, self.dof_comps)]
         for e, (n, c, k) in enumerate(zip(self.dof_nodes, self.dof_comps, self.k)):
             self.energy[e] = matrix_forces(k, st.x, self._x0[e], n, c, self._u[e], self._f[e], st.f)
 
     def critical_dt(self, st) -> float:
         if getattr(st, "mass", None) is None:  # asked for the elements' geometric steps only (contact SOFT = 1)
             return np.inf
-        if not self._dt_done:
+        if self._dt is None:
+            self._dt = np.full(len(self.ids), np.inf)
             for e, (n, c, k) in enumerate(zip(self.dof_nodes, self.dof_comps, self.k)):
                 m = 0.5 * st.mass[n]  # shared with the elements beside it
                 free = m > 0  # massless DOFs (rigid-body nodes) move with something heavier
                 s = 1.0 / np.sqrt(m[free])
                 lam = float(np.linalg.eigvalsh(k[np.ix_(free, free)] * s[:, None] * s[None, :])[-1]) \
                     if free.any() else 0.0
-                self._dt[e] = 2.0 / np.sqrt(lam) if lam > 0 else np.inf
-            self._dt_done = True
+                if lam > 0:
+                    self._dt[e] = 2.0 / np.sqrt(lam)
         return float(self._dt.min()) if len(self._dt) else np.inf
 
     def corner_forces(self) -> np.ndarray:
@@ -100,14 +97,10 @@ def build_superelements(model: Model, problems: list) -> SuperelementGroup | Non
         def bad(field, msg):
             problems.append(Problem(src or model.source or "", line, "ELEMENT_DIRECT_MATRIX_INPUT", field, msg))
 
-        name = str(rec.get("filename", "") or "").strip()
-        if not name:
+        path = matrix_file(rec, Path(model.source or ".").parent)
+        if path is None:
             bad("FILENAME", "no matrix file named")
             continue
-        path = Path(name)
-        if not path.is_absolute():
-            base = Path(src).parent if src else Path(model.source or ".").parent
-            path = base / path
         try:
             mats = read_dmig(path)
         except (OSError, ValueError) as e:
@@ -145,4 +138,4 @@ def build_superelements(model: Model, problems: list) -> SuperelementGroup | Non
         ms.append(mass)
     if not ids:
         return None
-    return SuperelementGroup(ids, dn, dc, ks, ms, len(model.nodes))
+    return SuperelementGroup(ids, dn, dc, ks, ms, model.nodes.xyz)

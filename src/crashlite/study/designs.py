@@ -69,10 +69,12 @@ class DeckTemplate:
         except DeckError as e:
             raise StudyError(f"{cfg.path}: [study] deck: {e}") from None
         files = [str(Path(f).absolute()) for f in model.files]
+        from ..keyword.dmig import matrix_file
+
         for rec in model.find("ELEMENT_DIRECT_MATRIX_INPUT"):  # matrix files mirror with the deck's files
-            name = str(rec.get("filename", "") or "").strip()
-            if name and rec.source and not os.path.isabs(name):
-                files.append(str((Path(rec.source[0]).parent / name).absolute()))
+            path = matrix_file(rec)
+            if path is not None and not os.path.isabs(str(rec["filename"]).strip()):
+                files.append(str(path.absolute()))
         root = os.path.commonpath([os.path.dirname(f) for f in files])
         t = cls(deck=str(Path(cfg.deck).absolute()), root=root, files=files)
         params: dict[str, list] = {}

@@ -113,7 +113,8 @@ def relieved_condensation(cut: Cut, nodes=None, modes: int = 0, drill: float = 1
     nb3 = 3 * len(b)
     phi_b = rigid_modes(xyz[b], c).reshape(nb3, 6)
     cand = np.flatnonzero(ls.in_structure & ~ls.tied())
-    cand = np.setdiff1d(cand, b) if len(np.setdiff1d(cand, b)) >= 3 else cand  # (the cut's DOFs stay free)
+    off_cut = np.setdiff1d(cand, b)
+    cand = off_cut if len(off_cut) >= 3 else cand  # (the cut's DOFs stay free)
     for n, dofs in _support_321(xyz, cand):
         ls.fix([n], dofs)
     t, fixed, slave_of, rnotes = ls.reduction()

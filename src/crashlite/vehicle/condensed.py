@@ -27,10 +27,12 @@ inertia of the whole are exact.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from ..model import mass as mk
 from ..model.mesh import Masses, Nodes
 from .condense import Condensation, rigid_modes
 from .cut import Cut
@@ -40,11 +42,6 @@ from .surrogate import Surrogate, _Ids, _whole_vehicle_sets, kept_front
 
 ANCHOR = 300.0  # [length] distance of the rear body's four anchor nodes from its CoG
 MODAL_MASS = 1e-6  # [mass] of each modal node (1 g in mm–t–s): η = √μ·y, its kinetic energy ½μẏ² = ½η̇²
-
-
-def _point_inertia(xyz: np.ndarray, m: np.ndarray, about: np.ndarray) -> np.ndarray:
-    d = xyz - about
-    return np.einsum("n,ij->ij", m * (d**2).sum(axis=1), np.eye(3)) - np.einsum("n,ni,nj->ij", m, d, d)
 
 
 def superelement_matrix(cond: Condensation, anchors: np.ndarray, modal_mass: float = MODAL_MASS) -> np.ndarray:
@@ -63,10 +60,11 @@ def superelement_matrix(cond: Condensation, anchors: np.ndarray, modal_mass: flo
     return 0.5 * (k + k.T)
 
 
+@dataclass
 class CondensedSurrogate(Surrogate):
     """A Surrogate whose deck needs its matrix file beside it."""
 
-    matrix: tuple = None  # (dofs (k, 2) [node ID, component], K)
+    matrix: tuple | None = None  # (dofs (k, 2) [node ID, component], K)
 
     def write(self, path, fmt: str = "fixed") -> Path:
         from ..keyword.dmig import write_dmig
@@ -90,12 +88,9 @@ def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, 
     st = mass.structure
     # the cut nodes keep the replaced elements' share of their mass; the rear body the rest
     mb = cond.node_mass[cond.nodes]
-    xb = cond.xyz_nodes
-    rest = float(st.mass - mb.sum())
-    c = (st.mass * st.cog - (mb[:, None] * xb).sum(axis=0)) / rest
-    inertia = st.inertia - _point_inertia(xb, mb, st.cog)  # the rest about the whole's CoG
-    e = c - st.cog
-    inertia = inertia - rest * ((e @ e) * np.eye(3) - np.outer(e, e))  # ... moved to its own CoG
+    whole = mk.point_moments([st.cog], [st.mass], [st.inertia])
+    rest_mp = mk.combine(whole, mk.point_moments(cond.xyz_nodes, mb), weights_mask=[None, -np.ones(len(mb))])
+    rest, c, inertia = rest_mp.mass, rest_mp.cog, rest_mp.inertia
     tet = np.array([[1.0, 1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, -1.0], [-1.0, -1.0, 1.0]]) / np.sqrt(3.0)
     anchors = cond.cog + ANCHOR * tet
     new_xyz = np.vstack([[c], anchors])
@@ -154,10 +149,8 @@ def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, 
         notes.append(f"{len(cond.left_out)} cut node(s) left free (not condensed)")
     # along the axis, the cut held rigid and free to turn (as step 3 loads its interface)
     flex = np.linalg.inv(cond.rigid_stiffness(cond.xyz_nodes.mean(axis=0)))[:3, :3]
-    sur = CondensedSurrogate(m, [], float(1.0 / (cut.axis @ flex @ cut.axis)), mass, tr,
-                             {"cog": g_id, **{f"anchor {i + 1}": int(a) for i, a in enumerate(a_ids)},
-                              **({"modes": [int(i) for i in modal_ids]} if n_modes else {})},
-                             {"rear body": pid}, {}, "condensed", notes,
-                             {"rear body": type(st)(rest, c, inertia)})
-    sur.matrix = (np.stack([dofs, comps], axis=1), k)
-    return sur
+    return CondensedSurrogate(m, [], float(1.0 / (cut.axis @ flex @ cut.axis)), mass, tr,
+                              {"cog": g_id, **{f"anchor {i + 1}": int(a) for i, a in enumerate(a_ids)},
+                               **({"modes": [int(i) for i in modal_ids]} if n_modes else {})},
+                              {"rear body": pid}, {}, "condensed", notes,
+                              {"rear body": mk.MassProperties(rest, c, inertia)}, (np.stack([dofs, comps], axis=1), k))

@@ -31,7 +31,7 @@ from scipy.sparse.linalg import eigsh
 
 from .connection import DIRECTIONS, vehicle_frame
 from .cut import Cut
-from .relief import replaced_node_masses
+from .relief import static_masses
 from .stiffness import build_static
 
 
@@ -142,10 +142,7 @@ def _eigen(cut: Cut, count: int, interface: str, interface_nodes, drill: float):
         ls.fix(nodes)
     elif interface == "rigid":
         master = ls.add_rigid(nodes)
-    m, mnotes = replaced_node_masses(cut)
-    m[~ls.in_structure] = 0.0
-    if not float(m.sum()) > 0:
-        raise ValueError("the replaced structure has no mass")
+    m, _, _, _, mnotes = static_masses(cut, ls)
     t, _, _, rnotes = ls.reduction()
     diag = np.zeros(6 * ls.n_total)
     for i in range(3):
