@@ -30,7 +30,7 @@ from ..keyword.errors import Problem
 from ..model.model import Model
 from .groups import ElementGroup
 from .kernels import plane_stress as ps
-from .kernels.shell import N_CHUNKS, N_WORK, shell_forces, shell_timestep
+from .kernels.shell import scratch, shell_forces, shell_timestep
 from .kernels.solid import corner_incidence, gather_corner_pair
 
 _AS_BT = (0, 1, 2, 4, 6, 7, 8, 10, 11, 16, -16, 17, 18, 20)
@@ -89,7 +89,10 @@ class ShellState:
     hg_energy: np.ndarray  # (n,) float64 hourglass energy [energy]
     fe: np.ndarray  # (n, 4, 3) float64 corner forces ON the nodes [force]
     me: np.ndarray  # (n, 4, 3) float64 corner moments ON the nodes [force·length]
-    work: np.ndarray  # (N_CHUNKS, N_WORK) float64 scratch
+    work: np.ndarray  # float64 scratch of kernels.shell (``scratch``)
+    points: np.ndarray
+    blocks: np.ndarray
+    point_k: np.ndarray
     node_ptr: np.ndarray  # (n_nodes + 1,) int64 CSR node -> corners
     corner_of: np.ndarray  # (4n,) int64
 
@@ -100,7 +103,7 @@ def new_state(s: ShellSet, n_nodes: int) -> ShellState:
     ptr, corner_of = corner_incidence(n_nodes, s.conn)
     return ShellState(np.zeros((n, k, 5)), np.zeros((n, k, 5)), np.zeros((n, k)), np.zeros((n, k), np.int8),
                       s.thick0.copy(), np.ones(n, np.int8), np.zeros((n, 5)), np.zeros(n), np.zeros(n),
-                      np.zeros((n, 4, 3)), np.zeros((n, 4, 3)), np.zeros((N_CHUNKS, N_WORK)), ptr, corner_of)
+                      np.zeros((n, 4, 3)), np.zeros((n, 4, 3)), *scratch(), ptr, corner_of)
 
 
 def compute_forces(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
@@ -108,7 +111,7 @@ def compute_forces(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
     shell_forces(x, v, w, float(dt), s.conn, s.tri, s.mat_of, s.mtype, s.props, s.mcurve, s.curve_start,
                  s.curve_stop, s.curve_x, s.curve_y, s.nip, s.rule, s.shrf, s.hg_kind, s.hg_qm, s.hg_qb, s.hg_qw,
                  s.rho, int(s.istupd == 1), int(s.bwc == 1), st.sig, st.back, st.epsp, st.ipfail, st.thick,
-                 st.alive, st.hgq, st.energy, st.hg_energy, st.work, st.fe, st.me)
+                 st.alive, st.hgq, st.energy, st.hg_energy, st.work, st.points, st.blocks, st.point_k, st.fe, st.me)
 
 
 def element_areas(x: np.ndarray, conn: np.ndarray, tri: np.ndarray) -> np.ndarray:

@@ -239,3 +239,71 @@ def test_elastic_unloading_inside_the_surface():
     pt.uniaxial(-1e-4)
     assert pt.ep[0] == ep
     assert pt.sig[0, 0] == pytest.approx(sx - E * 1e-4, rel=1e-9)
+
+
+def _block_case(kind, row, n_el, nip, rng, scale):
+    """Random states and increments of n_el elements of nip points, as the
+    shell kernel lays them out for update_block."""
+    n = n_el * nip
+    sig = rng.normal(size=(n_el, nip, 5)) * 120.0
+    back = rng.normal(size=(n_el, nip, 5)) * 30.0 if kind == ps.KINEMATIC else np.zeros((n_el, nip, 5))
+    ep = np.abs(rng.normal(size=(n_el, nip))) * 0.02
+    ipfail = np.zeros((n_el, nip), np.int8)
+    ipfail[0, 1] = 1  # a failed point: left alone
+    de = rng.normal(size=(n, 5)) * scale
+    return sig, back, ep, ipfail, de
+
+
+@pytest.mark.parametrize("kind,row", [(ps.ELASTIC, _row(ps.ELASTIC)),
+                                      (ps.PIECEWISE, _row(sigy=250.0, etan=1000.0)),
+                                      (ps.KINEMATIC, _row(ps.KINEMATIC, sigy=200.0, etan=2000.0, beta=0.4)),
+                                      (ps.PIECEWISE, _row(sigy=250.0, etan=500.0, fail=0.03))],
+                         ids=["elastic", "mat024", "mat003", "failure"])
+@pytest.mark.parametrize("scale", [1e-5, 3e-3], ids=["small", "large"])
+def test_vectorised_block_equals_update_point(kind, row, scale):
+    """update_block (the shell kernel's SIMD pass over a block of points)
+    gives update_point's stresses, back stresses, ε̄p, Δε_zz and failures
+    (to 1e-9 of the stresses: both converge to 1e-10 of the yield stress),
+    the work ½(σn + σn+1)·Δε, and leaves failed points, points past NIP and
+    the points it declines exactly as they were."""
+    rng = np.random.default_rng(7)
+    n_el, nip, nk = 6, 4, 3  # the last point of each element is past this section's NIP
+    sig, back, ep, ipfail, de = _block_case(kind, row, n_el, nip, rng, scale)
+    mtype, props = np.array([kind], np.int64), row[None, :].copy()
+    mc = -np.ones((1, 2), np.int64)
+    assert ps.linear_hardening(mtype, props, mc, 0)
+    ks = 0.8333
+    P = np.zeros(ps.N_ROWS * ps.W)
+    n = n_el * nip
+    for i in range(5):
+        P[(ps.R_D + i) * ps.W:(ps.R_D + i) * ps.W + n] = de[:, i]
+    kk = np.arange(ps.W) % nip
+    s1, b1, e1, f1 = sig.copy(), back.copy(), ep.copy(), ipfail.copy()
+    ps.update_block(n, P, kk, nk, s1.reshape(-1), b1.reshape(-1), e1.reshape(-1), f1.reshape(-1), 0, mtype, props,
+                    0, ks)
+    row_of = lambda r: P[r * ps.W:r * ps.W + n]  # noqa: E731
+    ok, failed = row_of(ps.R_OK), row_of(ps.R_FAILED)
+    live = (kk[:n] < nk) & (ipfail.reshape(-1) == 0)
+    assert ok[live].mean() > 0.9  # the pass declines few points
+    ref_sig, ref_back, ref_ep = sig.reshape(-1, 5).copy(), back.reshape(-1, 5).copy(), ep.reshape(-1).copy()
+    dez, fl = np.zeros(n), np.zeros(n, np.int8)
+    ps.update_points(mtype, props, mc, np.zeros(1, np.int64), np.zeros(1, np.int64), np.zeros(1), np.zeros(1),
+                     np.zeros(n, np.int64), ref_sig, ref_back, ref_ep, de, 1.0, dez, fl)
+    tol = 1e-9 * np.abs(ref_sig).max()
+    done = live & (ok == 1.0)
+    np.testing.assert_allclose(s1.reshape(-1, 5)[done], ref_sig[done], atol=tol)
+    np.testing.assert_allclose(b1.reshape(-1, 5)[done], ref_back[done], atol=tol)
+    np.testing.assert_allclose(e1.reshape(-1)[done], ref_ep[done], rtol=1e-9, atol=1e-14)
+    np.testing.assert_allclose(row_of(ps.R_DEZ)[done], dez[done], rtol=1e-8, atol=1e-14)
+    np.testing.assert_array_equal(failed[done] == 1.0, fl[done] == 1)
+    if kind != ps.ELASTIC and scale > 1e-4:
+        assert (e1.reshape(-1) > ep.reshape(-1))[done].sum() > n // 2  # the case yields
+    if kind == ps.PIECEWISE and row[ps.P_FAIL] < 1.0 and scale > 1e-4:
+        assert failed[done].sum() > 0  # the case exercises failure
+    o, s = sig.reshape(-1, 5), ref_sig
+    work = 0.5 * ((o + s) * de)[:, :3].sum(axis=1) + 0.5 * ks * ((o + s) * de)[:, 3:].sum(axis=1)
+    np.testing.assert_allclose(row_of(ps.R_WK)[done], work[done], rtol=1e-8, atol=1e-9 * np.abs(work).max())
+    untouched = ~done
+    np.testing.assert_array_equal(s1.reshape(-1, 5)[untouched], sig.reshape(-1, 5)[untouched])
+    np.testing.assert_array_equal(e1.reshape(-1)[untouched], ep.reshape(-1)[untouched])
+    np.testing.assert_array_equal(f1, ipfail)  # the caller marks failures

@@ -40,7 +40,12 @@ Forces and moments ON the nodes go per element corner into fe, me
 (n, 4, 3); the fourth corner of a triangle stays zero. Nodes gather them
 in a fixed order (kernels.solid.gather_corners): results do not depend on
 the number of threads. Elements run in ``work.shape[0]`` fixed chunks,
-each with its own scratch row.
+each with its own scratch rows, and within a chunk in blocks of BLOCK
+elements: the strain increments of all the block's points first, then
+their stresses in one pass that LLVM vectorises where the block is one
+material with linear hardening and one section
+(plane_stress.update_block; the kernel's single most expensive part was
+the return mapping, point by point), then the elements' forces.
 
 Arrays (n elements; units of the model, e.g. mm, t, s, N, MPa):
   x (n_nodes, 3) float64 coordinates at t(n+1) [length]
@@ -62,7 +67,7 @@ Arrays (n elements; units of the model, e.g. mm, t, s, N, MPa):
   hgq (n, 5) float64 hourglass generalized stresses (2 membrane [force], out-of-plane [force],
       2 bending [force·length])
   energy (n,) float64 internal energy [energy]; hg_energy (n,) float64 hourglass energy [energy]
-  work (n_chunks, N_WORK) float64 scratch
+  work, points, blocks: scratch (see ``scratch``)
   fe, me (n, 4, 3) float64 output corner forces [force] and moments [force·length]
 """
 
@@ -71,7 +76,8 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .plane_stress import P_E, P_G, P_WAVE, update_point
+from .plane_stress import (N_ROWS, P_E, P_G, P_WAVE, R_D, R_DEZ, R_FAILED, R_OK, R_WK, W, linear_hardening,
+                           update_block, update_point)
 
 
 def _rules():
@@ -103,6 +109,20 @@ _E = 44  # frame e1, e2, e3
 _P = 53  # nodal positions relative to node 1
 N_WORK = 65
 N_CHUNKS = 64  # fixed number of element chunks: thread-count independent results
+BLOCK = W // 10  # elements whose integration points (up to 10 each) are updated in one vectorised pass
+# element rows of the block scratch eb (N_EROWS, BLOCK)
+_EA = 0  # mid-step area (≤ 0: the element is done for this step)
+_ER = 1  # 5 rows: hourglass rates (membrane x, y, out-of-plane, bending x, y)
+_EBB, _EGG = 6, 7  # Σ(B1² + B2²), Σγ² of the mid-step shape
+N_EROWS = 8
+
+
+def scratch() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Scratch of shell_forces, one row per chunk: work (N_CHUNKS, N_WORK),
+    points (N_CHUNKS, plane_stress.N_ROWS·W), elements (N_CHUNKS, N_EROWS,
+    BLOCK) float64, point numbers (N_CHUNKS, W) int64."""
+    return (np.zeros((N_CHUNKS, N_WORK)), np.zeros((N_CHUNKS, N_ROWS * W)), np.zeros((N_CHUNKS, N_EROWS, BLOCK)),
+            np.zeros((N_CHUNKS, W), np.int64))
 
 
 @njit(cache=True, inline="always")
@@ -214,164 +234,235 @@ def _bc(w, a, c):
     return c * (w[_X + j] - w[_X + a]), c * (w[_Y + j] - w[_Y + a])  # nodes 2, 4: x_{a+2} − x_a
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
+def _no_strain(P, l, nipm):
+    """Zero increments for the points of block slot l (an element skipped
+    this step: the vectorised pass then leaves its state as it is)."""
+    for p in range(l * nipm, (l + 1) * nipm):
+        for i in range(5):
+            P[(R_D + i) * W + p] = 0.0
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _point(e, k, p, dt, mat_of, mtype, props, mcurve, cs, ce, cx, cy, shrf, sig, back, epsp, P):
+    """update_point of point k of element e with the increments of column p
+    of P; its Δε_zz, work, done and failed flags into P."""
+    m = mat_of[e]
+    d0, d1, d2 = P[R_D * W + p], P[(R_D + 1) * W + p], P[(R_D + 2) * W + p]
+    d3, d4 = P[(R_D + 3) * W + p], P[(R_D + 4) * W + p]
+    o0, o1, o2, o3, o4 = sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4]
+    ep, dez, failed = update_point(mtype[m], props, m, mcurve, cs, ce, cx, cy, sig, back, e, k, epsp[e, k],
+                                   d0, d1, d2, d3, d4, dt)
+    epsp[e, k] = ep
+    s0, s1, s2, s3, s4 = sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4]
+    P[R_DEZ * W + p] = dez
+    P[R_WK * W + p] = 0.5 * ((o0 + s0) * d0 + (o1 + s1) * d1 + (o2 + s2) * d2
+                             + shrf[e] * ((o3 + s3) * d3 + (o4 + s4) * d4))
+    P[R_OK * W + p] = 1.0
+    P[R_FAILED * W + p] = 1.0 if failed else 0.0
+
+
+@njit(cache=True, error_model="numpy")
 def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, cs, ce, cx, cy, nip, rule,
               shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq,
-              energy, hg_energy, w, fe, me):
-    """Elements e0 .. e1 - 1 (one chunk, one scratch row ``w``). One call per
-    chunk: a Numba call reference-counts each array argument, which per
-    element would cost more than a third of the element itself."""
-    for e in range(e0, e1):
-        if alive[e] != 1:
-            _kill(e, fe, me)
-            continue
-        nn = 3 if tri[e] == 1 else 4
-        area = _geometry(x, v, conn, e, nn, 0.5 * dt, w)
-        if area <= 0.0:
-            alive[e] = -1
-            _kill(e, fe, me)
-            continue
-        _local_velocities(v, w_ang, conn, e, nn, w)
-        dx = dy = gxy = kx = ky = kxy = wx = wy = sx = sy = 0.0
-        for a in range(nn):
-            b1, b2 = w[_B1 + a], w[_B2 + a]
-            dx += b1 * w[_VX + a]
-            dy += b2 * w[_VY + a]
-            gxy += b2 * w[_VX + a] + b1 * w[_VY + a]
-            kx += b1 * w[_TY + a]
-            ky -= b2 * w[_TX + a]
-            kxy += b2 * w[_TY + a] - b1 * w[_TX + a]
-            wx += b1 * w[_VZ + a]
-            wy += b2 * w[_VZ + a]
-            sx += w[_TX + a]
-            sy += w[_TY + a]
-        gxz = wx + sy / nn
-        gyz = wy - sx / nn
-        quad = nn == 4
-        if quad and bwc == 1:
-            c = _warp_coef(w, area)
-            om = 0.5 * (gxy - 2.0 * (w[_B2] * w[_VX] + w[_B2 + 1] * w[_VX + 1] + w[_B2 + 2] * w[_VX + 2]
-                                     + w[_B2 + 3] * w[_VX + 3]))  # ½(∂v̂y/∂x − ∂v̂x/∂y): in-plane spin
-            for a in range(4):
-                c1, c2 = _bc(w, a, c)
-                ux = w[_VX + a] + om * w[_Y + a]  # in-plane velocity less the rigid spin
-                uy = w[_VY + a] - om * w[_X + a]
-                kx += c1 * ux
-                ky += c2 * uy
-                kxy += c2 * ux + c1 * uy
-        # through the thickness
-        t = thick[e]
-        m = mat_of[e]
-        kind = mtype[m]
-        ks = shrf[e]
-        nk = nip[e]
-        r = rule[e]
-        n0 = n1 = n2 = m0 = m1 = m2 = q0 = q1 = 0.0
-        work = 0.0
-        dezs = 0.0
-        nfail = 0
-        for k in range(nk):
-            if ipfail[e, k] != 0:
-                nfail += 1
+              energy, hg_energy, w, P, eb, kk, fe, me):
+    """Elements e0 .. e1 - 1 (one chunk; scratch rows ``w``, ``P``, ``eb``,
+    ``kk``) in blocks of BLOCK: the strain increments of a block's points at
+    the mid-step shape, their stresses (in one vectorised pass,
+    plane_stress.update_block, where the block is one material with linear
+    hardening and one section; update_point otherwise and where the pass
+    declines), then each element's resultants and forces at x(n+1). One
+    call per chunk: a Numba call reference-counts each array argument,
+    which per element would cost more than a third of the element itself."""
+    nipm = sig.shape[1]
+    sigf = sig.reshape(-1)
+    backf = back.reshape(-1)
+    epf = epsp.reshape(-1)
+    ipf = ipfail.reshape(-1)
+    for p in range(W):
+        kk[p] = p % nipm
+    for first in range(e0, e1, BLOCK):
+        last = min(first + BLOCK, e1)
+        for e in range(first, last):  # strain increments at x(n+½), points into P
+            l = e - first
+            eb[_EA, l] = 0.0
+            if alive[e] != 1:
+                _kill(e, fe, me)
+                _no_strain(P, l, nipm)
                 continue
-            zeta = ZETA[r, nk, k]
-            wt = WEIGHT[r, nk, k]
-            z = 0.5 * zeta * t
-            d0 = (dx + z * kx) * dt
-            d1 = (dy + z * ky) * dt
-            d2 = (gxy + z * kxy) * dt
-            d3 = gyz * dt
-            d4 = gxz * dt
-            o0, o1, o2, o3, o4 = sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4]
-            ep, dez, failed = update_point(kind, props, m, mcurve, cs, ce, cx, cy, sig, back, e, k, epsp[e, k],
-                                           d0, d1, d2, d3, d4, dt)
-            epsp[e, k] = ep
-            s0, s1, s2, s3, s4 = sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4]
-            work += wt * 0.5 * ((o0 + s0) * d0 + (o1 + s1) * d1 + (o2 + s2) * d2
-                                + ks * ((o3 + s3) * d3 + (o4 + s4) * d4))
-            if failed:
-                ipfail[e, k] = 1
-                nfail += 1
-            dezs += wt * dez
-            n0 += wt * s0
-            n1 += wt * s1
-            n2 += wt * s2
-            m0 += wt * zeta * s0
-            m1 += wt * zeta * s1
-            m2 += wt * zeta * s2
-            q0 += wt * s4  # τzx
-            q1 += wt * s3  # τyz
-        energy[e] += area * t * work
-        if nfail == nk:
-            alive[e] = 0
-            for k in range(nk):
-                for i in range(5):
-                    sig[e, k, i] = 0.0
-            _kill(e, fe, me)
-            continue
-        if istupd == 1:
-            t = t * (1.0 + dezs)
-            thick[e] = t
-        # resultants per unit length: N = t Σwσ, M = t²/2 Σwζσ, Q = SHRF t Σwτ
-        n0, n1, n2 = t * n0, t * n1, t * n2
-        hm = 0.5 * t * t
-        m0, m1, m2 = hm * m0, hm * m1, hm * m2
-        qx, qy = ks * t * q0, ks * t * q1
-        # hourglass resistance at the mid-step geometry
-        h0 = h1 = h2 = h3 = h4 = 0.0
-        if quad and hg_kind[e] > 0:
-            h0, h1, h2, h3, h4 = _hourglass(e, w, area, t, dt, props[m, P_E], props[m, P_G], ks, rho[e], hg_kind[e],
-                                            hg_qm[e], hg_qb[e], hg_qw[e], sx, sy, hgq, hg_energy)
-        # forces at x(n+1)
-        area = _geometry(x, v, conn, e, nn, 0.0, w)
-        if area <= 0.0:
-            alive[e] = -1
-            _kill(e, fe, me)
-            continue
-        zg4 = 0.0
-        if quad:
-            for a in range(4):
-                zg4 += w[_G + a] * w[_Z + a]
-            zg4 *= 0.25
-        inv = 1.0 / nn
-        sbwc = 0.0
-        c = 0.0
-        if quad and bwc == 1:
-            c = _warp_coef(w, area)
-            for a in range(4):
-                c1, c2 = _bc(w, a, c)
-                sbwc += area * ((m0 * c1 + m2 * c2) * w[_Y + a] - (m1 * c2 + m2 * c1) * w[_X + a])
-        for a in range(nn):
-            b1, b2 = w[_B1 + a], w[_B2 + a]
-            fx = area * (b1 * n0 + b2 * n2)
-            fy = area * (b2 * n1 + b1 * n2)
-            fz = area * (b1 * qx + b2 * qy)
-            mx = area * (-b2 * m1 - b1 * m2 - inv * qy)
-            my = area * (b1 * m0 + b2 * m2 + inv * qx)
-            if quad:
-                g = w[_G + a]
-                fx += g * h0
-                fy += g * h1
-                fz += g * h2
-                mx += g * h3 + zg4 * h1
-                my += g * h4 - zg4 * h0
-                if bwc == 1:
+            nn = 3 if tri[e] == 1 else 4
+            area = _geometry(x, v, conn, e, nn, 0.5 * dt, w)
+            if area <= 0.0:
+                alive[e] = -1
+                _kill(e, fe, me)
+                _no_strain(P, l, nipm)
+                continue
+            eb[_EA, l] = area
+            _local_velocities(v, w_ang, conn, e, nn, w)
+            dx = dy = gxy = kx = ky = kxy = wx = wy = sx = sy = 0.0
+            for a in range(nn):
+                b1, b2 = w[_B1 + a], w[_B2 + a]
+                dx += b1 * w[_VX + a]
+                dy += b2 * w[_VY + a]
+                gxy += b2 * w[_VX + a] + b1 * w[_VY + a]
+                kx += b1 * w[_TY + a]
+                ky -= b2 * w[_TX + a]
+                kxy += b2 * w[_TY + a] - b1 * w[_TX + a]
+                wx += b1 * w[_VZ + a]
+                wy += b2 * w[_VZ + a]
+                sx += w[_TX + a]
+                sy += w[_TY + a]
+            gxz = wx + sy / nn
+            gyz = wy - sx / nn
+            if nn == 4 and bwc == 1:
+                c = _warp_coef(w, area)
+                om = 0.5 * (gxy - 2.0 * (w[_B2] * w[_VX] + w[_B2 + 1] * w[_VX + 1] + w[_B2 + 2] * w[_VX + 2]
+                                         + w[_B2 + 3] * w[_VX + 3]))  # ½(∂v̂y/∂x − ∂v̂x/∂y): in-plane spin
+                for a in range(4):
                     c1, c2 = _bc(w, a, c)
-                    fx += area * (m0 * c1 + m2 * c2) - 0.5 * sbwc * b2
-                    fy += area * (m1 * c2 + m2 * c1) + 0.5 * sbwc * b1
-            for i in range(3):
-                fe[e, a, i] = -(fx * w[_E + i] + fy * w[_E + 3 + i] + fz * w[_E + 6 + i])
-                me[e, a, i] = -(mx * w[_E + i] + my * w[_E + 3 + i])
-        if not quad:
-            for i in range(3):
-                fe[e, 3, i] = 0.0
-                me[e, 3, i] = 0.0
+                    ux = w[_VX + a] + om * w[_Y + a]  # in-plane velocity less the rigid spin
+                    uy = w[_VY + a] - om * w[_X + a]
+                    kx += c1 * ux
+                    ky += c2 * uy
+                    kxy += c2 * ux + c1 * uy
+            if nn == 4 and hg_kind[e] > 0:
+                _hourglass_rates(w, sx, sy, eb, l)
+            t = thick[e]
+            nk = nip[e]
+            r = rule[e]
+            for k in range(nk):
+                p = l * nipm + k
+                z = 0.5 * ZETA[r, nk, k] * t
+                P[R_D * W + p] = (dx + z * kx) * dt
+                P[(R_D + 1) * W + p] = (dy + z * ky) * dt
+                P[(R_D + 2) * W + p] = (gxy + z * kxy) * dt
+                P[(R_D + 3) * W + p] = gyz * dt
+                P[(R_D + 4) * W + p] = gxz * dt
+        # the points' stresses
+        m = mat_of[first]
+        one = linear_hardening(mtype, props, mcurve, m)
+        for e in range(first + 1, last):
+            one = one and mat_of[e] == m and nip[e] == nip[first] and shrf[e] == shrf[first]
+        if one:
+            update_block((last - first) * nipm, P, kk, nip[first], sigf, backf, epf, ipf, first * nipm, mtype,
+                         props, m, shrf[first])
+        else:
+            for e in range(first, last):
+                l = e - first
+                if eb[_EA, l] > 0.0:
+                    for k in range(nip[e]):
+                        if ipfail[e, k] == 0:
+                            _point(e, k, l * nipm + k, dt, mat_of, mtype, props, mcurve, cs, ce, cx, cy, shrf, sig,
+                                   back, epsp, P)
+        for e in range(first, last):  # state, resultants, forces at x(n+1)
+            l = e - first
+            if eb[_EA, l] <= 0.0:
+                continue
+            nn = 3 if tri[e] == 1 else 4
+            quad = nn == 4
+            t = thick[e]
+            m = mat_of[e]
+            ks = shrf[e]
+            nk = nip[e]
+            r = rule[e]
+            n0 = n1 = n2 = m0 = m1 = m2 = q0 = q1 = 0.0
+            work = 0.0
+            dezs = 0.0
+            nfail = 0
+            for k in range(nk):
+                if ipfail[e, k] != 0:
+                    nfail += 1
+                    continue
+                p = l * nipm + k
+                if P[R_OK * W + p] == 0.0:  # declined by the vectorised pass
+                    _point(e, k, p, dt, mat_of, mtype, props, mcurve, cs, ce, cx, cy, shrf, sig, back, epsp, P)
+                zeta = ZETA[r, nk, k]
+                wt = WEIGHT[r, nk, k]
+                s0, s1, s2, s3, s4 = sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4]
+                work += wt * P[R_WK * W + p]
+                if P[R_FAILED * W + p] == 1.0:
+                    ipfail[e, k] = 1
+                    nfail += 1
+                dezs += wt * P[R_DEZ * W + p]
+                n0 += wt * s0
+                n1 += wt * s1
+                n2 += wt * s2
+                m0 += wt * zeta * s0
+                m1 += wt * zeta * s1
+                m2 += wt * zeta * s2
+                q0 += wt * s4  # τzx
+                q1 += wt * s3  # τyz
+            area = eb[_EA, l]  # mid-step
+            energy[e] += area * t * work
+            if nfail == nk:
+                alive[e] = 0
+                for k in range(nk):
+                    for i in range(5):
+                        sig[e, k, i] = 0.0
+                _kill(e, fe, me)
+                continue
+            if istupd == 1:
+                t = t * (1.0 + dezs)
+                thick[e] = t
+            # resultants per unit length: N = t Σwσ, M = t²/2 Σwζσ, Q = SHRF t Σwτ
+            n0, n1, n2 = t * n0, t * n1, t * n2
+            hm = 0.5 * t * t
+            m0, m1, m2 = hm * m0, hm * m1, hm * m2
+            qx, qy = ks * t * q0, ks * t * q1
+            # hourglass resistance at the mid-step geometry
+            h0 = h1 = h2 = h3 = h4 = 0.0
+            if quad and hg_kind[e] > 0:
+                h0, h1, h2, h3, h4 = _hourglass(e, l, eb, area, t, dt, props[m, P_E], props[m, P_G], ks, rho[e],
+                                                hg_kind[e], hg_qm[e], hg_qb[e], hg_qw[e], hgq, hg_energy)
+            # forces at x(n+1)
+            area = _geometry(x, v, conn, e, nn, 0.0, w)
+            if area <= 0.0:
+                alive[e] = -1
+                _kill(e, fe, me)
+                continue
+            zg4 = 0.0
+            if quad:
+                for a in range(4):
+                    zg4 += w[_G + a] * w[_Z + a]
+                zg4 *= 0.25
+            inv = 1.0 / nn
+            sbwc = 0.0
+            c = 0.0
+            if quad and bwc == 1:
+                c = _warp_coef(w, area)
+                for a in range(4):
+                    c1, c2 = _bc(w, a, c)
+                    sbwc += area * ((m0 * c1 + m2 * c2) * w[_Y + a] - (m1 * c2 + m2 * c1) * w[_X + a])
+            for a in range(nn):
+                b1, b2 = w[_B1 + a], w[_B2 + a]
+                fx = area * (b1 * n0 + b2 * n2)
+                fy = area * (b2 * n1 + b1 * n2)
+                fz = area * (b1 * qx + b2 * qy)
+                mx = area * (-b2 * m1 - b1 * m2 - inv * qy)
+                my = area * (b1 * m0 + b2 * m2 + inv * qx)
+                if quad:
+                    g = w[_G + a]
+                    fx += g * h0
+                    fy += g * h1
+                    fz += g * h2
+                    mx += g * h3 + zg4 * h1
+                    my += g * h4 - zg4 * h0
+                    if bwc == 1:
+                        c1, c2 = _bc(w, a, c)
+                        fx += area * (m0 * c1 + m2 * c2) - 0.5 * sbwc * b2
+                        fy += area * (m1 * c2 + m2 * c1) + 0.5 * sbwc * b1
+                for i in range(3):
+                    fe[e, a, i] = -(fx * w[_E + i] + fy * w[_E + 3 + i] + fz * w[_E + 6 + i])
+                    me[e, a, i] = -(mx * w[_E + i] + my * w[_E + 3 + i])
+            if not quad:
+                for i in range(3):
+                    fe[e, 3, i] = 0.0
+                    me[e, 3, i] = 0.0
 
 
-@njit(cache=True, inline="always")
-def _hourglass(e, w, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, sx, sy, hgq, hg_energy):
-    """Hourglass generalized stresses of the step (see the module docstring);
-    returns them (membrane x, y, out-of-plane, bending x, y)."""
+@njit(cache=True, error_model="numpy", inline="always")
+def _hourglass_rates(w, sx, sy, eb, l):
+    """Hourglass mode rates of the element in w (mid-step) into eb[:, l]."""
     bb = 0.0
     gg = 0.0
     zg = 0.0
@@ -386,8 +477,19 @@ def _hourglass(e, w, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, sx, s
         r2 += g * w[_VZ + a]
         r3 += g * w[_TX + a]
         r4 += g * w[_TY + a]
-    r0 -= 0.25 * zg * sy
-    r1 += 0.25 * zg * sx
+    eb[_ER, l] = r0 - 0.25 * zg * sy
+    eb[_ER + 1, l] = r1 + 0.25 * zg * sx
+    eb[_ER + 2, l], eb[_ER + 3, l], eb[_ER + 4, l] = r2, r3, r4
+    eb[_EBB, l], eb[_EGG, l] = bb, gg
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _hourglass(e, l, eb, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, hgq, hg_energy):
+    """Hourglass generalized stresses of the step from the rates in
+    eb[:, l] (see the module docstring); returns them (membrane x, y,
+    out-of-plane, bending x, y)."""
+    r0, r1, r2, r3, r4 = eb[_ER, l], eb[_ER + 1, l], eb[_ER + 2, l], eb[_ER + 3, l], eb[_ER + 4, l]
+    bb, gg = eb[_EBB, l], eb[_EGG, l]
     km = young * t * area * bb / 8.0
     kw = ks * shear * t * t * t * bb / 12.0
     kb = young * t * t * t * area * bb / 192.0
@@ -410,7 +512,7 @@ def _hourglass(e, w, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, sx, s
 @njit(cache=True, parallel=True)
 def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve_start, curve_stop, curve_x,
                  curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail,
-                 thick, alive, hgq, energy, hg_energy, work, fe, me):
+                 thick, alive, hgq, energy, hg_energy, work, points, blocks, kk, fe, me):
     """One step of the shells (see the module docstring for the arrays):
     stresses, thickness, energies and state to t(n+1); corner forces fe
     and moments me ON the nodes."""
@@ -418,9 +520,12 @@ def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve
     nc = work.shape[0]
     for ch in prange(nc):
         w = work[ch]
+        pts = points[ch]
+        eb = blocks[ch]
+        kc = kk[ch]
         _elements(ch * n // nc, (ch + 1) * n // nc, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve,
                   curve_start, curve_stop, curve_x, curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho,
-                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, w, fe, me)
+                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, w, pts, eb, kc, fe, me)
 
 
 @njit(cache=True, parallel=True)
