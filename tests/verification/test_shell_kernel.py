@@ -216,23 +216,35 @@ def test_lumped_mass_rotary_inertia_and_time_step(tmp_path):
 
 
 def test_vectorised_points_equal_the_per_point_update(tmp_path):
-    """A warped 4 x 3 patch of MAT_024 shells (NIP 5) driven through 30
-    steps of random nodal velocities and angular velocities, far into the
-    plastic range: hardening given by SIGY/ETAN (the kernel's vectorised
-    pass over each block's points) and the same hardening as a curve LCSS
-    (update_point point by point) give the same stresses, plastic strains,
-    energy and corner forces (to 1e-8)."""
-    etan = 2000.0
-    ep_mod = E * etan / (E - etan)
+    """A warped 4 x 3 patch of MAT_024 shells (NIP 5, hardening curve,
+    Cowper–Symonds) driven through 30 steps of stretching and random nodal
+    velocities and angular velocities, far into the plastic range: as one
+    part (the kernel's vectorised pass over each block's points) and with
+    every other element in a second part of an identical material (each
+    block mixes materials: update_point point by point), the stresses,
+    plastic strains, energy and corner forces agree to 1e-8."""
     xyz, quads = grid(4, 3, 40.0, 30.0)
     xyz[:, 2] = 0.8 * np.sin(xyz[:, 0] / 13.0) * np.cos(xyz[:, 1] / 11.0)  # warped
-    linear = f"*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,{RHO},{E},{NU},250.0,{etan}\n0,0,0,0\n"
-    curve = (f"*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,{RHO},{E},{NU},250.0,0.0\n0,0,7,0\n"
-             f"*DEFINE_CURVE\n7\n0.0,250.0\n1.0,{250.0 + ep_mod}\n")
+    curve = "*DEFINE_CURVE\n7\n0.0,250.0\n0.005,280.0\n0.02,320.0\n0.1,380.0\n"
+    mat = "*MAT_PIECEWISE_LINEAR_PLASTICITY\n{},%r,%r,%r,0.0,0.0\n40.0,5.0,7,0\n" % (RHO, E, NU)
     groups = []
-    for name, mat in (("linear", linear), ("curve", curve)):
+    for name in ("one part", "mixed"):
         (tmp_path / name).mkdir()
-        g, model = _group(tmp_path / name, xyz, quads, section="1,2,0.8333,5\n1.2", material=mat)
+        p = tmp_path / name / "shells.k"
+        text = deck_text(xyz, quads, "1,2,0.8333,5\n1.2", mat.format(1) + curve)
+        if name == "mixed":
+            lines = text.split("\n")
+            start = lines.index("*ELEMENT_SHELL") + 1
+            for k in range(1, len(quads), 2):
+                eid, _, rest = lines[start + k].split(",", 2)
+                lines[start + k] = f"{eid},2,{rest}"
+            text = "\n".join(lines).replace("*END", "*PART\nshells b\n2,1,2,0,1\n" + mat.format(2) + "*END")
+        p.write_text(text)
+        model = read_deck(p)
+        problems = []
+        g = build_shells(model, [], problems)
+        assert not problems, problems
+        assert len(set(g.s.mat_of.tolist())) == (2 if name == "mixed" else 1)
         groups.append((g, model))
     rng = np.random.default_rng(3)
     x = groups[0][1].nodes.xyz.copy()

@@ -275,9 +275,10 @@ def update_points(mtype, props, mcurve, curve_start, curve_stop, curve_x, curve_
 # --- a block of points at once --------------------------------------------------------------------------
 # The shell kernel updates the points of a few elements of one material and section in one loop without
 # calls or data-dependent branches, which LLVM turns into SIMD code (eight points per instruction with
-# AVX-512): the same return mapping as update_point for linear hardening (MAT_001, MAT_003 and MAT_024
-# with SIGY/ETAN and no rate effect), two Halley steps from the same start. A point whose result does not
-# meet update_point's tolerance keeps its state and is marked; the caller redoes it with update_point.
+# AVX-512): the same return mapping as update_point, two Halley steps from the same start, with the
+# hardening linear over the step (the curve's segment at ε̄p, rate-scaled). A point whose result does not
+# meet update_point's tolerance, or whose ε̄p left its segment, keeps its state and is marked; the caller
+# redoes it with update_point.
 # The block's scratch P is flat: row R_x of point p at R_x·W + p (W a constant, so LLVM sees that the
 # rows never overlap and vectorises without run-time alias checks).
 R_D = 0  # 5 rows, input: strain increments Δεx, Δεy, Δγxy, Δγyz, Δγzx
@@ -287,17 +288,50 @@ R_OK = 7  # output: 1 done, 0 state untouched (redo with update_point)
 R_FAILED = 8  # output: 1 the point failed in this step
 R_O, R_S, R_B = 9, 14, 19  # 5 rows each, inside: stress before and after, back stress
 R_EP, R_EPN = 24, 25  # inside: ε̄p before and after
-N_ROWS = 26
+R_Y, R_H, R_TOP = 26, 27, 28  # inside: rate-scaled yield stress at ε̄p, its slope, the ε̄p where the slope ends
+R_SEG = 29  # inside: the hardening curve's segment at ε̄p
+N_ROWS = 30
 W = 160  # columns: up to 16 elements of up to 10 points
 
 
 @njit(cache=True, error_model="numpy")
-def linear_hardening(mtype, props, mc, m):
-    """Whether material row m hardens linearly without rate effects (the
-    points of such a material can be updated by update_block)."""
-    if mtype[m] == ELASTIC:
-        return True
-    return mc[m, C_LCSS] < 0 and mc[m, C_LCSR] < 0 and not (props[m, P_CS_C] > 0.0 and props[m, P_CS_P] > 0.0)
+def _yield_rows(n, P, kind, props, m, mc, cs, ce, cx, cy, dt):
+    """R_Y, R_H, R_TOP of points 0 .. n-1 of P: the yield stress at ε̄p, its
+    slope and the end of its segment (as _yield and curve_slope), scaled
+    by the rate factor of the step's strain rate."""
+    c = mc[m, C_LCSS]
+    if kind == ELASTIC:
+        for p in range(n):
+            P[R_Y * W + p], P[R_H * W + p], P[R_TOP * W + p] = math.inf, 0.0, math.inf
+        return
+    if c < 0 or ce[c] - cs[c] < 2:
+        hs = props[m, P_BETA] * props[m, P_EP] if c < 0 else 0.0
+        y0 = props[m, P_SIGY] if c < 0 else cy[cs[c]]
+        for p in range(n):
+            P[R_Y * W + p] = y0 + hs * P[R_EP * W + p]
+            P[R_H * W + p], P[R_TOP * W + p] = hs, math.inf
+    else:
+        start, stop = cs[c], ce[c]
+        for p in range(n):
+            P[R_SEG * W + p] = start
+        for j in range(start + 1, stop - 1):  # the last point at or below ε̄p (curve_slope's segment)
+            xj = cx[j]
+            for p in range(n):
+                P[R_SEG * W + p] = j if xj <= P[R_EP * W + p] else P[R_SEG * W + p]
+        for p in range(n):
+            i = int(P[R_SEG * W + p])
+            dx = cx[i + 1] - cx[i]
+            h = (cy[i + 1] - cy[i]) / dx if dx != 0.0 else 0.0
+            P[R_Y * W + p] = cy[i] + h * (P[R_EP * W + p] - cx[i])
+            P[R_H * W + p] = h
+            P[R_TOP * W + p] = cx[i + 1] if i < stop - 2 else math.inf
+    if mc[m, C_LCSR] >= 0 or (props[m, P_CS_C] > 0.0 and props[m, P_CS_P] > 0.0):
+        for p in range(n):
+            rf = rate_factor(props, m, mc, cs, ce, cx, cy,
+                             effective_rate(P[R_D * W + p], P[(R_D + 1) * W + p], P[(R_D + 2) * W + p],
+                                            P[(R_D + 3) * W + p], P[(R_D + 4) * W + p], dt))
+            P[R_Y * W + p] *= rf
+            P[R_H * W + p] *= rf
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -310,7 +344,7 @@ def _trial(P, p, c1, nu, g):
 
 
 @njit(cache=True, error_model="numpy")
-def _any_yields(n, P, c1, nu, g, sigy, hs):
+def _any_yields(n, P, c1, nu, g):
     """Whether the trial stress of any of points 0 .. n-1 of P is above yield."""
     count = 0
     for p in range(n):
@@ -318,7 +352,7 @@ def _any_yields(n, P, c1, nu, g, sigy, hs):
         x0, x1 = t0 - P[R_B * W + p], t1 - P[(R_B + 1) * W + p]
         x2, x3, x4 = t2 - P[(R_B + 2) * W + p], t3 - P[(R_B + 3) * W + p], t4 - P[(R_B + 4) * W + p]
         q = math.sqrt(max(x0 * x0 - x0 * x1 + x1 * x1 + 3.0 * (x2 * x2 + x3 * x3 + x4 * x4), 0.0))
-        count += 1 if q > sigy + hs * P[R_EP * W + p] else 0  # as _plastic_block's test
+        count += 1 if q > P[R_Y * W + p] else 0  # as _plastic_block's test
     return count > 0
 
 
@@ -342,11 +376,10 @@ def _elastic_block(n, P, c1, nu, g, e_mod, ks):
 
 
 @njit(cache=True, error_model="numpy")
-def _plastic_block(n, P, c1, nu, g, e_mod, ks, sigy, hs, hk, fail):
+def _plastic_block(n, P, c1, nu, g, e_mod, ks, hk, fail):
     """The return mapping of points 0 .. n-1 of P (update_block)."""
     k1 = e_mod / (3.0 * (1.0 - nu)) + 2.0 / 3.0 * hk
     k2 = 2.0 * g + 2.0 / 3.0 * hk
-    h = 2.0 / 3.0 * hs
     for p in range(n):
         d0, d1, d2, d3, d4 = P[R_D * W + p], P[(R_D + 1) * W + p], P[(R_D + 2) * W + p], P[(R_D + 3) * W + p], \
             P[(R_D + 4) * W + p]
@@ -355,7 +388,8 @@ def _plastic_block(n, P, c1, nu, g, e_mod, ks, sigy, hs, hk, fail):
         b0, b1, b2, b3, b4 = P[R_B * W + p], P[(R_B + 1) * W + p], P[(R_B + 2) * W + p], P[(R_B + 3) * W + p], \
             P[(R_B + 4) * W + p]
         ep = P[R_EP * W + p]
-        y_ep = sigy + hs * ep
+        y_ep = P[R_Y * W + p]
+        h = 2.0 / 3.0 * P[R_H * W + p]
         t0 = o0 + c1 * (d0 + nu * d1)
         t1 = o1 + c1 * (d1 + nu * d0)
         t2 = o2 + g * d2
@@ -413,7 +447,7 @@ def _plastic_block(n, P, c1, nu, g, e_mod, ks, sigy, hs, hk, fail):
             b4 += fb * n4
             t0, t1, t2, t3, t4 = b0 + n0, b1 + n1, b2 + n2, b3 + n3, b4 + n4
         ep_new = ep + 2.0 / 3.0 * dg * q
-        ok = elastic | (good & (abs(f) <= _TOL * max(y, y0)) & (dg >= 0.0))
+        ok = elastic | (good & (abs(f) <= _TOL * max(y, y0)) & (dg >= 0.0) & (ep_new <= P[R_TOP * W + p]))
         P[R_DEZ * W + p] = -nu / e_mod * (t0 - o0 + t1 - o1) - (dg * (n0 + n1) / 3.0 if plastic else 0.0)
         failed = plastic & (ep_new >= fail)
         if failed:  # as update_point: stress and back stress zero
@@ -431,18 +465,16 @@ def _plastic_block(n, P, c1, nu, g, e_mod, ks, sigy, hs, hk, fail):
 
 
 @njit(cache=True, error_model="numpy")
-def update_block(n, P, kk, nk, sig, back, epsp, ipfail, base, mtype, props, m, ks):
+def update_block(n, P, kk, nk, sig, back, epsp, ipfail, base, mtype, props, m, mc, cs, ce, cx, cy, ks, dt):
     """Points p = 0 .. n-1 of the block P: point kk[p] of the base + p // len
     element's row of sig, back, epsp, ipfail seen flat (sig (n·nip·5,),
     epsp (n·nip,), the point's row at base + p); points with kk[p] ≥ nk
-    or failed are skipped. Material row m (linear_hardening), shear
-    factor ks."""
+    or failed are skipped. Material row m (mc and the curve store as
+    update_point), shear factor ks, the step dt (rates)."""
     kind = mtype[m]
     kinematic = kind == KINEMATIC
     e_mod, nu, g, c1 = props[m, P_E], props[m, P_PR], props[m, P_G], props[m, P_C1]
     hk = (1.0 - props[m, P_BETA]) * props[m, P_EP] if kinematic else 0.0
-    hs = props[m, P_BETA] * props[m, P_EP]  # isotropic hardening slope
-    sigy = props[m, P_SIGY] if kind != ELASTIC else math.inf
     fail = props[m, P_FAIL]
     for p in range(n):  # in: the state (loops of their own, so that the update below reads and writes P alone)
         q5 = 5 * (base + p)
@@ -453,10 +485,11 @@ def update_block(n, P, kk, nk, sig, back, epsp, ipfail, base, mtype, props, m, k
         q5 = 5 * (base + p)
         for i in range(5):
             P[(R_B + i) * W + p] = back[q5 + i] if kinematic else 0.0
-    if not _any_yields(n, P, c1, nu, g, sigy, hs):
+    _yield_rows(n, P, kind, props, m, mc, cs, ce, cx, cy, dt)
+    if not _any_yields(n, P, c1, nu, g):
         _elastic_block(n, P, c1, nu, g, e_mod, ks)
     else:
-        _plastic_block(n, P, c1, nu, g, e_mod, ks, sigy, hs, hk, fail)
+        _plastic_block(n, P, c1, nu, g, e_mod, ks, hk, fail)
     for p in range(n):  # out: the points done
         if kk[p] < nk and ipfail[base + p] == 0 and P[R_OK * W + p] == 1.0:
             q5 = 5 * (base + p)

@@ -43,7 +43,7 @@ the number of threads. Elements run in ``work.shape[0]`` fixed chunks,
 each with its own scratch rows, and within a chunk in blocks of BLOCK
 elements: the strain increments of all the block's points first, then
 their stresses in one pass that LLVM vectorises where the block is one
-material with linear hardening and one section
+material and one section
 (plane_stress.update_block; the kernel's single most expensive part was
 the return mapping, point by point), then the elements' forces.
 
@@ -76,7 +76,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .plane_stress import (N_ROWS, P_E, P_G, P_WAVE, R_D, R_DEZ, R_FAILED, R_OK, R_WK, W, linear_hardening,
+from .plane_stress import (N_ROWS, P_E, P_G, P_WAVE, R_D, R_DEZ, R_FAILED, R_OK, R_WK, W,
                            update_block, update_point)
 
 
@@ -269,9 +269,9 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
     """Elements e0 .. e1 - 1 (one chunk; scratch rows ``w``, ``P``, ``eb``,
     ``kk``) in blocks of BLOCK: the strain increments of a block's points at
     the mid-step shape, their stresses (in one vectorised pass,
-    plane_stress.update_block, where the block is one material with linear
-    hardening and one section; update_point otherwise and where the pass
-    declines), then each element's resultants and forces at x(n+1). One
+    plane_stress.update_block, where the block is one material and one
+    section; update_point otherwise and where the pass declines), then
+    each element's resultants and forces at x(n+1). One
     call per chunk: a Numba call reference-counts each array argument,
     which per element would cost more than a third of the element itself."""
     nipm = sig.shape[1]
@@ -340,12 +340,12 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
                 P[(R_D + 4) * W + p] = gxz * dt
         # the points' stresses
         m = mat_of[first]
-        one = linear_hardening(mtype, props, mcurve, m)
+        one = True
         for e in range(first + 1, last):
             one = one and mat_of[e] == m and nip[e] == nip[first] and shrf[e] == shrf[first]
         if one:
             update_block((last - first) * nipm, P, kk, nip[first], sigf, backf, epf, ipf, first * nipm, mtype,
-                         props, m, shrf[first])
+                         props, m, mcurve, cs, ce, cx, cy, shrf[first], dt)
         else:
             for e in range(first, last):
                 l = e - first
