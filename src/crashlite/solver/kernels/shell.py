@@ -76,8 +76,8 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .plane_stress import (N_ROWS, P_E, P_G, P_WAVE, R_D, R_DEZ, R_FAILED, R_OK, R_WK, W,
-                           update_block, update_point)
+from .plane_stress import N_ROWS, P_E, P_G, P_WAVE, R_D, R_DEZ, R_FAILED, R_OK, R_WK, W, update_block, update_point
+from .shell_rates import BW, G_AREA, G_HG, G_RATE, N_G, block_rates, gather_nodes
 
 
 def _rules():
@@ -109,7 +109,8 @@ _E = 44  # frame e1, e2, e3
 _P = 53  # nodal positions relative to node 1
 N_WORK = 65
 N_CHUNKS = 64  # fixed number of element chunks: thread-count independent results
-BLOCK = W // 10  # elements whose integration points (up to 10 each) are updated in one vectorised pass
+BLOCK = BW  # elements whose rates, and whose points (up to 10 each), are computed in one vectorised pass
+assert BLOCK * 10 <= W
 # element rows of the block scratch eb (N_EROWS, BLOCK)
 _EA = 0  # mid-step area (≤ 0: the element is done for this step)
 _ER = 1  # 5 rows: hourglass rates (membrane x, y, out-of-plane, bending x, y)
@@ -117,12 +118,13 @@ _EBB, _EGG = 6, 7  # Σ(B1² + B2²), Σγ² of the mid-step shape
 N_EROWS = 8
 
 
-def scratch() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def scratch() -> tuple[np.ndarray, ...]:
     """Scratch of shell_forces, one row per chunk: work (N_CHUNKS, N_WORK),
     points (N_CHUNKS, plane_stress.N_ROWS·W), elements (N_CHUNKS, N_EROWS,
-    BLOCK) float64, point numbers (N_CHUNKS, W) int64."""
+    BLOCK) float64, point numbers (N_CHUNKS, W) int64, rates (N_CHUNKS,
+    shell_rates.N_G·BW) float64."""
     return (np.zeros((N_CHUNKS, N_WORK)), np.zeros((N_CHUNKS, N_ROWS * W)), np.zeros((N_CHUNKS, N_EROWS, BLOCK)),
-            np.zeros((N_CHUNKS, W), np.int64))
+            np.zeros((N_CHUNKS, W), np.int64), np.zeros((N_CHUNKS, N_G * BW)))
 
 
 @njit(cache=True, inline="always")
@@ -204,19 +206,6 @@ def _kill(e, fe, me):
 
 
 @njit(cache=True, inline="always")
-def _local_velocities(v, w_ang, conn, e, nn, w):
-    for a in range(nn):
-        nd = conn[e, a]
-        vx, vy, vz = v[nd, 0], v[nd, 1], v[nd, 2]
-        ox, oy, oz = w_ang[nd, 0], w_ang[nd, 1], w_ang[nd, 2]
-        w[_VX + a] = w[_E] * vx + w[_E + 1] * vy + w[_E + 2] * vz
-        w[_VY + a] = w[_E + 3] * vx + w[_E + 4] * vy + w[_E + 5] * vz
-        w[_VZ + a] = w[_E + 6] * vx + w[_E + 7] * vy + w[_E + 8] * vz
-        w[_TX + a] = w[_E] * ox + w[_E + 1] * oy + w[_E + 2] * oz
-        w[_TY + a] = w[_E + 3] * ox + w[_E + 4] * oy + w[_E + 5] * oz
-
-
-@njit(cache=True, inline="always")
 def _warp_coef(w, area):
     """2 z_γ / A² of the warping correction, z_γ = ¼ Σ γ_I ẑ_I."""
     zg = 0.0
@@ -265,10 +254,11 @@ def _point(e, k, p, dt, mat_of, mtype, props, mcurve, cs, ce, cx, cy, shrf, sig,
 @njit(cache=True, error_model="numpy")
 def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, cs, ce, cx, cy, nip, rule,
               shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq,
-              energy, hg_energy, w, P, eb, kk, fe, me):
+              energy, hg_energy, w, P, eb, kk, G, fe, me):
     """Elements e0 .. e1 - 1 (one chunk; scratch rows ``w``, ``P``, ``eb``,
-    ``kk``) in blocks of BLOCK: the strain increments of a block's points at
-    the mid-step shape, their stresses (in one vectorised pass,
+    ``kk``, ``G``) in blocks of BLOCK: the strain rates at the mid-step
+    shape (kernels.shell_rates, vectorised), the increments of the block's
+    points, their stresses (in one vectorised pass,
     plane_stress.update_block, where the block is one material and one
     section; update_point otherwise and where the pass declines), then
     each element's resultants and forces at x(n+1). One
@@ -283,6 +273,8 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
         kk[p] = p % nipm
     for first in range(e0, e1, BLOCK):
         last = min(first + BLOCK, e1)
+        gather_nodes(first, last - first, x, v, w_ang, dt, conn, tri, G)
+        block_rates(bwc, G)
         for e in range(first, last):  # strain increments at x(n+½), points into P
             l = e - first
             eb[_EA, l] = 0.0
@@ -290,43 +282,19 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
                 _kill(e, fe, me)
                 _no_strain(P, l, nipm)
                 continue
-            nn = 3 if tri[e] == 1 else 4
-            area = _geometry(x, v, conn, e, nn, 0.5 * dt, w)
-            if area <= 0.0:
+            area = G[G_AREA * BW + l]
+            if not area > 0.0:  # also NaN: a degenerate frame
                 alive[e] = -1
                 _kill(e, fe, me)
                 _no_strain(P, l, nipm)
                 continue
             eb[_EA, l] = area
-            _local_velocities(v, w_ang, conn, e, nn, w)
-            dx = dy = gxy = kx = ky = kxy = wx = wy = sx = sy = 0.0
-            for a in range(nn):
-                b1, b2 = w[_B1 + a], w[_B2 + a]
-                dx += b1 * w[_VX + a]
-                dy += b2 * w[_VY + a]
-                gxy += b2 * w[_VX + a] + b1 * w[_VY + a]
-                kx += b1 * w[_TY + a]
-                ky -= b2 * w[_TX + a]
-                kxy += b2 * w[_TY + a] - b1 * w[_TX + a]
-                wx += b1 * w[_VZ + a]
-                wy += b2 * w[_VZ + a]
-                sx += w[_TX + a]
-                sy += w[_TY + a]
-            gxz = wx + sy / nn
-            gyz = wy - sx / nn
-            if nn == 4 and bwc == 1:
-                c = _warp_coef(w, area)
-                om = 0.5 * (gxy - 2.0 * (w[_B2] * w[_VX] + w[_B2 + 1] * w[_VX + 1] + w[_B2 + 2] * w[_VX + 2]
-                                         + w[_B2 + 3] * w[_VX + 3]))  # ½(∂v̂y/∂x − ∂v̂x/∂y): in-plane spin
-                for a in range(4):
-                    c1, c2 = _bc(w, a, c)
-                    ux = w[_VX + a] + om * w[_Y + a]  # in-plane velocity less the rigid spin
-                    uy = w[_VY + a] - om * w[_X + a]
-                    kx += c1 * ux
-                    ky += c2 * uy
-                    kxy += c2 * ux + c1 * uy
-            if nn == 4 and hg_kind[e] > 0:
-                _hourglass_rates(w, sx, sy, eb, l)
+            dx, dy, gxy = G[G_RATE * BW + l], G[(G_RATE + 1) * BW + l], G[(G_RATE + 2) * BW + l]
+            kx, ky, kxy = G[(G_RATE + 3) * BW + l], G[(G_RATE + 4) * BW + l], G[(G_RATE + 5) * BW + l]
+            gyz, gxz = G[(G_RATE + 6) * BW + l], G[(G_RATE + 7) * BW + l]
+            if tri[e] == 0 and hg_kind[e] > 0:
+                for i in range(7):
+                    eb[_ER + i, l] = G[(G_HG + i) * BW + l]
             t = thick[e]
             nk = nip[e]
             r = rule[e]
@@ -461,29 +429,6 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _hourglass_rates(w, sx, sy, eb, l):
-    """Hourglass mode rates of the element in w (mid-step) into eb[:, l]."""
-    bb = 0.0
-    gg = 0.0
-    zg = 0.0
-    r0 = r1 = r2 = r3 = r4 = 0.0
-    for a in range(4):
-        g = w[_G + a]
-        bb += w[_B1 + a] * w[_B1 + a] + w[_B2 + a] * w[_B2 + a]
-        gg += g * g
-        zg += g * w[_Z + a]
-        r0 += g * w[_VX + a]
-        r1 += g * w[_VY + a]
-        r2 += g * w[_VZ + a]
-        r3 += g * w[_TX + a]
-        r4 += g * w[_TY + a]
-    eb[_ER, l] = r0 - 0.25 * zg * sy
-    eb[_ER + 1, l] = r1 + 0.25 * zg * sx
-    eb[_ER + 2, l], eb[_ER + 3, l], eb[_ER + 4, l] = r2, r3, r4
-    eb[_EBB, l], eb[_EGG, l] = bb, gg
-
-
-@njit(cache=True, error_model="numpy", inline="always")
 def _hourglass(e, l, eb, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, hgq, hg_energy):
     """Hourglass generalized stresses of the step from the rates in
     eb[:, l] (see the module docstring); returns them (membrane x, y,
@@ -512,7 +457,7 @@ def _hourglass(e, l, eb, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, h
 @njit(cache=True, parallel=True)
 def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve_start, curve_stop, curve_x,
                  curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail,
-                 thick, alive, hgq, energy, hg_energy, work, points, blocks, kk, fe, me):
+                 thick, alive, hgq, energy, hg_energy, work, points, blocks, kk, rates, fe, me):
     """One step of the shells (see the module docstring for the arrays):
     stresses, thickness, energies and state to t(n+1); corner forces fe
     and moments me ON the nodes."""
@@ -523,9 +468,10 @@ def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve
         pts = points[ch]
         eb = blocks[ch]
         kc = kk[ch]
+        gc = rates[ch]
         _elements(ch * n // nc, (ch + 1) * n // nc, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve,
                   curve_start, curve_stop, curve_x, curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho,
-                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, w, pts, eb, kc, fe, me)
+                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, w, pts, eb, kc, gc, fe, me)
 
 
 @njit(cache=True, parallel=True)
