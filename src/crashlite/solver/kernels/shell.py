@@ -471,7 +471,8 @@ def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve
         gc = rates[ch]
         _elements(ch * n // nc, (ch + 1) * n // nc, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve,
                   curve_start, curve_stop, curve_x, curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho,
-                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, w, pts, eb, kc, gc, fe, me)
+                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, w, pts, eb, kc, gc, fe,
+                  me)
 
 
 @njit(cache=True, parallel=True)
