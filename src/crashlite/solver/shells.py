@@ -89,11 +89,10 @@ class ShellState:
     hg_energy: np.ndarray  # (n,) float64 hourglass energy [energy]
     fe: np.ndarray  # (n, 4, 3) float64 corner forces ON the nodes [force]
     me: np.ndarray  # (n, 4, 3) float64 corner moments ON the nodes [force·length]
-    work: np.ndarray  # float64 scratch of kernels.shell (``scratch``)
-    points: np.ndarray
+    points: np.ndarray  # scratch of kernels.shell (``scratch``)
     blocks: np.ndarray
     point_k: np.ndarray
-    rates: np.ndarray
+    geometry: np.ndarray
     node_ptr: np.ndarray  # (n_nodes + 1,) int64 CSR node -> corners
     corner_of: np.ndarray  # (4n,) int64
 
@@ -112,7 +111,7 @@ def compute_forces(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
     shell_forces(x, v, w, float(dt), s.conn, s.tri, s.mat_of, s.mtype, s.props, s.mcurve, s.curve_start,
                  s.curve_stop, s.curve_x, s.curve_y, s.nip, s.rule, s.shrf, s.hg_kind, s.hg_qm, s.hg_qb, s.hg_qw,
                  s.rho, int(s.istupd == 1), int(s.bwc == 1), st.sig, st.back, st.epsp, st.ipfail, st.thick,
-                 st.alive, st.hgq, st.energy, st.hg_energy, st.work, st.points, st.blocks, st.point_k, st.rates, st.fe, st.me)
+                 st.alive, st.hgq, st.energy, st.hg_energy, st.points, st.blocks, st.point_k, st.geometry, st.fe, st.me)
 
 
 def element_areas(x: np.ndarray, conn: np.ndarray, tri: np.ndarray) -> np.ndarray:

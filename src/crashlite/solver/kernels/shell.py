@@ -67,7 +67,7 @@ Arrays (n elements; units of the model, e.g. mm, t, s, N, MPa):
   hgq (n, 5) float64 hourglass generalized stresses (2 membrane [force], out-of-plane [force],
       2 bending [force·length])
   energy (n,) float64 internal energy [energy]; hg_energy (n,) float64 hourglass energy [energy]
-  work, points, blocks: scratch (see ``scratch``)
+  points, blocks, kk, geometry: scratch (see ``scratch``)
   fe, me (n, 4, 3) float64 output corner forces [force] and moments [force·length]
 """
 
@@ -77,7 +77,8 @@ import numpy as np
 from numba import njit, prange
 
 from .plane_stress import N_ROWS, P_E, P_G, P_WAVE, R_D, R_DEZ, R_FAILED, R_OK, R_WK, W, update_block, update_point
-from .shell_rates import BW, G_AREA, G_HG, G_RATE, N_G, block_rates, gather_nodes
+from .shell_block import (BW, G_AREA, G_AREA1, G_F, G_HG, G_HGS, G_RATE, G_RES, N_G, block_forces, block_rates,
+                          gather_nodes, gather_positions)
 
 
 def _rules():
@@ -99,15 +100,7 @@ def _rules():
 
 
 ZETA, WEIGHT = _rules()
-H = np.array([1.0, -1.0, 1.0, -1.0])
 
-# scratch layout of one work row
-_X, _Y, _Z = 0, 4, 8  # local coordinates about the centroid
-_B1, _B2, _G = 12, 16, 20  # one-point gradient, hourglass vector
-_VX, _VY, _VZ, _TX, _TY = 24, 28, 32, 36, 40  # local velocities, angular velocities
-_E = 44  # frame e1, e2, e3
-_P = 53  # nodal positions relative to node 1
-N_WORK = 65
 N_CHUNKS = 64  # fixed number of element chunks: thread-count independent results
 BLOCK = BW  # elements whose rates, and whose points (up to 10 each), are computed in one vectorised pass
 assert BLOCK * 10 <= W
@@ -119,82 +112,12 @@ N_EROWS = 8
 
 
 def scratch() -> tuple[np.ndarray, ...]:
-    """Scratch of shell_forces, one row per chunk: work (N_CHUNKS, N_WORK),
-    points (N_CHUNKS, plane_stress.N_ROWS·W), elements (N_CHUNKS, N_EROWS,
-    BLOCK) float64, point numbers (N_CHUNKS, W) int64, rates (N_CHUNKS,
-    shell_rates.N_G·BW) float64."""
-    return (np.zeros((N_CHUNKS, N_WORK)), np.zeros((N_CHUNKS, N_ROWS * W)), np.zeros((N_CHUNKS, N_EROWS, BLOCK)),
-            np.zeros((N_CHUNKS, W), np.int64), np.zeros((N_CHUNKS, N_G * BW)))
-
-
-@njit(cache=True, inline="always")
-def _geometry(x, v, conn, e, nn, shift, w):
-    """Frame, local coordinates, B (and γ for quads) of element e at the
-    positions x − shift·v into w; returns the area (≤ 0: degenerate)."""
-    a0 = conn[e, 0]
-    q = w[_P:_P + 12]
-    for a in range(nn):
-        nd = conn[e, a]
-        for i in range(3):
-            q[3 * a + i] = (x[nd, i] - shift * v[nd, i]) - (x[a0, i] - shift * v[a0, i])
-    if nn == 4:
-        u0, u1, u2 = q[6], q[7], q[8]  # diagonal 1-3
-        s0, s1, s2 = q[9] - q[3], q[10] - q[4], q[11] - q[5]  # diagonal 2-4
-    else:
-        u0, u1, u2 = q[3], q[4], q[5]
-        s0, s1, s2 = q[6], q[7], q[8]
-    n0 = u1 * s2 - u2 * s1
-    n1 = u2 * s0 - u0 * s2
-    n2 = u0 * s1 - u1 * s0
-    nl = math.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
-    if nl == 0.0:
-        return 0.0
-    n0, n1, n2 = n0 / nl, n1 / nl, n2 / nl
-    d = q[3] * n0 + q[4] * n1 + q[5] * n2
-    t0, t1, t2 = q[3] - d * n0, q[4] - d * n1, q[5] - d * n2
-    tl = math.sqrt(t0 * t0 + t1 * t1 + t2 * t2)
-    if tl == 0.0:
-        return 0.0
-    t0, t1, t2 = t0 / tl, t1 / tl, t2 / tl
-    b0, b1, b2 = n1 * t2 - n2 * t1, n2 * t0 - n0 * t2, n0 * t1 - n1 * t0
-    w[_E], w[_E + 1], w[_E + 2] = t0, t1, t2
-    w[_E + 3], w[_E + 4], w[_E + 5] = b0, b1, b2
-    w[_E + 6], w[_E + 7], w[_E + 8] = n0, n1, n2
-    c0 = c1 = c2 = 0.0
-    for a in range(nn):
-        c0 += q[3 * a]
-        c1 += q[3 * a + 1]
-        c2 += q[3 * a + 2]
-    c0 /= nn
-    c1 /= nn
-    c2 /= nn
-    for a in range(nn):
-        r0, r1, r2 = q[3 * a] - c0, q[3 * a + 1] - c1, q[3 * a + 2] - c2
-        w[_X + a] = r0 * t0 + r1 * t1 + r2 * t2
-        w[_Y + a] = r0 * b0 + r1 * b1 + r2 * b2
-        w[_Z + a] = r0 * n0 + r1 * n1 + r2 * n2
-    X0, X1, X2 = w[_X], w[_X + 1], w[_X + 2]
-    Y0, Y1, Y2 = w[_Y], w[_Y + 1], w[_Y + 2]
-    if nn == 3:
-        area = 0.5 * ((X1 - X0) * (Y2 - Y0) - (X2 - X0) * (Y1 - Y0))
-        if area <= 0.0:
-            return area
-        f = 0.5 / area
-        w[_B1], w[_B1 + 1], w[_B1 + 2], w[_B1 + 3] = f * (Y1 - Y2), f * (Y2 - Y0), f * (Y0 - Y1), 0.0
-        w[_B2], w[_B2 + 1], w[_B2 + 2], w[_B2 + 3] = f * (X2 - X1), f * (X0 - X2), f * (X1 - X0), 0.0
-        return area
-    X3, Y3 = w[_X + 3], w[_Y + 3]
-    area = 0.5 * ((X2 - X0) * (Y3 - Y1) + (X1 - X3) * (Y2 - Y0))
-    if area <= 0.0:
-        return area
-    f = 0.5 / area
-    w[_B1], w[_B1 + 1], w[_B1 + 2], w[_B1 + 3] = f * (Y1 - Y3), f * (Y2 - Y0), f * (Y3 - Y1), f * (Y0 - Y2)
-    w[_B2], w[_B2 + 1], w[_B2 + 2], w[_B2 + 3] = f * (X3 - X1), f * (X0 - X2), f * (X1 - X3), f * (X2 - X0)
-    hx = X0 - X1 + X2 - X3
-    hy = Y0 - Y1 + Y2 - Y3
-    for a in range(4):
-        w[_G + a] = H[a] - hx * w[_B1 + a] - hy * w[_B2 + a]
-    return area
+    """Scratch of shell_forces, one row per chunk: points (N_CHUNKS,
+    plane_stress.N_ROWS·W), elements (N_CHUNKS, N_EROWS, BLOCK) float64,
+    point numbers (N_CHUNKS, W) int64, geometry (N_CHUNKS,
+    shell_block.N_G·BW) float64."""
+    return (np.zeros((N_CHUNKS, N_ROWS * W)), np.zeros((N_CHUNKS, N_EROWS, BLOCK)), np.zeros((N_CHUNKS, W), np.int64),
+            np.zeros((N_CHUNKS, N_G * BW)))
 
 
 @njit(cache=True, inline="always")
@@ -203,24 +126,6 @@ def _kill(e, fe, me):
         for i in range(3):
             fe[e, a, i] = 0.0
             me[e, a, i] = 0.0
-
-
-@njit(cache=True, inline="always")
-def _warp_coef(w, area):
-    """2 z_γ / A² of the warping correction, z_γ = ¼ Σ γ_I ẑ_I."""
-    zg = 0.0
-    for a in range(4):
-        zg += w[_G + a] * w[_Z + a]
-    return 0.5 * zg / (area * area)
-
-
-@njit(cache=True, inline="always")
-def _bc(w, a, c):
-    """B^c_1, B^c_2 of node a (c = 2 z_γ / A²): c·[x13, x42, x31, x24] (and y)."""
-    j = (a + 2) % 4
-    if a % 2 == 0:  # nodes 1, 3: x_a − x_{a+2}
-        return c * (w[_X + a] - w[_X + j]), c * (w[_Y + a] - w[_Y + j])
-    return c * (w[_X + j] - w[_X + a]), c * (w[_Y + j] - w[_Y + a])  # nodes 2, 4: x_{a+2} − x_a
 
 
 @njit(cache=True, inline="always")
@@ -254,10 +159,10 @@ def _point(e, k, p, dt, mat_of, mtype, props, mcurve, cs, ce, cx, cy, shrf, sig,
 @njit(cache=True, error_model="numpy")
 def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, cs, ce, cx, cy, nip, rule,
               shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq,
-              energy, hg_energy, w, P, eb, kk, G, fe, me):
-    """Elements e0 .. e1 - 1 (one chunk; scratch rows ``w``, ``P``, ``eb``,
-    ``kk``, ``G``) in blocks of BLOCK: the strain rates at the mid-step
-    shape (kernels.shell_rates, vectorised), the increments of the block's
+              energy, hg_energy, P, eb, kk, G, fe, me):
+    """Elements e0 .. e1 - 1 (one chunk; scratch rows ``P``, ``eb``, ``kk``,
+    ``G``) in blocks of BLOCK: the strain rates at the mid-step
+    shape (kernels.shell_block, vectorised), the increments of the block's
     points, their stresses (in one vectorised pass,
     plane_stress.update_block, where the block is one material and one
     section; update_point otherwise and where the pass declines), then
@@ -364,6 +269,7 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
             energy[e] += area * t * work
             if nfail == nk:
                 alive[e] = 0
+                eb[_EA, l] = 0.0  # no forces
                 for k in range(nk):
                     for i in range(5):
                         sig[e, k, i] = 0.0
@@ -382,50 +288,25 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
             if quad and hg_kind[e] > 0:
                 h0, h1, h2, h3, h4 = _hourglass(e, l, eb, area, t, dt, props[m, P_E], props[m, P_G], ks, rho[e],
                                                 hg_kind[e], hg_qm[e], hg_qb[e], hg_qw[e], hgq, hg_energy)
-            # forces at x(n+1)
-            area = _geometry(x, v, conn, e, nn, 0.0, w)
-            if area <= 0.0:
+            for i, val in enumerate((n0, n1, n2, m0, m1, m2, qx, qy)):
+                G[(G_RES + i) * BW + l] = val
+            for i, val in enumerate((h0, h1, h2, h3, h4)):
+                G[(G_HGS + i) * BW + l] = val
+        # forces at x(n+1)
+        gather_positions(first, last - first, x, conn, G)
+        block_forces(bwc, G)
+        for e in range(first, last):
+            l = e - first
+            if eb[_EA, l] <= 0.0:
+                continue
+            if not G[G_AREA1 * BW + l] > 0.0:
                 alive[e] = -1
                 _kill(e, fe, me)
                 continue
-            zg4 = 0.0
-            if quad:
-                for a in range(4):
-                    zg4 += w[_G + a] * w[_Z + a]
-                zg4 *= 0.25
-            inv = 1.0 / nn
-            sbwc = 0.0
-            c = 0.0
-            if quad and bwc == 1:
-                c = _warp_coef(w, area)
-                for a in range(4):
-                    c1, c2 = _bc(w, a, c)
-                    sbwc += area * ((m0 * c1 + m2 * c2) * w[_Y + a] - (m1 * c2 + m2 * c1) * w[_X + a])
-            for a in range(nn):
-                b1, b2 = w[_B1 + a], w[_B2 + a]
-                fx = area * (b1 * n0 + b2 * n2)
-                fy = area * (b2 * n1 + b1 * n2)
-                fz = area * (b1 * qx + b2 * qy)
-                mx = area * (-b2 * m1 - b1 * m2 - inv * qy)
-                my = area * (b1 * m0 + b2 * m2 + inv * qx)
-                if quad:
-                    g = w[_G + a]
-                    fx += g * h0
-                    fy += g * h1
-                    fz += g * h2
-                    mx += g * h3 + zg4 * h1
-                    my += g * h4 - zg4 * h0
-                    if bwc == 1:
-                        c1, c2 = _bc(w, a, c)
-                        fx += area * (m0 * c1 + m2 * c2) - 0.5 * sbwc * b2
-                        fy += area * (m1 * c2 + m2 * c1) + 0.5 * sbwc * b1
+            for a in range(4):
                 for i in range(3):
-                    fe[e, a, i] = -(fx * w[_E + i] + fy * w[_E + 3 + i] + fz * w[_E + 6 + i])
-                    me[e, a, i] = -(mx * w[_E + i] + my * w[_E + 3 + i])
-            if not quad:
-                for i in range(3):
-                    fe[e, 3, i] = 0.0
-                    me[e, 3, i] = 0.0
+                    fe[e, a, i] = G[(G_F + 6 * a + i) * BW + l]
+                    me[e, a, i] = G[(G_F + 6 * a + 3 + i) * BW + l]
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -457,22 +338,20 @@ def _hourglass(e, l, eb, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, h
 @njit(cache=True, parallel=True)
 def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve_start, curve_stop, curve_x,
                  curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail,
-                 thick, alive, hgq, energy, hg_energy, work, points, blocks, kk, rates, fe, me):
+                 thick, alive, hgq, energy, hg_energy, points, blocks, kk, geometry, fe, me):
     """One step of the shells (see the module docstring for the arrays):
     stresses, thickness, energies and state to t(n+1); corner forces fe
     and moments me ON the nodes."""
     n = conn.shape[0]
-    nc = work.shape[0]
+    nc = points.shape[0]
     for ch in prange(nc):
-        w = work[ch]
         pts = points[ch]
         eb = blocks[ch]
         kc = kk[ch]
-        gc = rates[ch]
+        gc = geometry[ch]
         _elements(ch * n // nc, (ch + 1) * n // nc, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve,
                   curve_start, curve_stop, curve_x, curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho,
-                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, w, pts, eb, kc, gc, fe,
-                  me)
+                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, pts, eb, kc, gc, fe, me)
 
 
 @njit(cache=True, parallel=True)
