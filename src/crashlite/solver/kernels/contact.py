@@ -36,14 +36,16 @@ Arrays (ns slave entries, nm segments, nc candidates; model units):
   penalty stiffness [force/length]; mmass (nm,) mean node mass [mass];
   onesided (nm,) int8 1: solid face; depth (nm,) deepest penetration
   accepted behind a solid face [length]; msize (nm,) √area [length];
-  alive (nm,) int8 0: the segment's element is eroded
+  alive (nm,) int8 0: the segment's element is eroded; box (nm, 6) the
+  segments' bounding boxes at x (segment_extent) [length]
   cptr (ns + 1,), cand (nc,) int64 CSR slave entry -> candidate segments
   prm (N_PRM,) float64 interface parameters (P_*)
   ft (ns, 3) friction force on the node, kept between cycles [force];
   prev (ns,) int64 segment of the last cycle (-1: none); side (ns,) int8
   the side of that shell segment the node is on (0: none)
   rows (ns, 5, 3) forces ON the node and the segment nodes [force];
-  rnode (ns, 5) int64 their node indices (-1: none); gap (ns,) penetration
+  rnode (ns, 5) int64 their node indices (-1: none; rnode[i, 0] = -1 only
+  with rows[i] zero, as allocated); gap (ns,) penetration
 """
 
 import math
@@ -136,16 +138,24 @@ def _normal(x, seg, s):
 
 
 @njit(cache=True, inline="always")
-def _far(x, seg, s, px, py, pz, reach):
+def _far(box, s, px, py, pz, reach):
     """True when p lies farther than ``reach`` outside the bounding box of
-    segment s: no point of the segment is within ``reach`` of it."""
-    for k in range(3):
-        p = px if k == 0 else (py if k == 1 else pz)
-        lo = min(x[seg[s, 0], k], x[seg[s, 1], k], x[seg[s, 2], k], x[seg[s, 3], k])
-        hi = max(x[seg[s, 0], k], x[seg[s, 1], k], x[seg[s, 2], k], x[seg[s, 3], k])
-        if p < lo - reach or p > hi + reach:
-            return True
-    return False
+    segment s (box (nm, 6): low and high corner): no point of the segment
+    is within ``reach`` of it."""
+    return (px < box[s, 0] - reach or px > box[s, 3] + reach or py < box[s, 1] - reach or py > box[s, 4] + reach
+            or pz < box[s, 2] - reach or pz > box[s, 5] + reach)
+
+
+@njit(cache=True, parallel=True)
+def segment_extent(x, seg, box):
+    """Bounding boxes box (nm, 6) [length] of the segments at x: low corner,
+    high corner (once a cycle: the candidates of many nodes test each)."""
+    for s in prange(seg.shape[0]):
+        n0, n1, n2, n3 = seg[s, 0], seg[s, 1], seg[s, 2], seg[s, 3]
+        for k in range(3):
+            a, b, c, d = x[n0, k], x[n1, k], x[n2, k], x[n3, k]
+            box[s, k] = min(min(a, b), min(c, d))
+            box[s, 3 + k] = max(max(a, b), max(c, d))
 
 
 # --- search -------------------------------------------------------------------------------------
@@ -309,7 +319,7 @@ def _relative_velocity(v, nd, n0, n1, n2, n3, w0, w1, w2, w3):
 
 
 @njit(cache=True, parallel=True)
-def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, onesided, depth, msize, alive,
+def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, onesided, depth, msize, alive, box,
                    cptr, cand, prm, ft, prev, side, rows, rnode, gap):
     """Rows of the pair forces of every slave entry (see the module doc).
 
@@ -323,10 +333,11 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
     active = prm[P_ACTIVE] != 0.0
     friction = fs > 0.0 or fd > 0.0
     for i in prange(snode.shape[0]):
-        for a in range(5):
-            rnode[i, a] = -1
-            for k in range(3):
-                rows[i, a, k] = 0.0
+        if rnode[i, 0] >= 0:  # in contact last cycle (otherwise its rows are zero still: most entries, and
+            for a in range(5):  # not writing them halves this loop's memory traffic)
+                rnode[i, a] = -1
+                for k in range(3):
+                    rows[i, a, k] = 0.0
         g_prev = gap[i]  # the penetration of the last cycle
         gap[i] = 0.0
         nd = snode[i]
@@ -344,7 +355,7 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
                 if alive[s] == 0:
                     continue
                 half = 0.5 * (sthick[i] + mthick[s])
-                if s != prev[i] and _far(x, seg, s, px, py, pz, half + onesided[s] * (depth[s] + 1e-2 * msize[s])):
+                if s != prev[i] and _far(box, s, px, py, pz, half + onesided[s] * (depth[s] + 1e-2 * msize[s])):
                     continue  # most candidates: cheaper than the closest point
                 sg = 0
                 w0, w1, w2, w3 = _closest(x, seg, s, px, py, pz)
