@@ -25,6 +25,11 @@ strain increments with engineering shears Δγ = 2Δε. The transverse shears
 are updated elastically with G and take part in the yield function (3D J2
 with σ_zz = 0).
 
+update_point updates one point; update_block the points of a block of
+shell elements of one material at once, in loops that LLVM vectorises
+(see the comment above it); the points it declines the caller redoes
+with update_point.
+
 Material parameters are rows of ``props`` (n_mat, N_PROPS) float64 laid out
 by the P_* indices; curves by per-material slots ``mcurve`` (n_mat,
 N_CURVES) int64 into the CSR curve store (curve_start, curve_stop,
