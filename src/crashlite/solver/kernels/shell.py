@@ -293,7 +293,7 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
             for i, val in enumerate((h0, h1, h2, h3, h4)):
                 G[(G_HGS + i) * BW + l] = val
         # forces at x(n+1)
-        gather_positions(first, last - first, x, conn, G)
+        gather_positions(first, last - first, x, v, 0.0, conn, G)
         block_forces(bwc, G)
         for e in range(first, last):
             l = e - first

@@ -47,19 +47,31 @@ N_G = 91
 
 @njit(cache=True)
 def gather_nodes(first, nb, x, v, w_ang, dt, conn, tri, G):
-    """Copy the nodes of elements first .. first + nb - 1 into G (slots past
-    nb repeat the last element)."""
-    h = 0.5 * dt
+    """Copy the nodes of elements first .. first + nb - 1 into G: mid-step
+    positions, velocities, angular velocities (slots past nb repeat the
+    last element)."""
+    gather_positions(first, nb, x, v, 0.5 * dt, conn, G)
+    for l in range(BW):
+        e = first + min(l, nb - 1)
+        for a in range(4):
+            nd = conn[e, a]
+            for i in range(3):
+                G[(G_V + 3 * a + i) * BW + l] = v[nd, i]
+                G[(G_W + 3 * a + i) * BW + l] = w_ang[nd, i]
+        G[G_QUAD * BW + l] = 0.0 if tri[e] == 1 else 1.0
+
+
+@njit(cache=True)
+def gather_positions(first, nb, x, v, shift, conn, G):
+    """Positions x − shift·v of the nodes of elements first .. first + nb - 1
+    relative to their first node into G (slots past nb repeat the last)."""
     for l in range(BW):
         e = first + min(l, nb - 1)
         n0 = conn[e, 0]
         for a in range(4):
             nd = conn[e, a]
             for i in range(3):
-                G[(G_Q + 3 * a + i) * BW + l] = (x[nd, i] - h * v[nd, i]) - (x[n0, i] - h * v[n0, i])
-                G[(G_V + 3 * a + i) * BW + l] = v[nd, i]
-                G[(G_W + 3 * a + i) * BW + l] = w_ang[nd, i]
-        G[G_QUAD * BW + l] = 0.0 if tri[e] == 1 else 1.0
+                G[(G_Q + 3 * a + i) * BW + l] = (x[nd, i] - shift * v[nd, i]) - (x[n0, i] - shift * v[n0, i])
 
 
 @njit(cache=True, error_model="numpy", inline="always")
@@ -167,19 +179,6 @@ def block_rates(bwc, G):
         G[(G_HG + 4) * BW + l] = g0 * oy0 + g1 * oy1 + g2 * oy2 + g3 * oy3
         G[(G_HG + 5) * BW + l] = a0 * a0 + a1 * a1 + a2 * a2 + a3 * a3 + c0 * c0 + c1 * c1 + c2 * c2 + c3 * c3
         G[(G_HG + 6) * BW + l] = g0 * g0 + g1 * g1 + g2 * g2 + g3 * g3
-
-
-@njit(cache=True)
-def gather_positions(first, nb, x, conn, G):
-    """Positions at x(n+1) of the nodes of elements first .. first + nb - 1
-    relative to their first node into G (slots past nb repeat the last)."""
-    for l in range(BW):
-        e = first + min(l, nb - 1)
-        n0 = conn[e, 0]
-        for a in range(4):
-            nd = conn[e, a]
-            for i in range(3):
-                G[(G_Q + 3 * a + i) * BW + l] = x[nd, i] - x[n0, i]
 
 
 @njit(cache=True, error_model="numpy", inline="always")
