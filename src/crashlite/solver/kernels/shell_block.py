@@ -112,6 +112,19 @@ def _shape(G, l):
     return tx, ty, tz, bx, by, bz, nx, ny, nz, X0, Y0, Z0, X1, Y1, Z1, X2, Y2, Z2, X3, Y3, Z3, area
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _gradient(X0, Y0, X1, Y1, X2, Y2, X3, Y3, area):
+    """One-point gradient B1, B2 and hourglass vector γ = h − (h·x̂)B1 −
+    (h·ŷ)B2 of the four corners."""
+    f = 0.5 / area
+    a0, a1, a2, a3 = f * (Y1 - Y3), f * (Y2 - Y0), f * (Y3 - Y1), f * (Y0 - Y2)
+    c0, c1, c2, c3 = f * (X3 - X1), f * (X0 - X2), f * (X1 - X3), f * (X2 - X0)
+    hx = X0 - X1 + X2 - X3
+    hy = Y0 - Y1 + Y2 - Y3
+    return (a0, a1, a2, a3, c0, c1, c2, c3, 1.0 - hx * a0 - hy * c0, -1.0 - hx * a1 - hy * c1,
+            1.0 - hx * a2 - hy * c2, -1.0 - hx * a3 - hy * c3)
+
+
 @njit(cache=True, inline="always")
 def _local(G, a, l, tx, ty, tz, bx, by, bz, nx, ny, nz):
     """Node a's velocity (x̂, ŷ, ẑ) and angular velocity (x̂, ŷ) in the frame."""
@@ -127,9 +140,7 @@ def block_rates(bwc, G):
     for l in range(BW):
         tx, ty, tz, bx, by, bz, nx, ny, nz, X0, Y0, Z0, X1, Y1, Z1, X2, Y2, Z2, X3, Y3, Z3, area = _shape(G, l)
         quad = G[G_QUAD * BW + l]
-        f = 0.5 / area
-        a0, a1, a2, a3 = f * (Y1 - Y3), f * (Y2 - Y0), f * (Y3 - Y1), f * (Y0 - Y2)  # B1
-        c0, c1, c2, c3 = f * (X3 - X1), f * (X0 - X2), f * (X1 - X3), f * (X2 - X0)  # B2
+        a0, a1, a2, a3, c0, c1, c2, c3, g0, g1, g2, g3 = _gradient(X0, Y0, X1, Y1, X2, Y2, X3, Y3, area)
         # local velocities and angular velocities
         vx0, vy0, vz0, ox0, oy0 = _local(G, 0, l, tx, ty, tz, bx, by, bz, nx, ny, nz)
         vx1, vy1, vz1, ox1, oy1 = _local(G, 1, l, tx, ty, tz, bx, by, bz, nx, ny, nz)
@@ -150,11 +161,6 @@ def block_rates(bwc, G):
         inv = 0.25 if quad == 1.0 else 1.0 / 3.0
         gxz = wvx + soy * inv
         gyz = wvy - sox * inv
-        # hourglass vector γ = h − (h·x̂)B1 − (h·ŷ)B2
-        hx = X0 - X1 + X2 - X3
-        hy = Y0 - Y1 + Y2 - Y3
-        g0, g1, g2, g3 = 1.0 - hx * a0 - hy * c0, -1.0 - hx * a1 - hy * c1, 1.0 - hx * a2 - hy * c2, \
-            -1.0 - hx * a3 - hy * c3
         zg = g0 * Z0 + g1 * Z1 + g2 * Z2 + g3 * Z3
         if bwc == 1:  # warping correction (quadrilaterals)
             cw = quad * 0.5 * zg / (area * area)
@@ -204,13 +210,7 @@ def block_forces(bwc, G):
     for l in range(BW):
         tx, ty, tz, bx, by, bz, nx, ny, nz, X0, Y0, Z0, X1, Y1, Z1, X2, Y2, Z2, X3, Y3, Z3, area = _shape(G, l)
         quad = G[G_QUAD * BW + l]
-        f = 0.5 / area
-        a0, a1, a2, a3 = f * (Y1 - Y3), f * (Y2 - Y0), f * (Y3 - Y1), f * (Y0 - Y2)  # B1
-        c0, c1, c2, c3 = f * (X3 - X1), f * (X0 - X2), f * (X1 - X3), f * (X2 - X0)  # B2
-        hx = X0 - X1 + X2 - X3
-        hy = Y0 - Y1 + Y2 - Y3
-        g0, g1, g2, g3 = 1.0 - hx * a0 - hy * c0, -1.0 - hx * a1 - hy * c1, 1.0 - hx * a2 - hy * c2, \
-            -1.0 - hx * a3 - hy * c3
+        a0, a1, a2, a3, c0, c1, c2, c3, g0, g1, g2, g3 = _gradient(X0, Y0, X1, Y1, X2, Y2, X3, Y3, area)
         zg = g0 * Z0 + g1 * Z1 + g2 * Z2 + g3 * Z3
         n0, n1, n2 = G[G_RES * BW + l], G[(G_RES + 1) * BW + l], G[(G_RES + 2) * BW + l]
         m0, m1, m2 = G[(G_RES + 3) * BW + l], G[(G_RES + 4) * BW + l], G[(G_RES + 5) * BW + l]
