@@ -90,9 +90,8 @@ class ShellState:
     fe: np.ndarray  # (n, 4, 3) float64 corner forces ON the nodes [force]
     me: np.ndarray  # (n, 4, 3) float64 corner moments ON the nodes [force·length]
     points: np.ndarray  # scratch of kernels.shell (``scratch``)
-    blocks: np.ndarray
-    point_k: np.ndarray
     geometry: np.ndarray
+    point_k: np.ndarray
     node_ptr: np.ndarray  # (n_nodes + 1,) int64 CSR node -> corners
     corner_of: np.ndarray  # (4n,) int64
 
@@ -103,7 +102,7 @@ def new_state(s: ShellSet, n_nodes: int) -> ShellState:
     ptr, corner_of = corner_incidence(n_nodes, s.conn)
     return ShellState(np.zeros((n, k, 5)), np.zeros((n, k, 5)), np.zeros((n, k)), np.zeros((n, k), np.int8),
                       s.thick0.copy(), np.ones(n, np.int8), np.zeros((n, 5)), np.zeros(n), np.zeros(n),
-                      np.zeros((n, 4, 3)), np.zeros((n, 4, 3)), *scratch(), ptr, corner_of)
+                      np.zeros((n, 4, 3)), np.zeros((n, 4, 3)), *scratch(k), ptr, corner_of)
 
 
 def compute_forces(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
@@ -111,7 +110,7 @@ def compute_forces(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
     shell_forces(x, v, w, float(dt), s.conn, s.tri, s.mat_of, s.mtype, s.props, s.mcurve, s.curve_start,
                  s.curve_stop, s.curve_x, s.curve_y, s.nip, s.rule, s.shrf, s.hg_kind, s.hg_qm, s.hg_qb, s.hg_qw,
                  s.rho, int(s.istupd == 1), int(s.bwc == 1), st.sig, st.back, st.epsp, st.ipfail, st.thick,
-                 st.alive, st.hgq, st.energy, st.hg_energy, st.points, st.blocks, st.point_k, st.geometry, st.fe, st.me)
+                 st.alive, st.hgq, st.energy, st.hg_energy, st.points, st.geometry, st.point_k, st.fe, st.me)
 
 
 def element_areas(x: np.ndarray, conn: np.ndarray, tri: np.ndarray) -> np.ndarray:

@@ -340,6 +340,13 @@ def _yield_rows(n, P, kind, props, m, mc, cs, ce, cx, cy, dt):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
+def work_density(o0, o1, o2, o3, o4, s0, s1, s2, s3, s4, d0, d1, d2, d3, d4, ks):
+    """Work per unit volume ½(σ(n) + σ(n+1))·Δε of a point, the transverse
+    shears weighted by the shear factor ks."""
+    return 0.5 * ((o0 + s0) * d0 + (o1 + s1) * d1 + (o2 + s2) * d2 + ks * ((o3 + s3) * d3 + (o4 + s4) * d4))
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def _trial(P, p, c1, nu, g):
     """Elastic trial stress of point p of P."""
     d0, d1, d2, d3, d4 = P[R_D * W + p], P[(R_D + 1) * W + p], P[(R_D + 2) * W + p], P[(R_D + 3) * W + p], \
@@ -374,8 +381,7 @@ def _elastic_block(n, P, c1, nu, g, e_mod, ks):
             t0, t1, t2, t3, t4
         P[R_EPN * W + p] = P[R_EP * W + p]
         P[R_DEZ * W + p] = -nu / e_mod * (t0 - o0 + t1 - o1)
-        P[R_WK * W + p] = 0.5 * ((o0 + t0) * d0 + (o1 + t1) * d1 + (o2 + t2) * d2
-                                 + ks * ((o3 + t3) * d3 + (o4 + t4) * d4))
+        P[R_WK * W + p] = work_density(o0, o1, o2, o3, o4, t0, t1, t2, t3, t4, d0, d1, d2, d3, d4, ks)
         P[R_OK * W + p] = 1.0
         P[R_FAILED * W + p] = 0.0
 
@@ -395,11 +401,7 @@ def _plastic_block(n, P, c1, nu, g, e_mod, ks, hk, fail):
         ep = P[R_EP * W + p]
         y_ep = P[R_Y * W + p]
         h = 2.0 / 3.0 * P[R_H * W + p]
-        t0 = o0 + c1 * (d0 + nu * d1)
-        t1 = o1 + c1 * (d1 + nu * d0)
-        t2 = o2 + g * d2
-        t3 = o3 + g * d3
-        t4 = o4 + g * d4
+        t0, t1, t2, t3, t4 = _trial(P, p, c1, nu, g)
         x0, x1, x2, x3, x4 = t0 - b0, t1 - b1, t2 - b2, t3 - b3, t4 - b4
         qq = max(x0 * x0 - x0 * x1 + x1 * x1 + 3.0 * (x2 * x2 + x3 * x3 + x4 * x4), 0.0)
         q_tr = math.sqrt(qq)
@@ -415,15 +417,10 @@ def _plastic_block(n, P, c1, nu, g, e_mod, ks, hk, fail):
         good = slope0 > 0.0
         dg = (q_tr - y0) / slope0 if plastic & good else 0.0
         for _ in range(2):
-            r1 = 1.0 / (1.0 + dg * k1)
-            r2 = 1.0 / (1.0 + dg * k2)
-            aa1 = a1 * r1
-            aa2 = a2 * r2
-            sr = 3.0 * sh * r2 * r2
-            q = math.sqrt(0.25 * aa1 * aa1 + 0.75 * aa2 * aa2 + sr)
+            r1, r2, aa1, aa2, q = _shrunk(dg, k1, k2, a1, a2, sh)
             f = q - y0 - h * dg * q
             g1 = 0.25 * aa1 * aa1 * k1 * r1
-            g2 = (0.75 * aa2 * aa2 + sr) * k2 * r2
+            g2 = (0.75 * aa2 * aa2 + 3.0 * sh * r2 * r2) * k2 * r2
             iq = 1.0 / q if q > 0.0 else 0.0
             dq = -(g1 + g2) * iq
             ddq = (3.0 * (g1 * k1 * r1 + g2 * k2 * r2) - dq * dq) * iq
@@ -433,11 +430,7 @@ def _plastic_block(n, P, c1, nu, g, e_mod, ks, hk, fail):
             step = (slope < 0.0) & (den > 0.0)
             good = good & step
             dg = dg - 2.0 * f * slope / den if plastic & step else dg
-        r1 = 1.0 / (1.0 + dg * k1)
-        r2 = 1.0 / (1.0 + dg * k2)
-        aa1 = a1 * r1
-        aa2 = a2 * r2
-        q = math.sqrt(0.25 * aa1 * aa1 + 0.75 * aa2 * aa2 + 3.0 * sh * r2 * r2)
+        r1, r2, aa1, aa2, q = _shrunk(dg, k1, k2, a1, a2, sh)
         y = y0 + h * dg * q
         f = q - y
         n0 = 0.5 * (aa1 - aa2)
@@ -458,8 +451,7 @@ def _plastic_block(n, P, c1, nu, g, e_mod, ks, hk, fail):
         if failed:  # as update_point: stress and back stress zero
             t0 = t1 = t2 = t3 = t4 = 0.0
             b0 = b1 = b2 = b3 = b4 = 0.0
-        P[R_WK * W + p] = 0.5 * ((o0 + t0) * d0 + (o1 + t1) * d1 + (o2 + t2) * d2
-                                 + ks * ((o3 + t3) * d3 + (o4 + t4) * d4))
+        P[R_WK * W + p] = work_density(o0, o1, o2, o3, o4, t0, t1, t2, t3, t4, d0, d1, d2, d3, d4, ks)
         P[R_OK * W + p] = 1.0 if ok else 0.0
         P[R_FAILED * W + p] = 1.0 if failed else 0.0
         P[R_S * W + p], P[(R_S + 1) * W + p], P[(R_S + 2) * W + p], P[(R_S + 3) * W + p], P[(R_S + 4) * W + p] = \

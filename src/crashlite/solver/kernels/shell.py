@@ -67,7 +67,7 @@ Arrays (n elements; units of the model, e.g. mm, t, s, N, MPa):
   hgq (n, 5) float64 hourglass generalized stresses (2 membrane [force], out-of-plane [force],
       2 bending [force·length])
   energy (n,) float64 internal energy [energy]; hg_energy (n,) float64 hourglass energy [energy]
-  points, blocks, kk, geometry: scratch (see ``scratch``)
+  points, geometry, kk: scratch (see ``scratch``)
   fe, me (n, 4, 3) float64 output corner forces [force] and moments [force·length]
 """
 
@@ -76,8 +76,9 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .plane_stress import N_ROWS, P_E, P_G, P_WAVE, R_D, R_DEZ, R_FAILED, R_OK, R_WK, W, update_block, update_point
-from .shell_block import (BW, G_AREA, G_AREA1, G_F, G_HG, G_HGS, G_RATE, G_RES, N_G, block_forces, block_rates,
+from .plane_stress import (N_ROWS, P_E, P_G, P_WAVE, R_D, R_DEZ, R_FAILED, R_OK, R_WK, W, update_block,
+                           update_point, work_density)
+from .shell_block import (BW, G_AREA, G_AREA1, G_F, G_HG, G_HGS, G_LIVE, G_RATE, G_RES, N_G, block_forces, block_rates,
                           gather_nodes, gather_positions)
 
 
@@ -104,20 +105,15 @@ ZETA, WEIGHT = _rules()
 N_CHUNKS = 64  # fixed number of element chunks: thread-count independent results
 BLOCK = BW  # elements whose rates, and whose points (up to 10 each), are computed in one vectorised pass
 assert BLOCK * 10 <= W
-# element rows of the block scratch eb (N_EROWS, BLOCK)
-_EA = 0  # mid-step area (≤ 0: the element is done for this step)
-_ER = 1  # 5 rows: hourglass rates (membrane x, y, out-of-plane, bending x, y)
-_EBB, _EGG = 6, 7  # Σ(B1² + B2²), Σγ² of the mid-step shape
-N_EROWS = 8
 
 
-def scratch() -> tuple[np.ndarray, ...]:
+def scratch(nip_max: int) -> tuple[np.ndarray, ...]:
     """Scratch of shell_forces, one row per chunk: points (N_CHUNKS,
-    plane_stress.N_ROWS·W), elements (N_CHUNKS, N_EROWS, BLOCK) float64,
-    point numbers (N_CHUNKS, W) int64, geometry (N_CHUNKS,
-    shell_block.N_G·BW) float64."""
-    return (np.zeros((N_CHUNKS, N_ROWS * W)), np.zeros((N_CHUNKS, N_EROWS, BLOCK)), np.zeros((N_CHUNKS, W), np.int64),
-            np.zeros((N_CHUNKS, N_G * BW)))
+    plane_stress.N_ROWS·W) float64, geometry (N_CHUNKS, shell_block.N_G·BW)
+    float64; and the point number k of each block column (W,) int64 for
+    elements of nip_max points."""
+    return (np.zeros((N_CHUNKS, N_ROWS * W)), np.zeros((N_CHUNKS, N_G * BW)),
+            np.arange(W, dtype=np.int64) % nip_max)
 
 
 @njit(cache=True, inline="always")
@@ -150,8 +146,7 @@ def _point(e, k, p, dt, mat_of, mtype, props, mcurve, cs, ce, cx, cy, shrf, sig,
     epsp[e, k] = ep
     s0, s1, s2, s3, s4 = sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4]
     P[R_DEZ * W + p] = dez
-    P[R_WK * W + p] = 0.5 * ((o0 + s0) * d0 + (o1 + s1) * d1 + (o2 + s2) * d2
-                             + shrf[e] * ((o3 + s3) * d3 + (o4 + s4) * d4))
+    P[R_WK * W + p] = work_density(o0, o1, o2, o3, o4, s0, s1, s2, s3, s4, d0, d1, d2, d3, d4, shrf[e])
     P[R_OK * W + p] = 1.0
     P[R_FAILED * W + p] = 1.0 if failed else 0.0
 
@@ -159,9 +154,9 @@ def _point(e, k, p, dt, mat_of, mtype, props, mcurve, cs, ce, cx, cy, shrf, sig,
 @njit(cache=True, error_model="numpy")
 def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, cs, ce, cx, cy, nip, rule,
               shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq,
-              energy, hg_energy, P, eb, kk, G, fe, me):
-    """Elements e0 .. e1 - 1 (one chunk; scratch rows ``P``, ``eb``, ``kk``,
-    ``G``) in blocks of BLOCK: the strain rates at the mid-step
+              energy, hg_energy, P, kk, G, fe, me):
+    """Elements e0 .. e1 - 1 (one chunk; scratch rows ``P``, ``G``, point
+    numbers ``kk``) in blocks of BLOCK: the strain rates at the mid-step
     shape (kernels.shell_block, vectorised), the increments of the block's
     points, their stresses (in one vectorised pass,
     plane_stress.update_block, where the block is one material and one
@@ -174,15 +169,13 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
     backf = back.reshape(-1)
     epf = epsp.reshape(-1)
     ipf = ipfail.reshape(-1)
-    for p in range(W):
-        kk[p] = p % nipm
     for first in range(e0, e1, BLOCK):
         last = min(first + BLOCK, e1)
         gather_nodes(first, last - first, x, v, w_ang, dt, conn, tri, G)
         block_rates(bwc, G)
         for e in range(first, last):  # strain increments at x(n+½), points into P
             l = e - first
-            eb[_EA, l] = 0.0
+            G[G_LIVE * BW + l] = 0.0
             if alive[e] != 1:
                 _kill(e, fe, me)
                 _no_strain(P, l, nipm)
@@ -193,13 +186,10 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
                 _kill(e, fe, me)
                 _no_strain(P, l, nipm)
                 continue
-            eb[_EA, l] = area
+            G[G_LIVE * BW + l] = area
             dx, dy, gxy = G[G_RATE * BW + l], G[(G_RATE + 1) * BW + l], G[(G_RATE + 2) * BW + l]
             kx, ky, kxy = G[(G_RATE + 3) * BW + l], G[(G_RATE + 4) * BW + l], G[(G_RATE + 5) * BW + l]
             gyz, gxz = G[(G_RATE + 6) * BW + l], G[(G_RATE + 7) * BW + l]
-            if tri[e] == 0 and hg_kind[e] > 0:
-                for i in range(7):
-                    eb[_ER + i, l] = G[(G_HG + i) * BW + l]
             t = thick[e]
             nk = nip[e]
             r = rule[e]
@@ -222,14 +212,14 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
         else:
             for e in range(first, last):
                 l = e - first
-                if eb[_EA, l] > 0.0:
+                if G[G_LIVE * BW + l] > 0.0:
                     for k in range(nip[e]):
                         if ipfail[e, k] == 0:
                             _point(e, k, l * nipm + k, dt, mat_of, mtype, props, mcurve, cs, ce, cx, cy, shrf, sig,
                                    back, epsp, P)
         for e in range(first, last):  # state, resultants, forces at x(n+1)
             l = e - first
-            if eb[_EA, l] <= 0.0:
+            if G[G_LIVE * BW + l] <= 0.0:
                 continue
             nn = 3 if tri[e] == 1 else 4
             quad = nn == 4
@@ -265,11 +255,11 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
                 m2 += wt * zeta * s2
                 q0 += wt * s4  # τzx
                 q1 += wt * s3  # τyz
-            area = eb[_EA, l]  # mid-step
+            area = G[G_LIVE * BW + l]  # mid-step
             energy[e] += area * t * work
             if nfail == nk:
                 alive[e] = 0
-                eb[_EA, l] = 0.0  # no forces
+                G[G_LIVE * BW + l] = 0.0  # no forces
                 for k in range(nk):
                     for i in range(5):
                         sig[e, k, i] = 0.0
@@ -286,7 +276,7 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
             # hourglass resistance at the mid-step geometry
             h0 = h1 = h2 = h3 = h4 = 0.0
             if quad and hg_kind[e] > 0:
-                h0, h1, h2, h3, h4 = _hourglass(e, l, eb, area, t, dt, props[m, P_E], props[m, P_G], ks, rho[e],
+                h0, h1, h2, h3, h4 = _hourglass(e, l, G, area, t, dt, props[m, P_E], props[m, P_G], ks, rho[e],
                                                 hg_kind[e], hg_qm[e], hg_qb[e], hg_qw[e], hgq, hg_energy)
             for i, val in enumerate((n0, n1, n2, m0, m1, m2, qx, qy)):
                 G[(G_RES + i) * BW + l] = val
@@ -297,7 +287,7 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
         block_forces(bwc, G)
         for e in range(first, last):
             l = e - first
-            if eb[_EA, l] <= 0.0:
+            if G[G_LIVE * BW + l] <= 0.0:
                 continue
             if not G[G_AREA1 * BW + l] > 0.0:
                 alive[e] = -1
@@ -310,12 +300,13 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _hourglass(e, l, eb, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, hgq, hg_energy):
-    """Hourglass generalized stresses of the step from the rates in
-    eb[:, l] (see the module docstring); returns them (membrane x, y,
+def _hourglass(e, l, G, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, hgq, hg_energy):
+    """Hourglass generalized stresses of the step from the mid-step rates of
+    slot l of G (see the module docstring); returns them (membrane x, y,
     out-of-plane, bending x, y)."""
-    r0, r1, r2, r3, r4 = eb[_ER, l], eb[_ER + 1, l], eb[_ER + 2, l], eb[_ER + 3, l], eb[_ER + 4, l]
-    bb, gg = eb[_EBB, l], eb[_EGG, l]
+    r0, r1, r2 = G[G_HG * BW + l], G[(G_HG + 1) * BW + l], G[(G_HG + 2) * BW + l]
+    r3, r4 = G[(G_HG + 3) * BW + l], G[(G_HG + 4) * BW + l]
+    bb, gg = G[(G_HG + 5) * BW + l], G[(G_HG + 6) * BW + l]
     km = young * t * area * bb / 8.0
     kw = ks * shear * t * t * t * bb / 12.0
     kb = young * t * t * t * area * bb / 192.0
@@ -338,7 +329,7 @@ def _hourglass(e, l, eb, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, h
 @njit(cache=True, parallel=True)
 def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve_start, curve_stop, curve_x,
                  curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail,
-                 thick, alive, hgq, energy, hg_energy, points, blocks, kk, geometry, fe, me):
+                 thick, alive, hgq, energy, hg_energy, points, geometry, kk, fe, me):
     """One step of the shells (see the module docstring for the arrays):
     stresses, thickness, energies and state to t(n+1); corner forces fe
     and moments me ON the nodes."""
@@ -346,12 +337,10 @@ def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve
     nc = points.shape[0]
     for ch in prange(nc):
         pts = points[ch]
-        eb = blocks[ch]
-        kc = kk[ch]
         gc = geometry[ch]
         _elements(ch * n // nc, (ch + 1) * n // nc, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve,
                   curve_start, curve_stop, curve_x, curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho,
-                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, pts, eb, kc, gc, fe, me)
+                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, pts, kk, gc, fe, me)
 
 
 @njit(cache=True, parallel=True)

@@ -42,7 +42,8 @@ G_HGS = 61  # 5 rows: hourglass generalized stresses
 G_F = 66  # 24 rows: force and moment ON corner a, component i at 6a + i and 6a + 3 + i (a triangle's
 # fourth corner zero)
 G_AREA1 = 90  # area at x(n+1) (≤ 0 or NaN: degenerate)
-N_G = 91
+G_LIVE = 91  # kernels.shell's: the mid-step area of an element that gets forces this step (0: none)
+N_G = 92
 
 
 @njit(cache=True)
