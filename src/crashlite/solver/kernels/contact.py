@@ -161,10 +161,12 @@ def segment_extent(x, seg, box):
 # --- search -------------------------------------------------------------------------------------
 
 
-@njit(cache=True)
-def segment_boxes(x, seg, grow, lo, hi):
-    """Bounding boxes of the segments grown by ``grow`` (nm,) [length]."""
-    for s in range(seg.shape[0]):
+@njit(cache=True, parallel=True)
+def segment_boxes(x, seg, grow, box):
+    """Bounding boxes of the segments grown by ``grow`` (nm,) [length]: box
+    (nm, 6) lower corner, upper corner (one cache line per segment for the
+    search's test)."""
+    for s in prange(seg.shape[0]):
         for k in range(3):
             a = x[seg[s, 0], k]
             b = a
@@ -172,95 +174,159 @@ def segment_boxes(x, seg, grow, lo, hi):
                 c = x[seg[s, j], k]
                 a = min(a, c)
                 b = max(b, c)
-            lo[s, k] = a - grow[s]
-            hi[s, k] = b + grow[s]
+            box[s, k] = a - grow[s]
+            box[s, 3 + k] = b + grow[s]
 
 
 @njit(cache=True)
-def _grid(x, snode, lo, hi, h):
+def _grid(x, snode, box, h):
     """Origin and cell counts of a grid of cell size h over the boxes and
-    the slave nodes, and the number of (segment, cell) entries."""
+    the slave nodes, the number of (segment, cell) entries, and whether all
+    of them are finite."""
     org = np.empty(3)
     top = np.empty(3)
     for k in range(3):
         org[k] = np.inf
         top[k] = -np.inf
-    for s in range(lo.shape[0]):
+    finite = True
+    for s in range(box.shape[0]):
         for k in range(3):
-            org[k] = min(org[k], lo[s, k])
-            top[k] = max(top[k], hi[s, k])
+            org[k] = min(org[k], box[s, k])
+            top[k] = max(top[k], box[s, 3 + k])
+            finite = finite and math.isfinite(box[s, k]) and math.isfinite(box[s, 3 + k])
     for i in range(snode.shape[0]):
         for k in range(3):
             org[k] = min(org[k], x[snode[i], k])
             top[k] = max(top[k], x[snode[i], k])
+            finite = finite and math.isfinite(x[snode[i], k])
     # counted in floating point: a node flung far away must coarsen the grid, not overflow the keys
     ncell = np.empty(3)
     for k in range(3):
         ncell[k] = np.floor((top[k] - org[k]) / h) + 1.0
     total = 0.0
-    for s in range(lo.shape[0]):
+    for s in range(box.shape[0]):
         c = 1.0
         for k in range(3):
-            c *= np.floor((hi[s, k] - org[k]) / h) - np.floor((lo[s, k] - org[k]) / h) + 1.0
+            c *= np.floor((box[s, 3 + k] - org[k]) / h) - np.floor((box[s, k] - org[k]) / h) + 1.0
         total += c
-    return org, ncell, total
+    return org, ncell, total, finite
 
 
-@njit(cache=True)
-def _register(lo, hi, h, org, ncell, total):
-    """Sorted cell keys and the segment of each (segment, cell) entry: every
-    segment is in each cell its box overlaps (segment order kept per cell)."""
-    keys = np.empty(total, np.int64)
-    owner = np.empty(total, np.int64)
-    e = 0
-    for s in range(lo.shape[0]):
-        a0, a1 = int((lo[s, 0] - org[0]) / h), int((hi[s, 0] - org[0]) / h)
-        b0, b1 = int((lo[s, 1] - org[1]) / h), int((hi[s, 1] - org[1]) / h)
-        c0, c1 = int((lo[s, 2] - org[2]) / h), int((hi[s, 2] - org[2]) / h)
-        for a in range(a0, a1 + 1):
-            for b in range(b0, b1 + 1):
-                for c in range(c0, c1 + 1):
-                    keys[e] = (a * ncell[1] + b) * ncell[2] + c
-                    owner[e] = s
-                    e += 1
-    order = np.argsort(keys, kind="mergesort")
-    return keys[order], owner[order]
+_HASH = np.uint64(0x9E3779B97F4A7C15)  # Fibonacci hashing: 2^64 / golden ratio
 
 
 @njit(cache=True, inline="always")
-def _accepts(i, s, x, snode, sside, seg, mside, lo, hi):
+def _bucket(key, shift):
+    """Bucket of a cell key: the top bits of key × _HASH (cells of a regular
+    grid spread evenly over any power-of-two number of buckets)."""
+    return np.int64((np.uint64(key) * _HASH) >> np.uint64(shift))
+
+
+@njit(cache=True, inline="always")
+def _cells(box, h, org, s):
+    """Range of grid cells (a0, a1, b0, b1, c0, c1) of segment s's box."""
+    return (int((box[s, 0] - org[0]) / h), int((box[s, 3] - org[0]) / h), int((box[s, 1] - org[1]) / h),
+            int((box[s, 4] - org[1]) / h), int((box[s, 2] - org[2]) / h), int((box[s, 5] - org[2]) / h))
+
+
+@njit(cache=True)
+def _register(box, h, org, ncell, total):
+    """Every (segment, cell) entry, for each cell that a segment's box
+    overlaps, grouped by bucket (a hash of the cell): bucket b's entries at
+    start[b] .. start[b + 1] - 1 of keys (their cell) and owner (their
+    segment), in segment order. A counting sort in two passes: cells of
+    several buckets never need comparing (an argsort of the keys was 40 % of
+    the search on a 100 k-shell model); distinct cells sharing a bucket are
+    told apart by the key. Returns (start, keys, owner, shift)."""
+    bits = 1
+    while (1 << bits) < total:
+        bits += 1
+    shift = 64 - bits
+    start = np.zeros((1 << bits) + 1, np.int64)
+    for s in range(box.shape[0]):
+        a0, a1, b0, b1, c0, c1 = _cells(box, h, org, s)
+        for a in range(a0, a1 + 1):
+            for b in range(b0, b1 + 1):
+                for c in range(c0, c1 + 1):
+                    start[_bucket((a * ncell[1] + b) * ncell[2] + c, shift) + 1] += 1
+    for b in range(1 << bits):
+        start[b + 1] += start[b]
+    fill = start[:-1].copy()
+    keys = np.empty(total, np.int64)
+    owner = np.empty(total, np.int64)
+    for s in range(box.shape[0]):
+        a0, a1, b0, b1, c0, c1 = _cells(box, h, org, s)
+        for a in range(a0, a1 + 1):
+            for b in range(b0, b1 + 1):
+                for c in range(c0, c1 + 1):
+                    key = (a * ncell[1] + b) * ncell[2] + c
+                    e = fill[_bucket(key, shift)]
+                    keys[e] = key
+                    owner[e] = s
+                    fill[_bucket(key, shift)] = e + 1
+    return start, keys, owner, shift
+
+
+@njit(cache=True, inline="always")
+def _accepts(i, s, x, snode, sside, seg, mside, box):
     nd = snode[i]
+    for k in range(3):  # first: most entries of a cell fail it
+        if x[nd, k] < box[s, k] or x[nd, k] > box[s, 3 + k]:
+            return False
     if sside[i] >= 0 and sside[i] == mside[s]:
         return False
     for j in range(4):
         if seg[s, j] == nd:
             return False
-    for k in range(3):
-        if x[nd, k] < lo[s, k] or x[nd, k] > hi[s, k]:
-            return False
     return True
 
 
+@njit(cache=True, inline="always")
+def _scan(i, x, snode, sside, seg, mside, box, h, org, ncell, start, skeys, sowner, shift, out, at, cap):
+    """The candidates of slave entry i: the segments registered in its
+    cell whose grown box holds the node, in segment order; the first
+    ``cap`` into out[at:]. Returns how many there are."""
+    nd = snode[i]
+    key = ((int((x[nd, 0] - org[0]) / h) * ncell[1] + int((x[nd, 1] - org[1]) / h)) * ncell[2]
+           + int((x[nd, 2] - org[2]) / h))
+    m = 0
+    b = _bucket(key, shift)
+    for j in range(start[b], start[b + 1]):
+        if skeys[j] != key:
+            continue
+        s = sowner[j]
+        if _accepts(i, s, x, snode, sside, seg, mside, box):
+            if m < cap:
+                out[at + m] = s
+            m += 1
+    return m
+
+
+CAP = 16  # candidates of a slave entry kept by the first scan (most have a few; more: scanned again)
+
+
 @njit(cache=True, parallel=True)
-def _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, sowner, cptr, cand, fill):
-    """Count (fill = False) or store (fill = True) the candidates of each
-    slave entry: the segments registered in its cell whose grown box holds
-    the node, in segment order."""
-    for i in prange(snode.shape[0]):
-        nd = snode[i]
-        key = ((int((x[nd, 0] - org[0]) / h) * ncell[1] + int((x[nd, 1] - org[1]) / h)) * ncell[2]
-               + int((x[nd, 2] - org[2]) / h))
-        m = 0
-        j = np.searchsorted(skeys, key)
-        while j < skeys.shape[0] and skeys[j] == key:
-            s = sowner[j]
-            if _accepts(i, s, x, snode, sside, seg, mside, lo, hi):
-                if fill:
-                    cand[cptr[i] + m] = s
-                m += 1
-            j += 1
-        if not fill:
-            cptr[i + 1] = m
+def _candidates(x, snode, sside, seg, mside, box, h, org, ncell, start, skeys, sowner, shift):
+    """(cptr, cand) of all slave entries (find_candidates): one scan into a
+    buffer of CAP per entry, a second only for the entries with more."""
+    ns = snode.shape[0]
+    buf = np.empty(ns * CAP, np.int64)
+    count = np.empty(ns, np.int64)
+    for i in prange(ns):
+        count[i] = _scan(i, x, snode, sside, seg, mside, box, h, org, ncell, start, skeys, sowner, shift, buf,
+                         i * CAP, CAP)
+    cptr = np.zeros(ns + 1, np.int64)
+    for i in range(ns):
+        cptr[i + 1] = cptr[i] + count[i]
+    cand = np.empty(cptr[ns], np.int64)
+    for i in prange(ns):
+        if count[i] <= CAP:
+            for m in range(count[i]):
+                cand[cptr[i] + m] = buf[i * CAP + m]
+        else:
+            _scan(i, x, snode, sside, seg, mside, box, h, org, ncell, start, skeys, sowner, shift, cand, cptr[i],
+                  count[i])
+    return cptr, cand
 
 
 def find_candidates(x, snode, sside, seg, mside, grow):
@@ -270,30 +336,28 @@ def find_candidates(x, snode, sside, seg, mside, grow):
 
     Bucket sort: cells of about the median box size; a segment is entered
     in every cell its box overlaps (a few for most, many for a large one),
-    so a node looks in its own cell only."""
+    so a node looks in its own cell only (``_register``: the entries
+    grouped by a hash of their cell, so that the grid may be as large as
+    the model's spread without an array per cell)."""
     ns, nm = len(snode), len(seg)
-    cptr = np.zeros(ns + 1, np.int64)
     if nm == 0 or ns == 0:
-        return cptr, np.zeros(0, np.int64)
-    lo, hi = np.empty((nm, 3)), np.empty((nm, 3))
-    segment_boxes(x, seg, grow, lo, hi)
-    if not (np.isfinite(lo).all() and np.isfinite(hi).all() and np.isfinite(x[snode]).all()):
-        raise FloatingPointError("non-finite coordinates in the contact search: the run diverged")
-    h = max(float(np.median((hi - lo).max(axis=1))), 1e-12 * float(np.abs(hi).max() + np.abs(lo).max()), 1e-300)
+        return np.zeros(ns + 1, np.int64), np.zeros(0, np.int64)
+    box = np.empty((nm, 6))
+    segment_boxes(x, seg, grow, box)
+    sample = box[::max(nm // 4096, 1)]
+    # cells of about the median box (of a sample: any size finds the same candidates, only faster or slower)
+    h = max(float(np.median((sample[:, 3:] - sample[:, :3]).max(axis=1))), 1e-12 * float(np.abs(box).max()), 1e-300)
     while True:
-        org, ncell_f, total = _grid(x, snode, lo, hi, h)
+        org, ncell_f, total, finite = _grid(x, snode, box, h)
+        if not finite:
+            raise FloatingPointError("non-finite coordinates in the contact search: the run diverged")
         # a few huge segments must not flood the grid, nor a far node overflow its cell keys
         if total <= 64 * nm and ncell_f[0] * ncell_f[1] * ncell_f[2] < 2.0**62:
             break
         h *= 2.0
     ncell = ncell_f.astype(np.int64)
-    skeys, sowner = _register(lo, hi, h, org, ncell, int(total))
-    dummy = np.zeros(0, np.int64)
-    _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, sowner, cptr, dummy, False)
-    cptr = np.cumsum(cptr)
-    cand = np.empty(cptr[-1], np.int64)
-    _scan(x, snode, sside, seg, mside, lo, hi, h, org, ncell, skeys, sowner, cptr, cand, True)
-    return cptr, cand
+    start, skeys, sowner, shift = _register(box, h, org, ncell, int(total))
+    return _candidates(x, snode, sside, seg, mside, box, h, org, ncell, start, skeys, sowner, shift)
 
 
 @njit(cache=True)
