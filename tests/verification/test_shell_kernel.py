@@ -215,6 +215,33 @@ def test_lumped_mass_rotary_inertia_and_time_step(tmp_path):
     assert g.critical_dt(SimpleNamespace(x=x)) == pytest.approx(min(dts), rel=1e-12)
 
 
+def test_steps_of_the_force_pass_equal_the_element_time_step(tmp_path):
+    """The critical steps the force kernel leaves at x(n+1) (what the loop
+    asks for next) are shell_timestep's at the same positions to round-off,
+    on a warped, distorted mesh with triangles after large motions; an
+    element deleted by the user has none (+inf) in both."""
+    xyz, quads = grid(6, 5, 30.0, 25.0)
+    rng = np.random.default_rng(11)
+    xyz[:, :2] += rng.uniform(-1.5, 1.5, (len(xyz), 2))
+    xyz[:, 2] = rng.uniform(-1.0, 1.0, len(xyz))
+    quads[::4, 3] = quads[::4, 2]  # some triangles
+    g, model = _group(tmp_path, xyz, quads, section="1,2,0.8333,3\n1.0")
+    g.st.alive[5] = 0
+    x = model.nodes.xyz.copy()
+    for _ in range(5):
+        v = rng.normal(size=x.shape) * 1e3
+        x = x + 1e-3 * v
+        _step(g, x, v, rng.normal(size=x.shape), 1e-3)
+    from_forces = g.st.step.copy()
+    fresh = g.critical_dt(SimpleNamespace(x=x))
+    computed = g.critical_dt(SimpleNamespace(x=x))  # asked again: the element pass
+    assert fresh == from_forces.min() and computed == g.st.step.min()
+    assert fresh == pytest.approx(computed, rel=1e-12)
+    assert np.isinf(from_forces[5]) and np.isinf(g.st.step[5])
+    assert (g.s.tri == 1).sum() >= 5 and np.isfinite(np.delete(from_forces, 5)).all()
+    np.testing.assert_allclose(from_forces, g.st.step, rtol=1e-12)
+
+
 def test_vectorised_points_equal_the_per_point_update(tmp_path):
     """A warped 4 x 3 patch of MAT_024 shells (NIP 5, hardening curve,
     Cowper–Symonds) driven through 30 steps of stretching and random nodal

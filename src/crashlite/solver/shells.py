@@ -89,6 +89,7 @@ class ShellState:
     hg_energy: np.ndarray  # (n,) float64 hourglass energy [energy]
     fe: np.ndarray  # (n, 4, 3) float64 corner forces ON the nodes [force]
     me: np.ndarray  # (n, 4, 3) float64 corner moments ON the nodes [force·length]
+    step: np.ndarray  # (n,) float64 critical step of each element at the last forces' positions [time]
     points: np.ndarray  # scratch of kernels.shell (``scratch``)
     geometry: np.ndarray
     point_k: np.ndarray
@@ -102,7 +103,7 @@ def new_state(s: ShellSet, n_nodes: int) -> ShellState:
     ptr, corner_of = corner_incidence(n_nodes, s.conn)
     return ShellState(np.zeros((n, k, 5)), np.zeros((n, k, 5)), np.zeros((n, k)), np.zeros((n, k), np.int8),
                       s.thick0.copy(), np.ones(n, np.int8), np.zeros((n, 5)), np.zeros(n), np.zeros(n),
-                      np.zeros((n, 4, 3)), np.zeros((n, 4, 3)), *scratch(k), ptr, corner_of)
+                      np.zeros((n, 4, 3)), np.zeros((n, 4, 3)), np.full(n, np.inf), *scratch(k), ptr, corner_of)
 
 
 def compute_forces(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
@@ -110,7 +111,8 @@ def compute_forces(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
     shell_forces(x, v, w, float(dt), s.conn, s.tri, s.mat_of, s.mtype, s.props, s.mcurve, s.curve_start,
                  s.curve_stop, s.curve_x, s.curve_y, s.nip, s.rule, s.shrf, s.hg_kind, s.hg_qm, s.hg_qb, s.hg_qw,
                  s.rho, int(s.istupd == 1), int(s.bwc == 1), st.sig, st.back, st.epsp, st.ipfail, st.thick,
-                 st.alive, st.hgq, st.energy, st.hg_energy, st.points, st.geometry, st.point_k, st.fe, st.me)
+                 st.alive, st.hgq, st.energy, st.hg_energy, st.points, st.geometry, st.point_k, st.fe, st.me,
+                 st.step)
 
 
 def element_areas(x: np.ndarray, conn: np.ndarray, tri: np.ndarray) -> np.ndarray:
@@ -455,10 +457,12 @@ class ShellGroup(ElementGroup):
         self.warnings = s.warnings
         self._frows = self.st.fe.reshape(-1, 3)
         self._mrows = self.st.me.reshape(-1, 3)
-        self._dt = np.empty(len(s))
+        self._dt = self.st.step
+        self._fresh = False  # the kernel's steps are those of the current positions
 
     def forces(self, st) -> None:
         compute_forces(self.s, self.st, st.x, st.v, st.w, st.dt)
+        self._fresh = True
         gather_corner_pair(self.st.node_ptr, self.st.corner_of, self._frows, st.f, self._mrows, st.moment)
 
     def corner_forces(self) -> np.ndarray:
@@ -474,8 +478,12 @@ class ShellGroup(ElementGroup):
         return lumped(self.s, n_nodes)
 
     def critical_dt(self, st) -> float:
-        s = self.s
-        shell_timestep(st.x, s.conn, s.tri, self.st.alive, s.mat_of, s.props, self._dt)
+        """The smallest element step at st.x: the one the forces just
+        computed (the time loop asks right after them), else computed."""
+        if not self._fresh:
+            s = self.s
+            shell_timestep(st.x, s.conn, s.tri, self.st.alive, s.mat_of, s.props, self._dt)
+        self._fresh = False
         return float(self._dt.min()) if len(self._dt) else np.inf
 
     @property

@@ -69,6 +69,7 @@ Arrays (n elements; units of the model, e.g. mm, t, s, N, MPa):
   energy (n,) float64 internal energy [energy]; hg_energy (n,) float64 hourglass energy [energy]
   points, geometry, kk: scratch (see ``scratch``)
   fe, me (n, 4, 3) float64 output corner forces [force] and moments [force·length]
+  step (n,) float64 output: each element's critical step at x(n+1) as shell_timestep's (+inf: inactive) [time]
 """
 
 import math
@@ -78,7 +79,7 @@ from numba import njit, prange
 
 from .plane_stress import (N_ROWS, P_E, P_G, P_WAVE, R_D, R_DEZ, R_FAILED, R_OK, R_WK, W, update_block,
                            update_point, work_density)
-from .shell_block import (BW, G_AREA, G_AREA1, G_F, G_HG, G_HGS, G_LIVE, G_RATE, G_RES, N_G, block_forces, block_rates,
+from .shell_block import (BW, G_AREA, G_AREA1, G_DT, G_F, G_HG, G_HGS, G_LIVE, G_RATE, G_RES, N_G, block_forces, block_rates,
                           gather_nodes, gather_positions)
 
 
@@ -154,7 +155,7 @@ def _point(e, k, p, dt, mat_of, mtype, props, mcurve, cs, ce, cx, cy, shrf, sig,
 @njit(cache=True, error_model="numpy")
 def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, cs, ce, cx, cy, nip, rule,
               shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq,
-              energy, hg_energy, P, kk, G, fe, me):
+              energy, hg_energy, P, kk, G, fe, me, step):
     """Elements e0 .. e1 - 1 (one chunk; scratch rows ``P``, ``G``, point
     numbers ``kk``) in blocks of BLOCK: the strain rates at the mid-step
     shape (kernels.shell_block, vectorised), the increments of the block's
@@ -288,11 +289,14 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
         for e in range(first, last):
             l = e - first
             if G[G_LIVE * BW + l] <= 0.0:
+                step[e] = np.inf
                 continue
             if not G[G_AREA1 * BW + l] > 0.0:
                 alive[e] = -1
                 _kill(e, fe, me)
+                step[e] = np.inf
                 continue
+            step[e] = G[G_DT * BW + l] / math.sqrt(props[mat_of[e], P_WAVE])
             for a in range(4):
                 for i in range(3):
                     fe[e, a, i] = G[(G_F + 6 * a + i) * BW + l]
@@ -329,10 +333,11 @@ def _hourglass(e, l, G, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, hg
 @njit(cache=True, parallel=True)
 def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve_start, curve_stop, curve_x,
                  curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail,
-                 thick, alive, hgq, energy, hg_energy, points, geometry, kk, fe, me):
+                 thick, alive, hgq, energy, hg_energy, points, geometry, kk, fe, me, step):
     """One step of the shells (see the module docstring for the arrays):
     stresses, thickness, energies and state to t(n+1); corner forces fe
-    and moments me ON the nodes."""
+    and moments me ON the nodes; the elements' critical steps at x(n+1)
+    (the loop needs them next: one pass over the elements less)."""
     n = conn.shape[0]
     nc = points.shape[0]
     for ch in prange(nc):
@@ -340,7 +345,7 @@ def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve
         gc = geometry[ch]
         _elements(ch * n // nc, (ch + 1) * n // nc, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve,
                   curve_start, curve_stop, curve_x, curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho,
-                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, pts, kk, gc, fe, me)
+                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, pts, kk, gc, fe, me, step)
 
 
 @njit(cache=True, parallel=True)

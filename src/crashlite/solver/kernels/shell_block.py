@@ -43,7 +43,8 @@ G_F = 66  # 24 rows: force and moment ON corner a, component i at 6a + i and 6a 
 # fourth corner zero)
 G_AREA1 = 90  # area at x(n+1) (≤ 0 or NaN: degenerate)
 G_LIVE = 91  # kernels.shell's: the mid-step area of an element that gets forces this step (0: none)
-N_G = 92
+G_DT = 92  # at x(n+1): the critical step times the wave speed, L = A / longest side (a triangle's 2A / longest)
+N_G = 93
 
 
 @njit(cache=True)
@@ -207,7 +208,8 @@ def _corner(b1, b2, g, k1, k2, wq, fr, tx, ty, tz, bx, by, bz, nx, ny, nz):
 @njit(cache=True, error_model="numpy")
 def block_forces(bwc, G):
     """Corner forces and moments ON the nodes of the BW elements in G from
-    their resultants and hourglass stresses (see the module docstring)."""
+    their resultants and hourglass stresses (see the module docstring); the
+    area and the length of the critical step at x(n+1)."""
     for l in range(BW):
         tx, ty, tz, bx, by, bz, nx, ny, nz, X0, Y0, Z0, X1, Y1, Z1, X2, Y2, Z2, X3, Y3, Z3, area = _shape(G, l)
         quad = G[G_QUAD * BW + l]
@@ -238,3 +240,9 @@ def block_forces(bwc, G):
             G[(G_F + 12 + i) * BW + l] = f2[i] + tri * f3[i]
             G[(G_F + 18 + i) * BW + l] = quad * f3[i]
         G[G_AREA1 * BW + l] = area
+        # the element's step (kernels.shell.shell_timestep's, here where the shape is at hand)
+        s01 = (X1 - X0) ** 2 + (Y1 - Y0) ** 2 + (Z1 - Z0) ** 2
+        s12 = (X2 - X1) ** 2 + (Y2 - Y1) ** 2 + (Z2 - Z1) ** 2
+        s23 = (X3 - X2) ** 2 + (Y3 - Y2) ** 2 + (Z3 - Z2) ** 2
+        s30 = (X0 - X3) ** 2 + (Y0 - Y3) ** 2 + (Z0 - Z3) ** 2
+        G[G_DT * BW + l] = (2.0 - quad) * area / math.sqrt(max(max(s01, s12), max(s23, s30)))
