@@ -187,7 +187,9 @@ class ContactGroup(ElementGroup):
         self.side = np.zeros(ns, np.int8)  # the side of that (shell) segment it is on
         self.rows = np.zeros((ns, 5, 3))
         self.rnode = np.full((ns, 5), -1, np.int64)
-        self._box = np.empty((len(c.seg), 6))  # the segments' bounding boxes of the cycle
+        self._box = np.empty((len(c.seg), 6))  # the segments' bounding boxes of the cycle, grown by their reach
+        # how far from a segment a slave node's mid-surface may be in contact, less the node's half thickness
+        self._reach = 0.5 * c.mthick + np.where(c.onesided != 0, c.depth + 1e-2 * c.msize, 0.0)
         self.gap = np.zeros(ns)
         self.max_gap = 0.0  # largest penetration met so far [length]
         self.sorts = 0  # bucket sorts done
@@ -239,12 +241,12 @@ class ContactGroup(ElementGroup):
         self._since += 1
         if self._since >= c.bsort or 2.0 * kc.max_displacement(st.x, self.x_sort, self.involved) > self.margin:
             self._sort(st.x)
-        p_old = kc.power(self.rows, self.rnode, st.v)  # forces of t(n) at v(n+½)
-        kc.segment_extent(st.x, c.seg, self._box)
+        p_old = kc.power(self.rows, self.rnode, self.gap, st.v)  # forces of t(n) at v(n+½)
+        kc.segment_boxes(st.x, c.seg, self._reach, self._box)
         kc.contact_forces(st.x, st.v, float(st.dt), c.snode, c.sthick, c.sk, self._smass, c.seg, c.mthick, c.mk,
                           self._mmass, c.onesided, c.depth, c.msize, self.alive, self._box, self._cptr, self._cand,
                           self.prm, self.ft, self.prev, self.side, self.rows, self.rnode, self.gap)
-        p_new = kc.scatter(self.rows, self.rnode, st.v, c.node_side, st.f, self.resultant)
+        p_new = kc.scatter(self.rows, self.rnode, self.gap, st.v, c.node_side, st.f, self.resultant)
         # work of the contact forces over the step (trapezoid); stored and dissipated energy count positive
         self.energy[0] -= 0.5 * float(st.dt) * (p_old + p_new)
         if len(self.gap):

@@ -37,7 +37,8 @@ Arrays (ns slave entries, nm segments, nc candidates; model units):
   onesided (nm,) int8 1: solid face; depth (nm,) deepest penetration
   accepted behind a solid face [length]; msize (nm,) √area [length];
   alive (nm,) int8 0: the segment's element is eroded; box (nm, 6) the
-  segments' bounding boxes at x (segment_extent) [length]
+  segments' bounding boxes at x grown by their reach, ½ thickness plus, for
+  a solid face, the depth and 1 % of its size (segment_boxes) [length]
   cptr (ns + 1,), cand (nc,) int64 CSR slave entry -> candidate segments
   prm (N_PRM,) float64 interface parameters (P_*)
   ft (ns, 3) friction force on the node, kept between cycles [force];
@@ -146,26 +147,15 @@ def _far(box, s, px, py, pz, reach):
             or pz < box[s, 2] - reach or pz > box[s, 5] + reach)
 
 
-@njit(cache=True, parallel=True)
-def segment_extent(x, seg, box):
-    """Bounding boxes box (nm, 6) [length] of the segments at x: low corner,
-    high corner (once a cycle: the candidates of many nodes test each)."""
-    for s in prange(seg.shape[0]):
-        n0, n1, n2, n3 = seg[s, 0], seg[s, 1], seg[s, 2], seg[s, 3]
-        for k in range(3):
-            a, b, c, d = x[n0, k], x[n1, k], x[n2, k], x[n3, k]
-            box[s, k] = min(min(a, b), min(c, d))
-            box[s, 3 + k] = max(max(a, b), max(c, d))
-
-
 # --- search -------------------------------------------------------------------------------------
 
 
 @njit(cache=True, parallel=True)
 def segment_boxes(x, seg, grow, box):
     """Bounding boxes of the segments grown by ``grow`` (nm,) [length]: box
-    (nm, 6) lower corner, upper corner (one cache line per segment for the
-    search's test)."""
+    (nm, 6) lower corner, upper corner (one cache line per segment: the
+    search's test, and every cycle contact_forces' first test of each
+    candidate, with the segment's reach)."""
     for s in prange(seg.shape[0]):
         for k in range(3):
             a = x[seg[s, 0], k]
@@ -360,11 +350,11 @@ def find_candidates(x, snode, sside, seg, mside, grow):
     return _candidates(x, snode, sside, seg, mside, box, h, org, ncell, start, skeys, sowner, shift)
 
 
-@njit(cache=True)
+@njit(cache=True, parallel=True)
 def max_displacement(x, xref, nodes):
     """Largest |x − xref| over ``nodes`` [length] (xref indexed like nodes)."""
     m = 0.0
-    for j in range(nodes.shape[0]):
+    for j in prange(nodes.shape[0]):  # a max: the same on any number of threads
         nd = nodes[j]
         d = (x[nd, 0] - xref[j, 0]) ** 2 + (x[nd, 1] - xref[j, 1]) ** 2 + (x[nd, 2] - xref[j, 2]) ** 2
         m = max(m, d)
@@ -414,13 +404,15 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
         bnx = bny = bnz = 0.0
         bsg = 0
         if active:
+            hs = 0.5 * sthick[i]
             for c in range(cptr[i], cptr[i + 1]):
                 s = cand[c]
+                # box: grown by the segment's reach, so that most candidates are dropped on one cache line
+                if s != prev[i] and _far(box, s, px, py, pz, hs):
+                    continue
                 if alive[s] == 0:
                     continue
-                half = 0.5 * (sthick[i] + mthick[s])
-                if s != prev[i] and _far(box, s, px, py, pz, half + onesided[s] * (depth[s] + 1e-2 * msize[s])):
-                    continue  # most candidates: cheaper than the closest point
+                half = hs + 0.5 * mthick[s]
                 sg = 0
                 w0, w1, w2, w3 = _closest(x, seg, s, px, py, pz)
                 n0, n1, n2, n3 = seg[s, 0], seg[s, 1], seg[s, 2], seg[s, 3]
@@ -522,11 +514,15 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
 
 
 @njit(cache=True)
-def power(rows, rnode, v):
+def power(rows, rnode, gap, v):
     """Σ row · v over every row (the rate of work of the contact forces
-    at the velocities v), summed in slave order."""
+    at the velocities v), summed in slave order. Only entries in contact
+    have rows: gap > 0 (contact_forces accepts penetrations above a
+    positive tolerance), a read of 8 bytes for the others."""
     p = 0.0
     for i in range(rows.shape[0]):
+        if not gap[i] > 0.0:
+            continue
         for a in range(5):
             nd = rnode[i, a]
             if nd >= 0:
@@ -535,13 +531,16 @@ def power(rows, rnode, v):
 
 
 @njit(cache=True)
-def scatter(rows, rnode, v, node_side, f, resultant):
+def scatter(rows, rnode, gap, v, node_side, f, resultant):
     """f += the rows, in slave order; resultant (3,) = the force on the
     slave side (row 0 where node_side is 1, else the segment rows).
-    Returns the power of the rows at the velocities v."""
+    Returns the power of the rows at the velocities v (entries in contact
+    only, as ``power``)."""
     p = 0.0
     resultant[0] = resultant[1] = resultant[2] = 0.0
     for i in range(rows.shape[0]):
+        if not gap[i] > 0.0:
+            continue
         for a in range(5):
             nd = rnode[i, a]
             if nd < 0:
