@@ -80,7 +80,7 @@ from numba import njit, prange
 from .plane_stress import (N_ROWS, P_E, P_G, P_WAVE, R_D, R_DEZ, R_FAILED, R_OK, R_WK, W, update_block,
                            update_point, work_density)
 from .shell_block import (BW, G_AREA, G_AREA1, G_DT, G_F, G_HG, G_HGS, G_LIVE, G_RATE, G_RES, N_G, block_forces,
-                          block_rates, gather_nodes, gather_positions)
+                          block_rates, gather_nodes)
 
 
 def _rules():
@@ -284,7 +284,6 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
             for i, val in enumerate((h0, h1, h2, h3, h4)):
                 G[(G_HGS + i) * BW + l] = val
         # forces at x(n+1)
-        gather_positions(first, last - first, x, v, 0.0, conn, G)
         block_forces(bwc, G)
         for e in range(first, last):
             l = e - first

@@ -13,12 +13,11 @@ C0 triangle, and only the shear's nodal mean (⅓ instead of ¼) and the
 quadrilateral-only terms (warping, hourglass) tell the two apart.
 
 The block's scratch G is flat with a constant width BW (row r of element
-slot l at r·BW + l): a first loop copies the nodes' positions,
-velocities and angular velocities into it (indirect loads, not
-vectorised), the second computes from G alone (and the caller copies
-the forces out), so that LLVM sees no
-aliasing and keeps the whole element in SIMD registers, BW elements at
-a time.
+slot l at r·BW + l): a first loop copies the nodes' positions (at
+mid-step and at x(n+1)), velocities and angular velocities into it
+(indirect loads, not vectorised), the others compute from G alone (and
+the caller copies the forces out), so that LLVM sees no aliasing and
+keeps the whole element in SIMD registers, BW elements at a time.
 """
 
 import math
@@ -35,7 +34,7 @@ G_QUAD = 36
 G_AREA = 37  # area (≤ 0 or NaN: degenerate)
 G_RATE = 38  # 8 rows: ε̇x, ε̇y, γ̇xy, κ̇x, κ̇y, 2κ̇xy, γ̇yz, γ̇xz
 G_HG = 46  # 7 rows: hourglass rates (membrane x, y, out-of-plane, bending x, y), Σ(B1² + B2²), Σγ²
-# forces at x(n+1): input rows (positions in G_Q again)
+# forces at x(n+1): input rows (and the positions G_Q1)
 G_RES = 53  # 8 rows: resultants Nx, Ny, Nxy, Mx, My, Mxy, Qx, Qy per unit length
 G_HGS = 61  # 5 rows: hourglass generalized stresses
 # output rows
@@ -44,46 +43,39 @@ G_F = 66  # 24 rows: force and moment ON corner a, component i at 6a + i and 6a 
 G_AREA1 = 90  # area at x(n+1) (≤ 0 or NaN: degenerate)
 G_LIVE = 91  # kernels.shell's: the mid-step area of an element that gets forces this step (0: none)
 G_DT = 92  # at x(n+1): the critical step times the wave speed, L = A / longest side (a triangle's 2A / longest)
-N_G = 93
+G_Q1 = 93  # 12 rows, input: node a's position at x(n+1) relative to node 1
+N_G = 105
 
 
 @njit(cache=True)
 def gather_nodes(first, nb, x, v, w_ang, dt, conn, tri, G):
-    """Copy the nodes of elements first .. first + nb - 1 into G: mid-step
-    positions, velocities, angular velocities (slots past nb repeat the
-    last element)."""
-    gather_positions(first, nb, x, v, 0.5 * dt, conn, G)
-    for l in range(BW):
-        e = first + min(l, nb - 1)
-        for a in range(4):
-            nd = conn[e, a]
-            for i in range(3):
-                G[(G_V + 3 * a + i) * BW + l] = v[nd, i]
-                G[(G_W + 3 * a + i) * BW + l] = w_ang[nd, i]
-        G[G_QUAD * BW + l] = 0.0 if tri[e] == 1 else 1.0
-
-
-@njit(cache=True)
-def gather_positions(first, nb, x, v, shift, conn, G):
-    """Positions x − shift·v of the nodes of elements first .. first + nb - 1
-    relative to their first node into G (slots past nb repeat the last)."""
+    """Copy the nodes of elements first .. first + nb - 1 into G: positions
+    relative to the first node at mid-step and at x(n+1), velocities,
+    angular velocities (slots past nb repeat the last element). One
+    gather for both passes: the loads are indirect, the costly part."""
+    h = 0.5 * dt
     for l in range(BW):
         e = first + min(l, nb - 1)
         n0 = conn[e, 0]
         for a in range(4):
             nd = conn[e, a]
             for i in range(3):
-                G[(G_Q + 3 * a + i) * BW + l] = (x[nd, i] - shift * v[nd, i]) - (x[n0, i] - shift * v[n0, i])
+                xa, va, x0, v0 = x[nd, i], v[nd, i], x[n0, i], v[n0, i]
+                G[(G_Q + 3 * a + i) * BW + l] = (xa - h * va) - (x0 - h * v0)
+                G[(G_Q1 + 3 * a + i) * BW + l] = xa - x0
+                G[(G_V + 3 * a + i) * BW + l] = va
+                G[(G_W + 3 * a + i) * BW + l] = w_ang[nd, i]
+        G[G_QUAD * BW + l] = 0.0 if tri[e] == 1 else 1.0
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _shape(G, l):
+def _shape(G, q, l):
     """Frame (x̂, ŷ, ẑ), local coordinates of the four corners about the
-    centroid and area of slot l from its positions in G (NaN or area ≤ 0:
-    degenerate)."""
-    q1x, q1y, q1z = G[(G_Q + 3) * BW + l], G[(G_Q + 4) * BW + l], G[(G_Q + 5) * BW + l]
-    q2x, q2y, q2z = G[(G_Q + 6) * BW + l], G[(G_Q + 7) * BW + l], G[(G_Q + 8) * BW + l]
-    q3x, q3y, q3z = G[(G_Q + 9) * BW + l], G[(G_Q + 10) * BW + l], G[(G_Q + 11) * BW + l]
+    centroid and area of slot l from its positions in G rows q .. q + 11
+    (NaN or area ≤ 0: degenerate)."""
+    q1x, q1y, q1z = G[(q + 3) * BW + l], G[(q + 4) * BW + l], G[(q + 5) * BW + l]
+    q2x, q2y, q2z = G[(q + 6) * BW + l], G[(q + 7) * BW + l], G[(q + 8) * BW + l]
+    q3x, q3y, q3z = G[(q + 9) * BW + l], G[(q + 10) * BW + l], G[(q + 11) * BW + l]
     # normal along the diagonals' cross product (a triangle's: its sides')
     sx, sy, sz = q3x - q1x, q3y - q1y, q3z - q1z
     nx = q2y * sz - q2z * sy
@@ -140,7 +132,7 @@ def _local(G, a, l, tx, ty, tz, bx, by, bz, nx, ny, nz):
 def block_rates(bwc, G):
     """The rates of the BW elements in G (see the module docstring)."""
     for l in range(BW):
-        tx, ty, tz, bx, by, bz, nx, ny, nz, X0, Y0, Z0, X1, Y1, Z1, X2, Y2, Z2, X3, Y3, Z3, area = _shape(G, l)
+        tx, ty, tz, bx, by, bz, nx, ny, nz, X0, Y0, Z0, X1, Y1, Z1, X2, Y2, Z2, X3, Y3, Z3, area = _shape(G, G_Q, l)
         quad = G[G_QUAD * BW + l]
         a0, a1, a2, a3, c0, c1, c2, c3, g0, g1, g2, g3 = _gradient(X0, Y0, X1, Y1, X2, Y2, X3, Y3, area)
         # local velocities and angular velocities
@@ -211,7 +203,7 @@ def block_forces(bwc, G):
     their resultants and hourglass stresses (see the module docstring); the
     area and the length of the critical step at x(n+1)."""
     for l in range(BW):
-        tx, ty, tz, bx, by, bz, nx, ny, nz, X0, Y0, Z0, X1, Y1, Z1, X2, Y2, Z2, X3, Y3, Z3, area = _shape(G, l)
+        tx, ty, tz, bx, by, bz, nx, ny, nz, X0, Y0, Z0, X1, Y1, Z1, X2, Y2, Z2, X3, Y3, Z3, area = _shape(G, G_Q1, l)
         quad = G[G_QUAD * BW + l]
         a0, a1, a2, a3, c0, c1, c2, c3, g0, g1, g2, g3 = _gradient(X0, Y0, X1, Y1, X2, Y2, X3, Y3, area)
         zg = g0 * Z0 + g1 * Z1 + g2 * Z2 + g3 * Z3
