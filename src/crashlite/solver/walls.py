@@ -12,8 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 
+from .kernels.integrate import copy_rows
 from .kernels.rigid import plane_reach
-from .kernels.rigidwall import cylinder_wall, planar_wall
+from .kernels.rigidwall import N_CHUNKS, cylinder_wall, planar_wall
 from .rigid import cross
 
 
@@ -24,6 +25,7 @@ class Walls:
         self.walls = walls
         self.point = [w.point.copy() for w in walls]
         self.hit = [np.zeros(len(w.nodes), np.bool_) for w in walls]
+        self._part = np.zeros((N_CHUNKS, 2))  # planar_wall's per-chunk sums
         self._before = np.zeros((n_nodes, 3))
         self.velocity = np.array([w.velocity for w in walls], float)  # along the normal
         self.force = np.zeros((len(walls), 4))  # force on each wall (3) and the energy it took over the step
@@ -43,7 +45,7 @@ class Walls:
         """Velocities before the velocity update: the energy a wall takes is
         the work of its impulses over the step (kernels.rigidwall)."""
         if self.walls:
-            np.copyto(self._before, v)
+            copy_rows(v, self._before)
 
     def kinetic(self) -> float:
         return sum(0.5 * w.mass * self.velocity[k] ** 2 for k, w in enumerate(self.walls))
@@ -67,7 +69,7 @@ class Walls:
             else:
                 self.velocity[k] = planar_wall(st.x, st.v, self._before, st.mass, w.nodes, self.point[k], w.normal,
                                                self.velocity[k], w.mass, w.fric, dt, self.force[k], self.hit[k],
-                                               w.edge_l, w.edge_m, w.len_l, w.len_m)
+                                               w.edge_l, w.edge_m, w.len_l, w.len_m, self._part)
             ew += self.force[k, 3]
             v_nodes = self.velocity[k]
             for body, nodes in self.body_nodes[k]:

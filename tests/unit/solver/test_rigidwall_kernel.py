@@ -4,7 +4,7 @@ it exchanges with them."""
 import numpy as np
 import pytest
 
-from crashlite.solver.kernels.rigidwall import planar_wall
+from crashlite.solver.kernels.rigidwall import N_CHUNKS, planar_wall
 
 DT = 1e-6
 
@@ -17,7 +17,8 @@ def _call(x, v, mass, wall_v=10000.0, wall_mass=5.0, finite=True):
     hit = np.zeros(len(x), np.bool_)
     ln = 100.0 if finite else 0.0
     v_new = planar_wall(x, v, v.copy(), mass, nodes, np.zeros(3), np.array([1.0, 0.0, 0.0]), wall_v, wall_mass, 0.0, DT,
-                        force, hit, np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0]), ln, ln)
+                        force, hit, np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0]), ln, ln,
+                        np.zeros((N_CHUNKS, 2)))
     return v_new, force
 
 
@@ -45,3 +46,37 @@ def test_a_node_beside_a_finite_wall_and_behind_its_plane_is_not_struck_when_it_
     v = np.zeros((1, 3))
     v_new, force = _call(x, v, np.array([1e-3]))
     assert force[0] < 0.0 and v[0, 0] > 10000.0 * 0.99
+
+
+def test_many_nodes_struck_at_once_keep_momentum_the_same_on_one_and_two_threads(two_threads):
+    """A moving wall strikes a few hundred of 5000 nodes spread over its
+    face and beyond (the hit test runs in fixed chunks of nodes, in
+    parallel): the wall and the struck nodes leave with the common velocity
+    of a plastic impact (momentum kept to 1e-12), the nodes it does not
+    strike are untouched, and velocities, wall speed and force are the
+    same bit for bit on one and two threads."""
+    import numba
+
+    rng = np.random.default_rng(5)
+    n = 5000
+    x = np.column_stack([rng.uniform(-0.002, 0.03, n), rng.uniform(-20.0, 120.0, n), rng.uniform(0.0, 100.0, n)])
+    v0 = rng.normal(size=(n, 3)) * 100.0
+    mass = rng.uniform(1e-4, 2e-3, n)
+    out = []
+    threads = numba.get_num_threads()
+    try:
+        for nt in (1, 2):
+            numba.set_num_threads(nt)
+            v = v0.copy()
+            v_new, force = _call(x, v, mass, 10000.0, 5.0)
+            out.append((v, v_new, force))
+    finally:
+        numba.set_num_threads(threads)
+    (v, v_new, force), (v2, v_new2, force2) = out
+    assert np.array_equal(v, v2) and v_new == v_new2 and np.array_equal(force, force2)
+    struck = np.any(v != v0, axis=1)
+    assert 100 < struck.sum() < n // 2
+    np.testing.assert_allclose(v[struck, 0] + x[struck, 0] / DT, v_new, rtol=1e-12)  # they land on the wall
+    brought = (mass[struck] * (v0[struck, 0] + x[struck, 0] / DT)).sum()
+    assert 5.0 * v_new + (mass[struck] * (v[struck, 0] + x[struck, 0] / DT)).sum() == pytest.approx(
+        5.0 * 10000.0 + brought, rel=1e-12)

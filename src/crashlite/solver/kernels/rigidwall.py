@@ -11,7 +11,7 @@ their momentum (perfectly plastic impact), as a rigid impactor does.
 """
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 
 @njit(cache=True, inline="always")
@@ -46,46 +46,67 @@ def _contact_velocity(v, v_before, i, n0, n1, n2, vn, vn_new, fric, m, dt, force
                  + j2 * (wall_mid * n2 - 0.5 * (v_before[i, 2] + v[i, 2])))
 
 
+N_CHUNKS = 64  # fixed node chunks of the hit test: sums in the same order on any number of threads
+
+
+@njit(cache=True, parallel=True)
+def _planar_hits(x, v, mass, nodes, point, normal, wall_v, dt, hit, edge_l, edge_m, len_l, len_m, part):
+    """hit[k]: node k meets the plane this step (planar_wall); part (N_CHUNKS,
+    2) the momentum the hit nodes of each chunk bring and their mass."""
+    nk = nodes.shape[0]
+    nc = part.shape[0]
+    for ch in prange(nc):
+        p_moved = 0.0
+        m_hit = 0.0
+        for k in range(ch * nk // nc, (ch + 1) * nk // nc):
+            i = nodes[k]
+            d = 0.0
+            vn = 0.0
+            gap = 0.0
+            for j in range(3):
+                d += (x[i, j] + dt * v[i, j] - point[j] - dt * wall_v * normal[j]) * normal[j]
+                vn += v[i, j] * normal[j]
+                gap += (x[i, j] - point[j]) * normal[j]
+            # a node already further behind the plane than one step of relative motion never met the wall: it
+            # came round a finite wall's edge (e.g. barrier cells beside an offset impactor), it is not struck
+            hit[k] = d < 0.0 and gap >= -dt * (abs(wall_v) + abs(vn)) * 1.01
+            if hit[k] and len_l > 0.0:  # finite wall: only nodes over the rectangle
+                pl = 0.0
+                pm = 0.0
+                for j in range(3):
+                    pl += (x[i, j] - point[j]) * edge_l[j]
+                    pm += (x[i, j] - point[j]) * edge_m[j]
+                hit[k] = 0.0 <= pl <= len_l and 0.0 <= pm <= len_m
+            if hit[k]:
+                # momentum the node brings, counting the approach it makes this step
+                p_moved += mass[i] * (vn + gap / dt)
+                m_hit += mass[i]
+        part[ch, 0] = p_moved
+        part[ch, 1] = m_hit
+
+
 @njit(cache=True)
 def planar_wall(x, v, v_before, mass, nodes, point, normal, wall_v, wall_mass, fric, dt, force, hit,
-                edge_l, edge_m, len_l, len_m):
+                edge_l, edge_m, len_l, len_m, part):
     """Correct v of ``nodes`` against the plane through ``point`` (moving at
     ``wall_v`` along the unit ``normal``, which points to the allowed side).
 
     wall_mass 0: the wall does not move. fric: 0 frictionless, 1 no sliding,
     between: Coulomb coefficient on the normal impulse. Adds the force of the
     nodes on the wall to ``force`` (3,) and the energy it takes to force[3]
-    (``_contact_velocity``); ``hit`` (len(nodes),) is scratch.
+    (``_contact_velocity``); ``hit`` (len(nodes),) bool and ``part``
+    (N_CHUNKS, 2) are scratch.
     A finite wall (len_l > 0) is the rectangle [0, len_l] x [0, len_m] along
     the unit edges ``edge_l``, ``edge_m`` from ``point`` (its corner).
     Returns the wall's new normal velocity.
     """
     nk = nodes.shape[0]
+    _planar_hits(x, v, mass, nodes, point, normal, wall_v, dt, hit, edge_l, edge_m, len_l, len_m, part)
     p_moved = 0.0
     m_hit = 0.0
-    for k in range(nk):
-        i = nodes[k]
-        d = 0.0
-        vn = 0.0
-        gap = 0.0
-        for j in range(3):
-            d += (x[i, j] + dt * v[i, j] - point[j] - dt * wall_v * normal[j]) * normal[j]
-            vn += v[i, j] * normal[j]
-            gap += (x[i, j] - point[j]) * normal[j]
-        # a node already further behind the plane than one step of relative motion never met the wall: it
-        # came round a finite wall's edge (e.g. barrier cells beside an offset impactor), it is not struck
-        hit[k] = d < 0.0 and gap >= -dt * (abs(wall_v) + abs(vn)) * 1.01
-        if hit[k] and len_l > 0.0:  # finite wall: only nodes over the rectangle
-            pl = 0.0
-            pm = 0.0
-            for j in range(3):
-                pl += (x[i, j] - point[j]) * edge_l[j]
-                pm += (x[i, j] - point[j]) * edge_m[j]
-            hit[k] = 0.0 <= pl <= len_l and 0.0 <= pm <= len_m
-        if hit[k]:
-            # momentum the node brings, counting the approach it makes this step
-            p_moved += mass[i] * (vn + gap / dt)
-            m_hit += mass[i]
+    for ch in range(part.shape[0]):
+        p_moved += part[ch, 0]
+        m_hit += part[ch, 1]
     if m_hit == 0.0:
         return wall_v
     v_new = wall_v
