@@ -45,8 +45,9 @@ Arrays (ns slave entries, nm segments, nc candidates; model units):
   prev (ns,) int64 segment of the last cycle (-1: none); side (ns,) int8
   the side of that shell segment the node is on (0: none)
   rows (ns, 5, 3) forces ON the node and the segment nodes [force];
-  rnode (ns, 5) int64 their node indices (-1: none; rnode[i, 0] = -1 only
-  with rows[i] zero, as allocated); gap (ns,) penetration
+  rnode (ns, 5) int64 their node indices (-1: none); gap (ns,) penetration,
+  > 0 exactly for the entries that have rows (the others' rows are zero
+  and their rnode -1, as allocated)
 """
 
 import math
@@ -250,10 +251,10 @@ def _register(box, h, org, ncell, total):
             for b in range(b0, b1 + 1):
                 for c in range(c0, c1 + 1):
                     key = (a * ncell[1] + b) * ncell[2] + c
-                    e = fill[_bucket(key, shift)]
-                    keys[e] = key
-                    owner[e] = s
-                    fill[_bucket(key, shift)] = e + 1
+                    bk = _bucket(key, shift)
+                    keys[fill[bk]] = key
+                    owner[fill[bk]] = s
+                    fill[bk] += 1
     return start, keys, owner, shift
 
 
@@ -387,12 +388,12 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
     active = prm[P_ACTIVE] != 0.0
     friction = fs > 0.0 or fd > 0.0
     for i in prange(snode.shape[0]):
-        if rnode[i, 0] >= 0:  # in contact last cycle (otherwise its rows are zero still: most entries, and
+        g_prev = gap[i]  # the penetration of the last cycle
+        if g_prev > 0.0:  # in contact last cycle (otherwise its rows are zero still: most entries, and
             for a in range(5):  # not writing them halves this loop's memory traffic)
                 rnode[i, a] = -1
                 for k in range(3):
                     rows[i, a, k] = 0.0
-        g_prev = gap[i]  # the penetration of the last cycle
         gap[i] = 0.0
         nd = snode[i]
         px, py, pz = x[nd, 0], x[nd, 1], x[nd, 2]
