@@ -55,7 +55,7 @@ def _reduce(args) -> int:
                          interface_mode=args.interface_mode, spring_length=args.spring_length,
                          damping_ratio=args.damping_ratio, mass_split=args.mass_split, springs=args.springs,
                          modes=args.modes, connection=args.connection, condensed_modes=args.condensed_modes,
-                         quiet=False)
+                         cut_dashpots=not args.no_cut_dashpots, quiet=False)
     files = red.write(args.output, args.report, fmt=args.format)
     s = red.summary()["model_size"]
     print(f"wrote {files['deck']} ({s['simplified_elements']} of {s['full_elements']} elements, "
@@ -202,6 +202,9 @@ def add_commands(sub) -> None:
     r.add_argument("--condensed-modes", type=int, default=0,
                    help="with the condensed connection, the replaced structure's N lowest free modes move on their "
                         "own beside the residual stiffness of the rest (0: quasi-static)")
+    r.add_argument("--no-cut-dashpots", action="store_true",
+                   help="with the condensed connection, leave out the dashpots of the replaced structure's wave "
+                        "impedance between the cut nodes and the rear body (waves then come back from the cut)")
     r.add_argument("--interface-mode", choices=("rigid", "assembly"), default="rigid",
                    help="one rigid body over the cut, or one per assembly")
     r.add_argument("--spring-length", type=float, default=100.0, help="spring length [deck length unit]")

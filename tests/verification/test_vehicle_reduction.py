@@ -117,19 +117,21 @@ def test_reduction_conserves_mass_and_builds_the_surrogate(study):
 @pytest.mark.slow
 def test_simplified_car_follows_the_full_car(study):
     """At the default interface (x = −600 mm), the replaced structure
-    condensed on the cut: kinetic and internal energy rated ≥ 0.9 over the
-    deceleration phase (issue 8's bound); the firewall intrusion field
+    condensed on the cut with the cut dashpots: kinetic and internal energy
+    rated ≥ 0.9 over the deceleration phase (issue 8's bound; measured
+    0.993); the crash-box energy within 2 % (issue 8's bound; measured
+    −1.5 %, without the dashpots −3.0 %); the firewall intrusion field
     within 25 % of the full car's largest intrusion at every node and 6 %
-    on average (measured 12.8 % and 2.7 %; the springs' rigid interface
+    on average (measured 12.1 % and 2.9 %; the springs' rigid interface
     gave 41 % and 11.4 %, README), what the interface carries within 5 %
     (0.9 %), the condensed cut bending out of a rigid motion as the full
-    car's does (6.7 mm both), the crash-box energy within 8 % (−3.0 %);
-    both runs conserve energy within 3 %, the simplified one runs in less
-    time; summary.json carries the figures under their keys. (Issue 8's
-    5 % intrusion and 2 % crash-box bounds are not met here: README.)"""
+    car's does (6.7 mm both); both runs conserve energy within 3 %, the
+    simplified one runs in less time; summary.json carries the figures
+    under their keys. (Issue 8's 5 % intrusion bound is not met here:
+    README.)"""
     f = json.loads((study.out / "verify" / "summary.json").read_text())
     assert f["energy_rating_min"] >= 0.9
-    assert abs(f["crash_box_internal_energy_deviation_percent"]) < 8.0
+    assert abs(f["crash_box_internal_energy_deviation_percent"]) < 2.0
     fi = f["firewall_intrusion"]
     assert fi["max_intrusion_full"] > 10.0  # mm
     assert fi["max_deviation_percent"] < 25.0 and fi["mean_deviation_percent"] < 6.0

@@ -18,6 +18,11 @@ the elastic structure behind it would under the crash's quasi-static
 deceleration, which a rigid interface holds flat; the springs' load-path
 shares are not needed (the condensed matrix distributes the load).
 
+Waves: dashpots between each cut node and the rear body along the axis,
+of the replaced structure's impedance there (``impedance``), let a stress
+wave that reaches the cut run out as it runs on into the full model's
+structure, instead of coming back from light nodes on springs.
+
 Mass: the replaced elements' share at the cut nodes (``relief.
 replaced_node_masses``) stays on them (*ELEMENT_MASS), so the cut's nodes
 are as heavy as in the full model; the rear body (*CONSTRAINED_NODAL_RIGID_
@@ -33,14 +38,16 @@ from pathlib import Path
 import numpy as np
 
 from ..model import mass as mk
-from ..model.mesh import Masses, Nodes
+from ..model.mesh import Discretes, Masses, Nodes
 from .condense import Condensation, rigid_modes
 from .cut import Cut
+from .impedance import axial_impedance
 from .massprops import ReplacedMass
 from .records import id_list, record
 from .surrogate import Surrogate, _Ids, _whole_vehicle_sets, kept_front
 
 ANCHOR = 300.0  # [length] distance of the rear body's four anchor nodes from its CoG
+DASHPOT_ARM = 100.0  # [length] a cut dashpot's rear end: this far behind its cut node, on the rear body
 MODAL_MASS = 1e-6  # [mass] of each modal node (1 g in mm–t–s): η = √μ·y, its kinetic energy ½μẏ² = ½η̇²
 
 
@@ -77,8 +84,11 @@ class CondensedSurrogate(Surrogate):
         return super().write(path, fmt)
 
 
-def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, keep_nodes=None) -> Surrogate:
-    """The surrogate deck joined at the cut by the condensed structure (module docstring)."""
+def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, keep_nodes=None,
+                              dashpots: bool = True) -> Surrogate:
+    """The surrogate deck joined at the cut by the condensed structure
+    (module docstring); ``dashpots``: the cut's wave impedance along the
+    axis (``impedance``) between each cut node and the rear body."""
     full = cut.model
     notes = list(cut.notes) + [n for n in cond.notes if n not in cut.notes]
     tr, ride = kept_front(cut, keep_nodes)
@@ -93,14 +103,17 @@ def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, 
     rest, c, inertia = rest_mp.mass, rest_mp.cog, rest_mp.inertia
     tet = np.array([[1.0, 1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, -1.0], [-1.0, -1.0, 1.0]]) / np.sqrt(3.0)
     anchors = cond.cog + ANCHOR * tet
-    new_xyz = np.vstack([[c], anchors])
+    dc = axial_impedance(cut, cond.nodes) if dashpots else np.zeros(len(cond.nodes))
+    damped = np.flatnonzero(dc > 0)
+    ends = cond.xyz_nodes[damped] - DASHPOT_ARM * cut.axis
+    new_xyz = np.vstack([[c], anchors, ends])
     new_ids = np.arange(ids.node, ids.node + len(new_xyz), dtype=np.int64)
     ids.node += len(new_xyz)
     nodes = Nodes.zeros(len(new_ids))
     nodes.ids, nodes.xyz = new_ids, new_xyz
     m.nodes = Nodes.concat([m.nodes, nodes])
     _whole_vehicle_sets(full, cut, m, new_ids, notes)
-    g_id, a_ids = int(new_ids[0]), new_ids[1:]
+    g_id, a_ids, end_ids = int(new_ids[0]), new_ids[1:5], new_ids[5:]
     # one node per kept mode: its y is the modal coordinate (x and z held, so a vehicle's initial velocity
     # along x leaves it at rest); its mass μ comes off the rear body
     n_modes = 0 if cond.modal is None else cond.modal.shape[1]
@@ -129,10 +142,25 @@ def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, 
     sid = ids.take("set")  # the cut nodes, for the verification's split (no rigid body on them)
     m.sets[("NODE", sid)] = id_list("SET_NODE_LIST_TITLE", sid, full.nodes.ids[cond.nodes],
                                     title="surrogate interface (condensed)")
+    if len(damped):  # one damper material of unit constant, each element's S its node's ρ·c·A
+        sec, mid, pid = ids.take("section"), ids.take("material"), ids.take("part")
+        m.sections[sec] = record("SECTION_DISCRETE_TITLE", card_title="surrogate cut dashpots", secid=sec)
+        m.materials[mid] = record("MAT_DAMPER_VISCOUS_TITLE", card_title="surrogate cut dashpots", mid=mid, dc=1.0)
+        m.parts[pid] = record("PART", heading="surrogate cut dashpots", pid=pid, secid=sec, mid=mid)
+        d = Discretes.zeros(len(damped))
+        d.ids = np.arange(ids.element, ids.element + len(damped), dtype=np.int64)
+        ids.element += len(damped)
+        d.pid[:] = pid
+        d.nodes = np.stack([m.node_index(full.nodes.ids[cond.nodes[damped]]), m.node_index(end_ids)],
+                           axis=1).astype(np.int32)
+        d.scale = dc[damped]
+        m.discretes = Discretes.concat([m.discretes, d])
+        notes.append(f"{len(damped)} dashpots along the axis between the cut nodes and the rear body, "
+                     f"{dc.sum():.4g} in all: the replaced structure's wave impedance at the cut")
     # the rear body
     pid = ids.take("part")
     sid = ids.take("set")
-    members = np.unique(np.concatenate([[g_id], a_ids, full.nodes.ids[ride]]))
+    members = np.unique(np.concatenate([[g_id], a_ids, end_ids, full.nodes.ids[ride]]))
     m.sets[("NODE", sid)] = id_list("SET_NODE_LIST_TITLE", sid, members, title="surrogate rear body")
     m.keywords.append(record("CONSTRAINED_NODAL_RIGID_BODY_INERTIA", pid=pid, nsid=sid, xc=float(c[0]),
                              yc=float(c[1]), zc=float(c[2]), tm=rest, nodeid=g_id,

@@ -165,7 +165,7 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
                    support=None, axle_parts=None, shares="combined", t_end: float | None = None,
                    interface_mode: str = "rigid", spring_length: float = 100.0, damping_ratio: float = 0.0,
                    mass_split: str = "axle", springs: str = "relief", modes: int = 0, connection: str = "condensed",
-                   condensed_modes: int = 0, quiet: bool = True) -> Reduction:
+                   condensed_modes: int = 0, cut_dashpots: bool = True, quiet: bool = True) -> Reduction:
     """Steps 1–4 (module docstring).
 
     deck        the full vehicle deck (path or Model)
@@ -188,6 +188,8 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
                 only report); "springs": the paper's rigid interface and load-path springs
     condensed_modes  with the condensed connection, the replaced structure's lowest free modes that
                 move on their own (residual flexibility, ``condense``; 0: quasi-static)
+    cut_dashpots  with the condensed connection, dashpots of the replaced structure's wave impedance
+                between the cut nodes and the rear body (``impedance``)
     """
     from ..keyword.reader import read_deck
 
@@ -261,7 +263,7 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     cond = None
     if connection == "condensed":
         cond = relieved_condensation(cut, modes=condensed_modes)
-        sur = build_condensed_surrogate(cut, cond, mass)
+        sur = build_condensed_surrogate(cut, cond, mass, dashpots=cut_dashpots)
         say(f"step 4: the replaced structure condensed on {len(cond.nodes)} cut nodes, "
             f"{len(sur.model.shells)} of {len(model.shells)} shells kept")
     else:

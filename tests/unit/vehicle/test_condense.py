@@ -59,3 +59,20 @@ def test_superelement_leaves_rigid_motions_free(tube):
     nb = 3 * len(cond.nodes)
     np.testing.assert_allclose(k[:nb, :nb], cond.stiffness, rtol=1e-12)
     assert np.linalg.eigvalsh(k)[0] > -1e-9 * np.abs(k).max()
+
+
+def test_axial_impedance_is_the_cut_sections_rho_c_area():
+    """ρ·c·A summed over the cut nodes is the tube wall's ring, ρ·√(E/ρ(1−ν²))·4b·t
+    (to round-off: the replaced shells' edges on the cut, not the kept
+    ones' that share them), shared among the ring's nodes by their half
+    edges."""
+    from crashlite.vehicle.impedance import axial_impedance
+
+    xyz, q = tube_mesh(B, 500.0, 4, 100)
+    model = shell_model(xyz, q, thickness=T, poisson=0.3)
+    cut = cut_behind(model, x=X)
+    z = axial_impedance(cut, cut.interface_nodes)
+    rho, e, nu = 7.85e-9, E, 0.3
+    zc = rho * np.sqrt(e / (rho * (1 - nu * nu)))
+    assert z.sum() == pytest.approx(zc * 4 * B * T, rel=1e-12)
+    assert z == pytest.approx(np.full(16, zc * T * B / 4), rel=1e-12)  # 16 edges of b/4, each node on two

@@ -76,7 +76,11 @@ def full_run(tmp_path_factory):
 def reduced(full_run, request):
     m, full, full_deck, root = full_run
     d = root / request.param
-    red = reduce_vehicle(full_deck, [root / "full"], load_cases=["wall"], modes=4, connection=request.param)
+    # an elastic impact of a short structure: what reaches the cut comes back from the rear masses within
+    # the run, which the cut dashpots (made for a crash's first passage into a large rear) would keep
+    # (the wall impulse 7 % short); the condensation alone here
+    red = reduce_vehicle(full_deck, [root / "full"], load_cases=["wall"], modes=4, connection=request.param,
+                         cut_dashpots=False)
     files = red.write(d / "simplified.k")
     sur = run(files["deck"], out=d / "simplified")
     return m, full, red, files, sur, d
@@ -188,7 +192,8 @@ def test_verification_figures(reduced):
 def test_cli_reduce_with_modes_writes_a_deck_that_runs(full_run, tmp_path, capsys):
     """`crashlite vehicle reduce --condensed-modes 2`: the deck, its DMIG
     file beside it (two modal nodes with their y in the superelement),
-    and a run of it that conserves energy."""
+    the cut dashpots, and a run of it that conserves energy (the
+    dashpots' work counted as internal energy)."""
     from crashlite.cli import main
 
     _, _, full_deck, root = full_run
@@ -203,5 +208,6 @@ def test_cli_reduce_with_modes_writes_a_deck_that_runs(full_run, tmp_path, capsy
     assert summary["step4_surrogate"]["condensation"]["modes"] == 2
     modal = sim.node_index(summary["step4_surrogate"]["node_ids"]["modes"])
     assert np.all(sim.nodes.tc[modal] == 6)  # x and z held: the modal coordinate is y
+    assert len(sim.discretes) == 2 * 16  # the cut dashpots (default), one per cut node
     r = run(out, out=tmp_path / "run")
     assert np.all(np.abs(r.energy_ratio - 1.0) < 0.01)
