@@ -67,9 +67,12 @@ def _reduce(args) -> int:
 def _verify(args) -> int:
     from .vehicle.verification import split_text, verify_vehicle
 
+    if (args.twin is None) != (args.twin_deck is None):
+        raise SystemExit("crashlite vehicle verify: --twin and --twin-deck go together")
     v = verify_vehicle(args.full, args.simplified, args.deck_full, args.deck_simplified, load_case=args.load_case,
                        crash_boxes=args.crash_boxes, firewall=args.firewall, reference=args.reference,
-                       engine=args.engine, cfc=args.cfc, cell_frame=tuple(args.cell_frame))
+                       engine=args.engine, cfc=args.cfc, cell_frame=tuple(args.cell_frame), twin=args.twin,
+                       twin_deck=args.twin_deck)
     files = v.write(args.output)
     f = v.figures
     fw = f.get("firewall_intrusion") or {}
@@ -77,7 +80,39 @@ def _verify(args) -> int:
           f"{_pc(f['crash_box_internal_energy_deviation_percent'])}, firewall intrusion max "
           f"{_pc(fw.get('max_deviation_percent'))} mean {_pc(fw.get('mean_deviation_percent'))}{split_text(fw)}, "
           f"time reduction {_pc(f['time_reduction_percent'])}; wrote {files['html']} and {files['summary']}")
+    tw = f.get("elastic_twin")
+    if tw:
+        print("; ".join(f"{k} ({what}): crash-box energy {_pc(d['crash_box_internal_energy_deviation_percent'])}, "
+                        f"intrusion max {_pc(d.get('firewall_intrusion_max_deviation_percent'))} mean "
+                        f"{_pc(d.get('firewall_intrusion_mean_deviation_percent'))}"
+                        for (k, d), what in zip(tw.items(), ("full vs elastic twin", "elastic twin vs simplified"))))
     for n in v.notes:
+        print(f"note: {n}")
+    return 0
+
+
+def _twin(args) -> int:
+    from . import read_deck
+    from .keyword.writer import write_deck
+    from .vehicle.cut import cut_behind
+    from .vehicle.reduce import section_assemblies
+    from .vehicle.twin import elastic_twin
+
+    model = read_deck(args.deck)
+    if args.interface is not None:
+        x = float(args.interface)
+    else:
+        point = section_assemblies(model)[2]
+        if point is None:
+            raise SystemExit(f"{args.deck}: no common plane of titled cross sections: give --interface")
+        x = float(point[0])
+    t = elastic_twin(cut_behind(model, x=x))
+    write_deck(t.model, args.output, fmt=args.format)
+    s = t.summary()
+    print(f"wrote {args.output}: {s['elements_made_elastic']} elements behind x = {x:g} elastic "
+          f"({s['parts_made_elastic']} parts, {s['parts_split']} of them split at the interface, "
+          f"{s['elastic_materials']} *MAT_ELASTIC)")
+    for n in t.notes:
         print(f"note: {n}")
     return 0
 
@@ -238,7 +273,20 @@ def add_commands(sub) -> None:
                         "intrusion is measured in their rigid motion's frame")
     w.add_argument("--engine", default="engine top", help="history node title of the engine-top sensor")
     w.add_argument("--cfc", type=float, default=60.0, help="SAE J211 filter class of the accelerations")
+    w.add_argument("--twin", type=Path, default=None,
+                   help="results of the full model's elastic twin (crashlite vehicle twin) in the same load case: "
+                        "splits the deviations into the elastic premise's and the surrogate's")
+    w.add_argument("--twin-deck", type=Path, default=None, help="deck of the elastic twin's run")
     w.set_defaults(func=_verify)
+    tw = vsub.add_parser("twin", formatter_class=fmt,
+                         help="write the full model's elastic twin: the structure behind the interface elastic "
+                              "(*MAT_ELASTIC of the same density and moduli), everything else as it is")
+    tw.add_argument("deck", type=Path, help="full vehicle deck")
+    tw.add_argument("--interface", type=float, default=None,
+                    help="x of the interface [deck length unit] (default: the plane of the cross sections)")
+    tw.add_argument("-o", "--output", type=Path, required=True, help="deck to write")
+    tw.add_argument("--format", choices=("fixed", "long", "i10", "free"), default="fixed")
+    tw.set_defaults(func=_twin)
     f = vsub.add_parser("interface", formatter_class=fmt,
                         help="propose the interface: the foremost plane with the structure behind it elastic")
     f.add_argument("deck", type=Path, help="full vehicle deck")

@@ -180,12 +180,13 @@ def _warping(x_r, x0_r, ir, x_c, x0_c, ic, axis: int, scale: float) -> dict:
 
 
 def _intrusion(ref_path, cmp_path, decks, firewall: np.ndarray, frame_ids: np.ndarray, axis: int, t_end: float,
-               interface_ids=None):
+               interface_ids=None, at: float | None = None, scale: float | None = None):
     """Firewall intrusion (rearwards, in the cell frame of the ``frame_ids``
     nodes) of both runs at the reference run's field state of largest
-    intrusion up to t_end; with ``interface_ids`` (nodes of the interface
-    in both runs) its split into what the interface carries and the kept
-    structure's own deformation (``intrusion_split``)."""
+    intrusion up to t_end (its state nearest ``at`` where given), deviations
+    relative to its largest intrusion (or ``scale``); with ``interface_ids``
+    (nodes of the interface in both runs) its split into what the interface
+    carries and the kept structure's own deformation (``intrusion_split``)."""
     states = [load_states(p, d) for p, d in zip((ref_path, cmp_path), decks)]
     if any(s is None for s in states):
         raise CompareError("firewall intrusion needs field states of both runs (*DATABASE_BINARY_D3PLOT)")
@@ -199,12 +200,12 @@ def _intrusion(ref_path, cmp_path, decks, firewall: np.ndarray, frame_ids: np.nd
     (s_r, idx_r, fw_r, fr_r), (s_c, idx_c, fw_c, fr_c) = out
     i_r = np.array([rearward_in_frame(x, s_r.x[0], fw_r, fr_r, axis) for x in s_r.x])
     usable = np.flatnonzero(s_r.time <= t_end * (1 + 1e-9))
-    k = int(usable[np.argmax(i_r[usable].max(axis=1))])
+    k = int(usable[np.argmax(i_r[usable].max(axis=1))]) if at is None else int(np.argmin(np.abs(s_r.time - at)))
     t = float(s_r.time[k])
     x_c = s_c.at(t)
     i_c = rearward_in_frame(x_c, s_c.x[0], fw_c, fr_c, axis)
     full = i_r[k]
-    scale = float(full.max())
+    scale = float(full.max()) if scale is None else float(scale)
     if not scale > 0:
         raise CompareError("the firewall of the full model does not intrude: no relative deviation")
     diff = np.abs(i_c - full)
@@ -224,6 +225,36 @@ def _intrusion(ref_path, cmp_path, decks, firewall: np.ndarray, frame_ids: np.nd
                              "own_deformation": _deviation(own_r, own_c, scale),
                              "interface_warping": _warping(s_r.x[k], s_r.x[0], ir, x_c, s_c.x[0], ic, axis, scale)}
     return figs, {"ids": np.asarray(firewall), "y": y, "z": z, "full": full, "simplified": i_c, "difference": diff}
+
+
+def _twin_split(full, simplified, twin, decks, twin_deck, figures: dict, crash_boxes, fw, frame, axis: int,
+                t_stop: float) -> dict:
+    """Crash-box energy and firewall intrusion deviations split by the
+    elastic twin's run: full vs twin (what the elastic premise costs at this
+    interface; no elastic surrogate comes closer) and twin vs simplified
+    (the surrogate's own), relative to the same full-model figures."""
+    from ..results import load
+
+    if twin_deck is None:
+        raise CompareError("the elastic twin's deck is needed with its results")
+    cb = _part_sum(load(twin), twin_deck, crash_boxes)
+    if cb[0][-1] < t_stop * (1 - 1e-6):
+        raise CompareError(f"the elastic twin's run ends at {cb[0][-1]:.4g}, before the deceleration phase "
+                           f"(to {t_stop:.4g})")
+    e_twin = float(np.interp(t_stop, *cb))
+    box = figures["crash_box_internal_energy"]
+    out = {"premise": {"crash_box_internal_energy_deviation_percent": relative_percent(box["full"], e_twin)},
+           "surrogate": {"crash_box_internal_energy_deviation_percent": relative_percent(e_twin, box["simplified"])}}
+    fi = figures.get("firewall_intrusion")
+    if fi is not None:
+        at, scale = fi["time"], fi["max_intrusion_full"]
+        for key, ref, cmp, dd in (("premise", full, twin, (decks[0], twin_deck)),
+                                  ("surrogate", twin, simplified, (twin_deck, decks[1]))):
+            f, _ = _intrusion(ref, cmp, dd, fw, frame, axis, t_stop, at=at, scale=scale)
+            out[key]["firewall_intrusion_max_deviation_percent"] = f["max_deviation_percent"]
+            out[key]["firewall_intrusion_mean_deviation_percent"] = f["mean_deviation_percent"]
+            out[key]["time"] = f["time"]
+    return out
 
 
 def split_text(intrusion: dict) -> str:
@@ -252,14 +283,19 @@ def interface_nodes(model: Model, prefix: str = "surrogate interface") -> np.nda
 def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str = "US NCAP",
                    crash_boxes=("crash box left", "crash box right"), firewall: str = "firewall nodes",
                    reference: str = "rear seat left", engine: str = "engine top", cfc: float = 60.0,
-                   axis: int = 0, names=("full", "simplified"), cell_frame=CELL_FRAME) -> VehicleVerification:
+                   axis: int = 0, names=("full", "simplified"), cell_frame=CELL_FRAME, twin=None,
+                   twin_deck=None) -> VehicleVerification:
     """Compare the simplified run with the full one (module docstring).
     ``full``, ``simplified``: results folders; the decks name the parts,
     the firewall node set and the history nodes (by their titles):
     ``reference`` the cell node whose stop ends the deceleration phase,
     ``cell_frame`` the cell nodes whose rigid motion the intrusion is
     measured in (the reference node alone where a deck lacks them: then the
-    cell's rotation counts as intrusion, and a note says so)."""
+    cell's rotation counts as intrusion, and a note says so). ``twin``,
+    ``twin_deck``: a run of the full model's elastic twin
+    (``vehicle.twin``) in the same load case: the crash-box energy and
+    intrusion deviations split into the premise's (full vs twin) and the
+    surrogate's (twin vs simplified), under ``elastic_twin``."""
     from ..results import load
 
     decks = (_model(full_deck), _model(simplified_deck))
@@ -328,7 +364,14 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
         figures["firewall_intrusion_max_deviation_percent"] = figs["max_deviation_percent"]
         figures["firewall_intrusion_mean_deviation_percent"] = figs["mean_deviation_percent"]
     except (KeyError, CompareError) as e:
+        fw = None
         notes.append(f"firewall intrusion not compared: {e}")
+    if twin is not None:
+        try:
+            figures["elastic_twin"] = _twin_split(full, simplified, twin, decks, _model(twin_deck), figures,
+                                                  crash_boxes, fw, frame if fw is not None else None, axis, t_stop)
+        except (KeyError, CompareError) as e:
+            notes.append(f"elastic twin not compared: {e}")
     info = [run_info(p, n, d) for p, n, d in zip((full, simplified), names, decks)]
     figures["time"] = {"full": info[0].as_dict(), "simplified": info[1].as_dict(),
                        "reduction_percent": reduction(info[0].wall_time, info[1].wall_time),

@@ -76,6 +76,23 @@ def verification_page(v) -> str:
                             "condensed structure (the default reduction) bends as the structure behind it.</p>")
         if v.intrusion is not None:
             body.append(image(intrusion_plot(v.intrusion, names), "firewall intrusion"))
+    tw = f.get("elastic_twin")
+    if tw:
+        body.append("<h2>The elastic premise and the surrogate</h2>")
+        body.append(f"<p>A run of the elastic twin ({esc(names[0])} with the replaced structure elastic: same mesh, "
+                    "masses and connections, *MAT_ELASTIC of the same density and moduli) splits each deviation in "
+                    f"two: {esc(names[0])} against the twin is what the premise of an elastic structure behind the "
+                    "interface costs (no elastic surrogate at this interface comes closer); the twin against "
+                    f"{esc(names[1])} is the surrogate's own. Relative to the same figures of {esc(names[0])}.</p>")
+        rows = []
+        for key, label in (("premise", f"{names[0]} vs elastic twin (premise)"),
+                           ("surrogate", f"elastic twin vs {names[1]} (surrogate)")):
+            d = tw[key]
+            rows.append([label, num(d["crash_box_internal_energy_deviation_percent"], 3),
+                         num(d.get("firewall_intrusion_max_deviation_percent"), 3),
+                         num(d.get("firewall_intrusion_mean_deviation_percent"), 3)])
+        body.append(table(["comparison", "crash-box energy [%]", "intrusion max |Δ| [%]", "intrusion mean |Δ| [%]"],
+                          rows))
     t = f["time"]
     body.append("<h2>Computational time</h2>")
     body.append(table(["run", "elements", "cycles", "time step", "time loop [s]", "reduction"], [

@@ -13,6 +13,7 @@ from crashlite.solver import run
 from crashlite.vehicle.records import id_list, record
 from crashlite.vehicle.reduce import reduce_vehicle, section_assemblies
 from crashlite.vehicle.verification import verify_vehicle
+from crashlite.vehicle.verification_report import verification_page
 from crashlite.verify.rating import iso_rating
 
 B, L = 50.0, 500.0
@@ -187,6 +188,33 @@ def test_verification_figures(reduced):
                 "time_reduction_percent"):
         assert key in summary
     assert "data:image/png;base64" in out["html"].read_text()
+
+
+def test_elastic_twin_splits_the_deviations(reduced, tmp_path, capsys):
+    """`crashlite vehicle twin` of the elastic rails changes nothing (no
+    elasto-plastic metal behind the cut, said so); verified with the full
+    run as the twin's, the premise's deviations are zero and the
+    surrogate's are the direct comparison's."""
+    from crashlite.cli import main
+
+    m, full, red, files, sur, d = reduced
+    twin_deck = tmp_path / "twin.k"
+    assert main(["vehicle", "twin", str(d.parent / "full.k"), "-o", str(twin_deck)]) == 0
+    out = capsys.readouterr().out
+    assert f"0 elements behind x = {L / 2:g} elastic" in out and "*MAT_ELASTIC left as they are: 1, 2" in out
+    assert np.array_equal(read_deck(twin_deck).shells.pid, m.shells.pid)
+    v = verify_vehicle(d.parent / "full", d / "simplified", d.parent / "full.k", files["deck"], load_case="wall",
+                       crash_boxes=("rail left", "rail right"), reference="rear", engine="front",
+                       twin=d.parent / "full", twin_deck=twin_deck)
+    f, tw = v.figures, v.figures["elastic_twin"]
+    assert tw["premise"]["crash_box_internal_energy_deviation_percent"] == 0.0
+    assert tw["premise"]["firewall_intrusion_max_deviation_percent"] == 0.0
+    assert tw["surrogate"]["crash_box_internal_energy_deviation_percent"] == pytest.approx(
+        f["crash_box_internal_energy_deviation_percent"], rel=1e-12)
+    for k in ("max", "mean"):
+        assert tw["surrogate"][f"firewall_intrusion_{k}_deviation_percent"] == pytest.approx(
+            f[f"firewall_intrusion_{k}_deviation_percent"], rel=1e-12)
+    assert "elastic premise" in verification_page(v)
 
 
 def test_cli_reduce_with_modes_writes_a_deck_that_runs(full_run, tmp_path, capsys):
