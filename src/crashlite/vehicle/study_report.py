@@ -71,5 +71,18 @@ def verification_lines(summary: dict) -> list[str]:
         out.append(f"{case}: energy rating min {'–' if rating is None else f'{rating:.3f}'}, crash-box energy "
                    f"{_pct(f['crash_box_internal_energy_deviation_percent'])}, firewall intrusion max "
                    f"{_pct(fw.get('max_deviation_percent'))} mean {_pct(fw.get('mean_deviation_percent'))}"
-                   f"{split_text(fw)}")
+                   f"{split_text(fw)}{twin_text(f.get('elastic_twin'))}")
     return out
+
+
+def twin_text(tw: dict | None) -> str:
+    """"; elastic premise: intrusion max a % ..., surrogate: ..." for a
+    verification with an elastic twin's run, else ""."""
+    if not tw:
+        return ""
+    return "; " + ", ".join(
+        f"{label}: crash-box energy {_pct(tw[k]['crash_box_internal_energy_deviation_percent'])}, intrusion max "
+        f"{_pct(tw[k].get('firewall_intrusion_max_deviation_percent'))} mean "
+        f"{_pct(tw[k].get('firewall_intrusion_mean_deviation_percent'))}"
+        for k, label in (("premise", "elastic premise (full vs twin)"),
+                         ("surrogate", "surrogate (twin vs simplified)")))

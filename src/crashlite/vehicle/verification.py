@@ -320,7 +320,8 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
         pairs.append(p)
         energies[label] = {"rating": None if p.rating is None else p.rating.overall,
                            "deviation_at_end_percent": p.deviation.get("value_deviation_percent"),
-                           "max_difference_percent": 100.0 * p.deviation["max_abs_difference"] / float(np.abs(yr).max()),
+                           "max_difference_percent":
+                               100.0 * p.deviation["max_abs_difference"] / float(np.abs(yr).max()),
                            "note": p.note}
     figures["energy_ratings_deceleration_phase"] = {k: v["rating"] for k, v in energies.items()}
     figures["energies"] = energies

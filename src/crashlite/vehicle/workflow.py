@@ -11,6 +11,12 @@ one, writing every deck, results folder and report under one folder:
     out/simplified.k, out/reduction.{json,html} steps 1–4
     out/usncap_simplified.k, out/simplified/    the simplified run
     out/verify/index.html, summary.json         the verification
+    out/twin.k, out/usncap_twin.k, out/twin/    with ``twin``: the elastic twin and its run
+
+With ``twin`` the full model's elastic twin (``vehicle.twin``: the
+structure behind the interface elastic) runs in the same load case, and
+the verification splits its deviations into the elastic premise's and the
+surrogate's (``elastic_twin`` in summary.json).
 """
 
 from __future__ import annotations
@@ -31,7 +37,8 @@ class Study:
 
 
 def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interface_x: float = -600.0,
-                  speed_kmh: float = 56.0, quiet: bool = True, say=print, **reduce_options) -> Study:
+                  speed_kmh: float = 56.0, quiet: bool = True, say=print, twin: bool = False,
+                  **reduce_options) -> Study:
     """Full run, reduction, simplified run and verification (module docstring)."""
     from ..solver import run
     from ..report.build import jsonable
@@ -88,11 +95,31 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
     sim = run(sim_deck, out=out / "simplified", quiet=quiet)
     seconds["simplified run"] = time.perf_counter() - t0
     say(f"  simplified run: {sim.cycles} cycles in {sim.wall_time:.1f} s")
+    twin_run = _twin_run(red.cut, out, "twin", lambda car_deck: usncap_deck(
+        car_deck, out / "usncap_twin.k", speed_kmh=speed_kmh, end_time=end_time), quiet, say) if twin else {}
     t0 = time.perf_counter()
-    ver = verify_vehicle(out / "full", out / "simplified", full_deck, sim_deck)
+    ver = verify_vehicle(out / "full", out / "simplified", full_deck, sim_deck, **twin_run)
     ver.write(out / "verify")
     seconds["verification"] = time.perf_counter() - t0
     return Study(out, red, ver, seconds, prop)
+
+
+def _twin_run(cut, out: Path, name: str, load_case, quiet: bool, say) -> dict:
+    """Write the elastic twin of ``cut`` (out/<name>.k), its load-case deck
+    (``load_case(car deck) -> deck``) and run it (out/<name>/): the
+    ``twin``, ``twin_deck`` arguments of ``verify_vehicle``."""
+    from ..keyword.writer import write_deck
+    from ..solver import run
+    from .twin import elastic_twin
+
+    tw = elastic_twin(cut)
+    car = write_deck(tw.model, out / f"{name}.k")[0]
+    deck = load_case(car)
+    r = run(deck, out=out / name, quiet=quiet)
+    s = tw.summary()
+    say(f"  elastic twin: {s['elements_made_elastic']} elements behind the interface elastic; {r.cycles} cycles "
+        f"in {r.wall_time:.1f} s")
+    return {"twin": out / name, "twin_deck": deck}
 
 
 @dataclass
@@ -120,7 +147,8 @@ def _slug(name: str) -> str:
 
 def paper_study(out, mesh_size: float = 38.0, barrier_size: float = 50.0, usncap_end: float = 0.08,
                 odb_end: float = 0.1, interface_x: float = -600.0, shares: str = "combined",
-                variants: bool = True, quiet: bool = True, say=print, **reduce_options) -> PaperStudy:
+                variants: bool = True, quiet: bool = True, say=print, twin: bool = False,
+                **reduce_options) -> PaperStudy:
     """The paper's whole verification on the generic car, in one folder:
 
     1. full runs: US NCAP (56 km/h, rigid wall) and Euro NCAP ODB (64 km/h,
@@ -137,7 +165,10 @@ def paper_study(out, mesh_size: float = 38.0, barrier_size: float = 50.0, usncap
     4. verification of each load case (full against simplified, full car
        + detailed barrier against simplified car + simplified barrier;
        with ``variants`` also each simplification on its own in ODB), and
-       the time reductions, in ``summary.json`` and ``index.html``.
+       the time reductions, in ``summary.json`` and ``index.html``;
+    5. with ``twin``, the full car's elastic twin in US NCAP, which splits
+       that verification's deviations into the elastic premise's and the
+       surrogate's (``us_ncap_study``).
     """
     from ..solver import run
     from ..verify.timing import reduction as time_reduction
@@ -187,8 +218,11 @@ def paper_study(out, mesh_size: float = 38.0, barrier_size: float = 50.0, usncap
             continue
         decks[name] = odb(car if vehicle == "full" else simplified, barrier, name)
         go(name, decks[name])
+    twin_run = _twin_run(red.cut, out / "runs", "usncap_twin", lambda car_deck: usncap_deck(
+        car_deck, out / "usncap_twin.k", end_time=usncap_end), quiet, say) if twin else {}
     ver = {"US NCAP": verify_vehicle(runs["usncap full"]["results"], runs["usncap simplified"]["results"],
-                                     decks["usncap full"], decks["usncap simplified"], load_case="US NCAP")}
+                                     decks["usncap full"], decks["usncap simplified"], load_case="US NCAP",
+                                     **twin_run)}
     last = "odb simplified car, simplified barrier"
     ver["Euro NCAP ODB"] = verify_vehicle(runs[first]["results"], runs[last]["results"], decks[first], decks[last],
                                           load_case="Euro NCAP ODB", names=("full + detailed barrier",
