@@ -17,10 +17,12 @@ A part wholly behind the interface takes the elastic material itself; a part
 the interface crosses is split: its replaced elements go to a twin part
 (same section and hourglass control, ID above the deck's largest) that joins
 every part set of the original, so contacts, cross sections and assemblies
-over part sets still see them. Records that name a split part directly (a
-contact side of type 3, *ELEMENT_MASS_PART, ...) keep naming only its kept
-elements: they are listed in ``ElasticTwin.notes``. Other materials (rigid,
-honeycomb, foam, springs) stay as they are, also listed.
+over part sets still see them; an *ELEMENT_MASS_PART row of a split part
+is shared between the two in proportion to their element mass (as the
+keyword spreads it: the mass stays where it was). Other records that name
+a split part directly (a contact side of type 3, ...) keep naming only its
+kept elements: they are listed in ``ElasticTwin.notes``. Other materials
+(rigid, honeycomb, foam, springs) stay as they are, also listed.
 """
 
 from __future__ import annotations
@@ -103,6 +105,7 @@ def elastic_twin(cut: Cut) -> ElasticTwin:
     split = {p: q for p, q in twin.elastic_parts.items() if p != q}
     if split:
         _extend_part_sets(m, full, split)
+        _share_part_masses(m, full, split)
         _note_direct_references(m, split, twin.notes)
     for kind, pids in sorted(untouched.items()):
         twin.notes.append(f"{len(pids)} replaced part(s) of *{kind} left as they are: "
@@ -126,6 +129,39 @@ def _extend_part_sets(m: Model, full: Model, split: dict) -> None:
         m.sets[(kind, sid)] = new
 
 
+def _share_part_masses(m: Model, full: Model, split: dict) -> None:
+    """*ELEMENT_MASS_PART rows naming a split part: ADDMASS and FINMASS
+    shared between the part and its twin part by their element mass."""
+    from .massprops import element_moments
+
+    recs = [r for r in full.keywords if isinstance(r, Record) and r.keyword == "ELEMENT_MASS_PART"
+            and "SET" not in r.options and np.isin(r.rows["pid"], list(split)).any()]
+    if not recs:
+        return
+    mo = element_moments(full)
+
+    def mass(model, pid):
+        return sum(float(x.mass[getattr(model, t).pid == pid].sum()) for t, x in mo.items())
+
+    swap = {}
+    for rec in recs:
+        rows = {k: [] for k in rec.rows}
+        for i, pid in enumerate(rec.rows["pid"]):
+            pid = int(pid)
+            shares = [(pid, 1.0)]
+            if pid in split:
+                total = mass(full, pid)
+                kept = mass(m, pid) / total if total > 0 else 1.0
+                shares = [(pid, kept), (split[pid], 1.0 - kept)]
+            for p, f in shares:
+                for k, col in rec.rows.items():
+                    rows[k].append(p if k == "pid" else col[i] * f if k in ("addmass", "finmass") else col[i])
+        swap[id(rec)] = Record(rec.keyword, rec.options, dict(rec.values),
+                               {k: np.asarray(v, dtype=np.asarray(rec.rows[k]).dtype) for k, v in rows.items()},
+                               rec.title)
+    m.keywords = [swap.get(id(r), r) for r in m.keywords]
+
+
 def _note_direct_references(m: Model, split: dict, notes: list) -> None:
     """Records that name a split part by its ID (not through a set)."""
     pids = np.array(sorted(split), np.int64)
@@ -133,6 +169,11 @@ def _note_direct_references(m: Model, split: dict, notes: list) -> None:
         if not isinstance(rec, Record) or rec.keyword.startswith("SET_"):
             continue
         named = [int(v) for f, v in head_references(rec) if f.ref == "part" and np.isin(v, pids)]
+        if rec.rows and rec.keyword != "ELEMENT_MASS_PART":  # rows of that one are shared already
+            for f in rec.spec.layout(rec.options).row_fields:
+                if f.ref == "part" and f.name in rec.rows:
+                    col = np.asarray(rec.rows[f.name])
+                    named += sorted({int(v) for v in col[np.isin(col, pids)]})
         if rec.keyword.startswith("CONTACT_"):
             for side, typ in (("ssid", "sstyp"), ("msid", "mstyp")):
                 if int(rec.get(typ, 0) or 0) == 3 and int(rec.get(side, 0) or 0) in split:

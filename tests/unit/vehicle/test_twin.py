@@ -30,6 +30,8 @@ def model():
     m.sets[("PART", 2)] = record("SET_PART_LIST_GENERATE", sid=2, rows={"b1beg": np.array([2]),
                                                                        "b1end": np.array([3])})
     m.keywords.append(record("CONTACT_AUTOMATIC_SURFACE_TO_SURFACE", ssid=2, msid=1, sstyp=3, mstyp=3))
+    m.keywords.append(record("ELEMENT_MASS_PART", rows={"pid": np.array([2]), "addmass": np.array([0.002]),
+                                                        "finmass": np.array([0.0])}))
     return m
 
 
@@ -75,10 +77,19 @@ def test_a_part_wholly_behind_turns_elastic_in_place(model):
     assert len(tw.materials) == 2 and tw.summary()["parts_split"] == 1
 
 
-def test_twin_deck_reads_back_with_the_same_mass(model, tmp_path):
+def test_twin_deck_reads_back_with_the_mass_where_it_was(model, tmp_path):
+    """Mass and CoG of the twin deck are the full model's: part 2's
+    *ELEMENT_MASS_PART (2 kg on a 0.6 kg part) is shared with its twin
+    part by element mass."""
     tw = elastic_twin(cut_behind(model, x=300.0))
     path = write_deck(tw.model, tmp_path / "twin.k")[0]
     back = read_deck(path)
     assert not back.warnings
-    assert back.mass_properties().mass == pytest.approx(model.mass_properties().mass, rel=1e-12)
+    full, twin = model.mass_properties(), back.mass_properties()
+    assert twin.mass == pytest.approx(full.mass, rel=1e-12)
+    np.testing.assert_allclose(twin.cog, full.cog, atol=1e-9)
+    rows = back.find("ELEMENT_MASS_PART")[0].rows
+    assert list(rows["pid"]) == [2, 4] and rows["addmass"].sum() == pytest.approx(0.002, rel=1e-12)
+    # part 2 runs from x = 150 to 400: 100 mm of it kept, 150 behind the cut
+    np.testing.assert_allclose(rows["addmass"], [0.002 * 0.4, 0.002 * 0.6], rtol=1e-12)
     assert back.materials[back.parts[4]["mid"]].keyword == "MAT_ELASTIC"
