@@ -169,7 +169,7 @@ def vehicle(out: Path, mesh_size: float = 60.0, end_time: float = 0.07) -> int:
     from .vehicle.workflow import us_ncap_study
 
     print(f"\n== 7. The simplified vehicle (paper sections 2.2 and 4): generic car, {mesh_size:g} mm shells\n")
-    st = us_ncap_study(out / "vehicle", mesh_size=mesh_size, end_time=end_time)
+    st = us_ncap_study(out / "vehicle", mesh_size=mesh_size, end_time=end_time, twin=True)
     f = st.verification.figures
     fw = f.get("firewall_intrusion") or {}
     ratings = ", ".join(f"{k} {v:.3f}" for k, v in f["energy_ratings_deceleration_phase"].items() if v is not None)
@@ -177,6 +177,12 @@ def vehicle(out: Path, mesh_size: float = 60.0, end_time: float = 0.07) -> int:
     print(f"  crash-box internal energy deviation {f['crash_box_internal_energy_deviation_percent']:+.2f} %; "
           f"firewall intrusion {fw.get('max_intrusion_full', float('nan')):.0f} mm, deviation max "
           f"{fw.get('max_deviation_percent', float('nan')):.1f} %, mean {fw.get('mean_deviation_percent', float('nan')):.1f} %")
+    tw = f.get("elastic_twin")
+    if tw:
+        print("  of it, by the full car's elastic twin (its structure behind the interface elastic): " + ", ".join(
+            f"{label} intrusion max {tw[k].get('firewall_intrusion_max_deviation_percent', float('nan')):.1f} %, "
+            f"crash-box energy {tw[k]['crash_box_internal_energy_deviation_percent']:+.2f} %"
+            for k, label in (("premise", "the elastic premise"), ("surrogate", "the surrogate"))))
     t = f["time"]
     print(f"  time loop {t['full']['wall_time']:.1f} s -> {t['simplified']['wall_time']:.1f} s "
           f"({t['reduction_percent']:.0f} % less); reports: {st.out / 'reduction.html'}, {st.out / 'verify' / 'index.html'}")
