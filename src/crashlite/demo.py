@@ -176,7 +176,8 @@ def vehicle(out: Path, mesh_size: float = 60.0, end_time: float = 0.07) -> int:
     print(f"  energy ratings over the deceleration phase: {ratings}")
     print(f"  crash-box internal energy deviation {f['crash_box_internal_energy_deviation_percent']:+.2f} %; "
           f"firewall intrusion {fw.get('max_intrusion_full', float('nan')):.0f} mm, deviation max "
-          f"{fw.get('max_deviation_percent', float('nan')):.1f} %, mean {fw.get('mean_deviation_percent', float('nan')):.1f} %")
+          f"{fw.get('max_deviation_percent', float('nan')):.1f} %, mean "
+          f"{fw.get('mean_deviation_percent', float('nan')):.1f} %")
     tw = f.get("elastic_twin")
     if tw:
         print("  of it, by the full car's elastic twin (its structure behind the interface elastic): " + ", ".join(
@@ -185,7 +186,8 @@ def vehicle(out: Path, mesh_size: float = 60.0, end_time: float = 0.07) -> int:
             for k, label in (("premise", "the elastic premise"), ("surrogate", "the surrogate"))))
     t = f["time"]
     print(f"  time loop {t['full']['wall_time']:.1f} s -> {t['simplified']['wall_time']:.1f} s "
-          f"({t['reduction_percent']:.0f} % less); reports: {st.out / 'reduction.html'}, {st.out / 'verify' / 'index.html'}")
+          f"({t['reduction_percent']:.0f} % less); reports: {st.out / 'reduction.html'}, "
+          f"{st.out / 'verify' / 'index.html'}")
     return 0
 
 
