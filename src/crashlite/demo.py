@@ -178,12 +178,11 @@ def vehicle(out: Path, mesh_size: float = 60.0, end_time: float = 0.07) -> int:
           f"firewall intrusion {fw.get('max_intrusion_full', float('nan')):.0f} mm, deviation max "
           f"{fw.get('max_deviation_percent', float('nan')):.1f} %, mean "
           f"{fw.get('mean_deviation_percent', float('nan')):.1f} %")
-    tw = f.get("elastic_twin")
-    if tw:
-        print("  of it, by the full car's elastic twin (its structure behind the interface elastic): " + ", ".join(
-            f"{label} intrusion max {tw[k].get('firewall_intrusion_max_deviation_percent', float('nan')):.1f} %, "
-            f"crash-box energy {tw[k]['crash_box_internal_energy_deviation_percent']:+.2f} %"
-            for k, label in (("premise", "the elastic premise"), ("surrogate", "the surrogate"))))
+    if f.get("elastic_twin"):
+        from .vehicle.study_report import twin_text
+
+        print("  split by the full car's elastic twin (its structure behind the interface elastic): "
+              + twin_text(f["elastic_twin"]).lstrip("; "))
     t = f["time"]
     print(f"  time loop {t['full']['wall_time']:.1f} s -> {t['simplified']['wall_time']:.1f} s "
           f"({t['reduction_percent']:.0f} % less); reports: {st.out / 'reduction.html'}, "

@@ -180,14 +180,19 @@ def _warping(x_r, x0_r, ir, x_c, x0_c, ic, axis: int, scale: float) -> dict:
 
 
 def _intrusion(ref_path, cmp_path, decks, firewall: np.ndarray, frame_ids: np.ndarray, axis: int, t_end: float,
-               interface_ids=None, at: float | None = None, scale: float | None = None):
+               interface_ids=None, at: float | None = None, scale: float | None = None, loaded: dict | None = None):
     """Firewall intrusion (rearwards, in the cell frame of the ``frame_ids``
     nodes) of both runs at the reference run's field state of largest
     intrusion up to t_end (its state nearest ``at`` where given), deviations
     relative to its largest intrusion (or ``scale``); with ``interface_ids``
     (nodes of the interface in both runs) its split into what the interface
-    carries and the kept structure's own deformation (``intrusion_split``)."""
-    states = [load_states(p, d) for p, d in zip((ref_path, cmp_path), decks)]
+    carries and the kept structure's own deformation (``intrusion_split``).
+    ``loaded``: field states by results path, read once for several calls."""
+    loaded = {} if loaded is None else loaded
+    for p, d in zip((ref_path, cmp_path), decks):
+        if str(p) not in loaded:
+            loaded[str(p)] = load_states(p, d)
+    states = [loaded[str(p)] for p in (ref_path, cmp_path)]
     if any(s is None for s in states):
         raise CompareError("firewall intrusion needs field states of both runs (*DATABASE_BINARY_D3PLOT)")
     out = []
@@ -198,13 +203,17 @@ def _intrusion(ref_path, cmp_path, decks, firewall: np.ndarray, frame_ids: np.nd
             raise CompareError(f"{s.source}: firewall or cell frame node(s) {missing[:10]} not in the field states")
         out.append((s, idx, np.array([idx[int(n)] for n in firewall]), np.array([idx[int(n)] for n in frame_ids])))
     (s_r, idx_r, fw_r, fr_r), (s_c, idx_c, fw_c, fr_c) = out
-    i_r = np.array([rearward_in_frame(x, s_r.x[0], fw_r, fr_r, axis) for x in s_r.x])
-    usable = np.flatnonzero(s_r.time <= t_end * (1 + 1e-9))
-    k = int(usable[np.argmax(i_r[usable].max(axis=1))]) if at is None else int(np.argmin(np.abs(s_r.time - at)))
+    if at is None:
+        i_r = np.array([rearward_in_frame(x, s_r.x[0], fw_r, fr_r, axis) for x in s_r.x])
+        usable = np.flatnonzero(s_r.time <= t_end * (1 + 1e-9))
+        k = int(usable[np.argmax(i_r[usable].max(axis=1))])
+        full = i_r[k]
+    else:
+        k = int(np.argmin(np.abs(s_r.time - at)))
+        full = rearward_in_frame(s_r.x[k], s_r.x[0], fw_r, fr_r, axis)
     t = float(s_r.time[k])
     x_c = s_c.at(t)
     i_c = rearward_in_frame(x_c, s_c.x[0], fw_c, fr_c, axis)
-    full = i_r[k]
     scale = float(full.max()) if scale is None else float(scale)
     if not scale > 0:
         raise CompareError("the firewall of the full model does not intrude: no relative deviation")
@@ -228,7 +237,7 @@ def _intrusion(ref_path, cmp_path, decks, firewall: np.ndarray, frame_ids: np.nd
 
 
 def _twin_split(full, simplified, twin, decks, twin_deck, figures: dict, crash_boxes, fw, frame, axis: int,
-                t_stop: float) -> dict:
+                t_stop: float, loaded: dict) -> dict:
     """Crash-box energy and firewall intrusion deviations split by the
     elastic twin's run: full vs twin (what the elastic premise costs at this
     interface; no elastic surrogate comes closer) and twin vs simplified
@@ -250,7 +259,7 @@ def _twin_split(full, simplified, twin, decks, twin_deck, figures: dict, crash_b
         at, scale = fi["time"], fi["max_intrusion_full"]
         for key, ref, cmp, dd in (("premise", full, twin, (decks[0], twin_deck)),
                                   ("surrogate", twin, simplified, (twin_deck, decks[1]))):
-            f, _ = _intrusion(ref, cmp, dd, fw, frame, axis, t_stop, at=at, scale=scale)
+            f, _ = _intrusion(ref, cmp, dd, fw, frame, axis, t_stop, at=at, scale=scale, loaded=loaded)
             out[key]["firewall_intrusion_max_deviation_percent"] = f["max_deviation_percent"]
             out[key]["firewall_intrusion_mean_deviation_percent"] = f["mean_deviation_percent"]
             out[key]["time"] = f["time"]
@@ -352,6 +361,7 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
     except (KeyError, ValueError, CompareError) as e:
         notes.append(f"engine acceleration not compared: {e}")
     intrusion = None
+    loaded: dict = {}  # field states by results path, read once for the twin's comparisons too
     try:
         fw = decks[0].nodes.ids[node_indices(decks[0], firewall)]
         try:
@@ -360,7 +370,8 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
             frame = np.array([ref_node], np.int64)
             notes.append(f"intrusion relative to the {reference} node alone (no cell frame: {e}): the cell's "
                          "rotation counts as intrusion")
-        figs, intrusion = _intrusion(full, simplified, decks, fw, frame, axis, t_stop, interface_nodes(decks[1]))
+        figs, intrusion = _intrusion(full, simplified, decks, fw, frame, axis, t_stop, interface_nodes(decks[1]),
+                                     loaded=loaded)
         figures["firewall_intrusion"] = figs
         figures["firewall_intrusion_max_deviation_percent"] = figs["max_deviation_percent"]
         figures["firewall_intrusion_mean_deviation_percent"] = figs["mean_deviation_percent"]
@@ -370,7 +381,8 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
     if twin is not None:
         try:
             figures["elastic_twin"] = _twin_split(full, simplified, twin, decks, _model(twin_deck), figures,
-                                                  crash_boxes, fw, frame if fw is not None else None, axis, t_stop)
+                                                  crash_boxes, fw, frame if fw is not None else None, axis, t_stop,
+                                                  loaded)
         except (KeyError, CompareError) as e:
             notes.append(f"elastic twin not compared: {e}")
     info = [run_info(p, n, d) for p, n, d in zip((full, simplified), names, decks)]

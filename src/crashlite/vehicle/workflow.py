@@ -95,7 +95,7 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
     sim = run(sim_deck, out=out / "simplified", quiet=quiet)
     seconds["simplified run"] = time.perf_counter() - t0
     say(f"  simplified run: {sim.cycles} cycles in {sim.wall_time:.1f} s")
-    twin_run = _twin_run(red.cut, out, "twin", lambda car_deck: usncap_deck(
+    twin_run = _twin_run(red.cut, out / "twin.k", out / "twin", lambda car_deck: usncap_deck(
         car_deck, out / "usncap_twin.k", speed_kmh=speed_kmh, end_time=end_time), quiet, say) if twin else {}
     t0 = time.perf_counter()
     ver = verify_vehicle(out / "full", out / "simplified", full_deck, sim_deck, **twin_run)
@@ -104,22 +104,21 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
     return Study(out, red, ver, seconds, prop)
 
 
-def _twin_run(cut, out: Path, name: str, load_case, quiet: bool, say) -> dict:
-    """Write the elastic twin of ``cut`` (out/<name>.k), its load-case deck
-    (``load_case(car deck) -> deck``) and run it (out/<name>/): the
+def _twin_run(cut, car_path: Path, results: Path, load_case, quiet: bool, say) -> dict:
+    """Write the elastic twin of ``cut`` to ``car_path``, its load-case deck
+    (``load_case(car deck) -> deck``) and run it into ``results``: the
     ``twin``, ``twin_deck`` arguments of ``verify_vehicle``."""
     from ..keyword.writer import write_deck
     from ..solver import run
     from .twin import elastic_twin
 
     tw = elastic_twin(cut)
-    car = write_deck(tw.model, out / f"{name}.k")[0]
-    deck = load_case(car)
-    r = run(deck, out=out / name, quiet=quiet)
+    deck = load_case(write_deck(tw.model, car_path)[0])
+    r = run(deck, out=results, quiet=quiet)
     s = tw.summary()
     say(f"  elastic twin: {s['elements_made_elastic']} elements behind the interface elastic; {r.cycles} cycles "
         f"in {r.wall_time:.1f} s")
-    return {"twin": out / name, "twin_deck": deck}
+    return {"twin": results, "twin_deck": deck}
 
 
 @dataclass
@@ -218,7 +217,7 @@ def paper_study(out, mesh_size: float = 38.0, barrier_size: float = 50.0, usncap
             continue
         decks[name] = odb(car if vehicle == "full" else simplified, barrier, name)
         go(name, decks[name])
-    twin_run = _twin_run(red.cut, out / "runs", "usncap_twin", lambda car_deck: usncap_deck(
+    twin_run = _twin_run(red.cut, out / "twin.k", out / "runs" / "usncap_twin", lambda car_deck: usncap_deck(
         car_deck, out / "usncap_twin.k", end_time=usncap_end), quiet, say) if twin else {}
     ver = {"US NCAP": verify_vehicle(runs["usncap full"]["results"], runs["usncap simplified"]["results"],
                                      decks["usncap full"], decks["usncap simplified"], load_case="US NCAP",
