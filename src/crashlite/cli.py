@@ -35,6 +35,8 @@ def _run(args) -> int:
     from .solver import run
 
     res = run(args.deck, out=args.output, quiet=args.quiet)
+    for w in res.info.get("warnings", []):
+        print(f"warning: {w}", file=sys.stderr)
     ratio = res.energy_ratio
     print(f"{res.cycles} cycles, dt {res.dt:.4g}, end time {res.time[-1]:.6g}, "
           f"energy ratio {ratio.min():.4f}..{ratio.max():.4f}, {res.wall_time:.2f} s wall; "

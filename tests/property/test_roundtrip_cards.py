@@ -40,12 +40,18 @@ _FLOAT = st.floats(allow_nan=False, allow_infinity=False, width=64)
 _INT = st.integers(min_value=-(10**12), max_value=10**12)
 
 
+def _number(f):
+    """Numbers of a field; 0 is left out where it reads as the default."""
+    s = _INT if f.kind == INT else _FLOAT
+    return s.filter(lambda v: v != 0) if f.zero_default else s
+
+
 def _value(f, draw, allow_none=True):
     if f.kind == STR:
         return draw(_TEXT)
     if allow_none and f.default is None and draw(st.booleans()):
         return None
-    return draw(_INT) if f.kind == INT else draw(_FLOAT)
+    return draw(_number(f))
 
 
 @st.composite
@@ -71,9 +77,9 @@ def records(draw, spec, options):
             if f.kind == STR:
                 rows[f.name] = np.array([draw(_TEXT) for _ in range(n)], dtype=object)
             elif f.kind == INT:
-                rows[f.name] = np.array([draw(_INT) for _ in range(n)], dtype=np.int64)
+                rows[f.name] = np.array([draw(_number(f)) for _ in range(n)], dtype=np.int64)
             else:
-                rows[f.name] = np.array([draw(_FLOAT) for _ in range(n)], dtype=np.float64)
+                rows[f.name] = np.array([draw(_number(f)) for _ in range(n)], dtype=np.float64)
     title = draw(_TEXT) if (lay.title_card or "TITLE" in options and spec.title_option) else None
     return Record(spec.name, options, values, rows, title)
 

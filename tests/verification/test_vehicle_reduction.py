@@ -140,7 +140,9 @@ def test_simplified_car_follows_the_full_car(study):
     bend = fi["split"]["interface_warping"]
     # the axial cut dashpots resist the cut's slow warping too: it bends, but less (1.3 against 6.7 mm)
     assert bend["max_full"] > 2.0 and 0.5 < bend["max_simplified"] < bend["max_full"]
-    assert f["time"]["simplified"]["wall_time"] < f["time"]["full"]["wall_time"]
+    # less work (element-cycles), not a wall-clock assertion: those are for bench/
+    work = {k: sum(f["time"][k]["elements"].values()) * f["time"][k]["cycles"] for k in ("full", "simplified")}
+    assert work["simplified"] < work["full"]
     r = _results(study, "simplified")
     tot = r["kinetic"] + r["internal"] + r["hourglass"] + r["sliding"]
     assert np.abs(tot / tot[0] - 1.0).max() < 0.03

@@ -72,7 +72,8 @@ def to_number(text: str, kind: str):
 
 
 def convert(text: str, f: Field, params: dict):
-    """Value of one field: blank gives the default, ``&name``/``-&name`` a
+    """Value of one field: blank (and 0 where the field's default is
+    LS-DYNA's "EQ.0" default) gives the default, ``&name``/``-&name`` a
     parameter (``params`` maps lower-case names to values)."""
     t = text.strip()
     if f.kind == STR:
@@ -81,6 +82,11 @@ def convert(text: str, f: Field, params: dict):
         return t if t else f.default
     if not t:
         return f.default
+    v = _number(t, f, params)
+    return f.default if f.zero_default and v == 0 else v
+
+
+def _number(t: str, f: Field, params: dict):
     neg = False
     if t.startswith("-&"):
         neg, t = True, t[1:]

@@ -56,23 +56,24 @@ def parse_block(blk: Block, spec: Spec, options: frozenset, params: dict,
 def _parse_head(blk, spec, options, lay, cur, params, problems) -> Record | None:
     rec = Record(spec.name, options, {}, None, None, (blk.file, blk.line))
     if lay.title_card or ("TITLE" in options and spec.title_option):
-        if not cur.more():
-            problems.error(blk.file, blk.line, blk.keyword, "TITLE", "title card missing")
-            return None
-        rec.title = cur.take()[0].rstrip()
+        rec.title = cur.take()[0].rstrip() if cur.more() else ""  # LS-DYNA: a blank title
     for c in lay.head:
         if c.when is not None and not c.when(rec.values, options):
             for f in c.fields:  # every field of the layout has a value
                 rec.values.setdefault(f.name, f.default)
             continue
         if not cur.more():
-            if c.optional:
-                for f in c.fields:
-                    rec.values[f.name] = f.default
-                continue
-            problems.error(blk.file, blk.line, blk.keyword, c.fields[0].name,
-                           f"card with {', '.join(c.names)} missing: the keyword ended early")
-            return None
+            # LS-DYNA reads a card missing before the next keyword as a blank
+            # card: its fields take their defaults, unless one has none
+            needed = [f.name for f in c.fields if f.default is None and f.kind != STR]
+            if needed and not c.optional:
+                problems.error(blk.file, blk.line, blk.keyword, needed[0].upper(),
+                               f"card with {', '.join(c.names)} missing: the keyword ended before it, "
+                               f"and {needed[0].upper()} has no default")
+                return None
+            for f in c.fields:
+                rec.values[f.name] = f.default
+            continue
         line, lineno = cur.take()
         _read_card(line, lineno, c, blk, params, problems, rec.values)
         for f in c.fields:
@@ -179,6 +180,10 @@ def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
                 out_f[r, flts.index(k)] = v
             else:
                 strs[k][r] = v
+    for k, f in enumerate(fields):  # LS-DYNA's "EQ.0: default" fields
+        if f.zero_default:
+            col = out_i[:, ints.index(k)] if f.kind == INT else out_f[:, flts.index(k)]
+            col[col == 0] = f.default
     if narrow and out_i.size and -(2**31) < out_i.min() and out_i.max() < 2**31:
         out_i = out_i.astype(np.int32, order="F")
     keep = status != BLANK

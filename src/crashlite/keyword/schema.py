@@ -11,6 +11,12 @@ Cards are declared with a compact text form, one token per field::
     "eid:i8@elem pid:i8@part n1:i8@node ... "   # name:KIND[WIDTH][=DEFAULT][@REF]
 
 KIND is ``i`` (integer), ``f`` (real) or ``s`` (text); WIDTH defaults to 10.
+``~DEFAULT`` instead of ``=DEFAULT`` marks a field that LS-DYNA documents as
+"EQ.0: default": a 0 reads as the default too (``death:f~1e20``).
+
+Reading rule (LS-DYNA's): a blank field takes its default; a card missing
+before the next keyword is a blank card, so its fields take their defaults
+(a missing card with a field that has none is an error naming the field).
 """
 
 from __future__ import annotations
@@ -36,6 +42,7 @@ class Field:
     width: int = 10
     default: int | float | str | None = None
     ref: str | None = None
+    zero_default: bool = False  # 0 reads as the default ("EQ.0: default" in the manual)
 
 
 @dataclass(frozen=True)
@@ -105,8 +112,9 @@ def parse_fields(text: str) -> tuple[Field, ...]:
             if ref not in REF_KINDS:
                 raise ValueError(f"unknown reference kind {ref!r}")
         default: int | float | str | None = None
-        if "=" in tok:
-            tok, dtext = tok.split("=", 1)
+        zero = "~" in tok
+        if zero or "=" in tok:
+            tok, dtext = tok.split("~" if zero else "=", 1)
         else:
             dtext = None
         name, kw = tok.split(":")
@@ -114,7 +122,9 @@ def parse_fields(text: str) -> tuple[Field, ...]:
         width = int(kw[1:]) if len(kw) > 1 else 10
         if dtext is not None:
             default = int(dtext) if kind == INT else float(dtext) if kind == FLOAT else dtext
-        out.append(Field(name, kind, width, default, ref))
+        if zero and (kind == STR or not default):
+            raise ValueError(f"field {name}: '~' needs a non-zero numeric default")
+        out.append(Field(name, kind, width, default, ref, zero))
     if sum(f.width for f in out) > 80:
         raise ValueError(f"card wider than 80 columns: {text}")
     return tuple(out)

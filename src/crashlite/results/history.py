@@ -79,7 +79,7 @@ def categories(res) -> dict:
         matsum["hourglass_energy"] = res.part_hourglass
     if rec("part_momentum"):
         _xyz(matsum, res.part_momentum, "{}_momentum")
-    if rec("part_rigid_velocity"):  # 0 for deformable parts, as LS-DYNA writes
+    if rec("part_rigid_velocity"):  # momentum / mass of every part, as LS-DYNA writes
         _xyz(matsum, np.nan_to_num(res.part_rigid_velocity, nan=0.0), "{}_rbvelocity")
     if added:
         matsum["mass"] = np.tile([float(added.get(int(p), 0.0)) for p in pids], (n, 1)).reshape(n, len(pids))

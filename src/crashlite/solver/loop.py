@@ -122,8 +122,8 @@ class _Recorder:
                  wall_velocity=self.walls.velocity.copy(), disp=st.x[h] - self.s.x0[h], vel=v_mid[h].copy(),
                  acc=acc[h].copy(), coord=st.x[h].copy(), spc=self._spc.copy(), sec=self._sec[0].copy(),
                  sec_m=self._sec[1].copy(), part_ie=self.parts.internal(), part_hg=self.parts.hourglass(),
-                 part_ke=self.parts.kinetic(st.mass, v_mid), part_p=self.parts.momentum(st.mass, v_mid),
-                 part_rbv=self.parts.rigid_velocity(),
+                 part_ke=self.parts.kinetic(st.mass, v_mid), part_p=(p := self.parts.momentum(st.mass, v_mid)),
+                 part_rbv=self.parts.rigid_velocity(st.mass, p),
                  contact_force=np.array([g.resultant for g in self.contacts]).reshape(-1, 3))
         return ie + se + hg
 
@@ -450,6 +450,7 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
     res.spc_nodes = model.nodes.ids[res.spc_nodes]
     res.node_ids = model.nodes.ids.astype(np.int64)
     res.info["elements"] = element_counts(model)
+    res.info["warnings"] = [str(w) for w in [*model.warnings, *s.warnings]]
     if out is not None:
         res.save(Path(out))  # also when the run stopped early: the states so far are kept
         if len(res.states_time):

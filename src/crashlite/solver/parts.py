@@ -1,5 +1,6 @@
 """Per-part sums for matsum: internal, hourglass and kinetic energy,
-momentum, and the velocity of rigid parts.
+momentum, and the rigid-body velocity of every part (its momentum over its
+mass, as LS-DYNA writes it; the CoG velocity for rigid parts).
 
 A node shared by parts lends its mass to each in proportion to the element
 mass each part puts on it (equal shares where the elements carry none, as
@@ -63,9 +64,16 @@ class PartAccount:
             out[k] += b.mass * b.velocity
         return np.asarray(out)
 
-    def rigid_velocity(self) -> np.ndarray:
-        """(n_parts, 3) CoG velocity of rigid parts, NaN for deformable ones."""
-        out = np.full((len(self.part_ids), 3), np.nan)
+    def mass(self, mass: np.ndarray) -> np.ndarray:
+        """(n_parts,) mass of each part (its share of the nodal masses)."""
+        out = np.asarray(self.weights @ mass, float)
         for k, b in zip(self.body_part, self.bodies):
-            out[k] = b.velocity
+            out[k] += b.mass
         return out
+
+    def rigid_velocity(self, mass: np.ndarray, momentum: np.ndarray) -> np.ndarray:
+        """(n_parts, 3) rigid-body velocity from the parts' ``momentum``:
+        momentum / mass, the CoG velocity (NaN for a part without mass)."""
+        m = self.mass(mass)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return momentum / np.where(m > 0, m, np.nan)[:, None]

@@ -44,7 +44,7 @@ class Results:
     # optional histories (empty: not recorded; writers then omit or derive them)
     part_kinetic: np.ndarray = _empty(0)  # (n_states, n_parts) kinetic energy per part [energy]
     part_momentum: np.ndarray = _empty(0, 3)  # (n_states, n_parts, 3) momentum per part [mass*length/time]
-    part_rigid_velocity: np.ndarray = _empty(0, 3)  # (n_states, n_parts, 3) CoG velocity of rigid parts, NaN for deformable ones [length/time]
+    part_rigid_velocity: np.ndarray = _empty(0, 3)  # (n_states, n_parts, 3) CoG velocity of each part (momentum / mass) [length/time]
     part_hourglass: np.ndarray = _empty(0)  # (n_states, n_parts) hourglass energy per part [energy]
     section_moment: np.ndarray = _empty(0, 3)  # (n_states, n_sections, 3) moment through each section [force*length]
     node_acceleration: np.ndarray = _empty(0, 3)  # (n_states, n_hist, 3) of the history nodes [length/time^2]

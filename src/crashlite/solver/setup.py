@@ -117,6 +117,7 @@ class Setup:
     skew_nodes: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (k,) SPC in local systems
     skew_held: np.ndarray = field(default_factory=lambda: np.zeros((0, 3, 3)))  # (k, 3, 3) held directions
     skew_held_rot: np.ndarray = field(default_factory=lambda: np.zeros((0, 3, 3)))  # (k, 3, 3) held axes
+    warnings: list = field(default_factory=list)  # Problem: cards passed over, options run approximately
 
 
 class SetupError(DeckError):
@@ -511,16 +512,16 @@ def _bodies(model: Model, x, v, mass, problems: list, used: np.ndarray | None = 
 _UNSUPPORTED_TABLES: tuple[str, ...] = ()
 
 
-def _element_groups(model: Model, rigid: np.ndarray, n: int, problems: list) -> list:
+def _element_groups(model: Model, rigid: np.ndarray, n: int, problems: list, warnings: list) -> list:
     """Element families beyond discretes and beams (solids, shells) as groups."""
     from .shells import build_shells
     from .solids import SolidGroup, build_solids
 
     groups = []
-    solids = build_solids(model, rigid, problems)
+    solids = build_solids(model, rigid, problems, warnings)
     if solids is not None and len(solids):
         groups.append(SolidGroup(solids, n))
-    shells = build_shells(model, rigid, problems)
+    shells = build_shells(model, rigid, problems, warnings)
     if shells is not None and len(shells.ids):
         groups.append(shells)
     from .superelement import build_superelements
@@ -573,7 +574,8 @@ def _build(model: Model) -> Setup:
 
     from .support import unsupported_cards
 
-    problems: list[Problem] = unsupported_cards(model)
+    warnings: list[Problem] = []
+    problems: list[Problem] = unsupported_cards(model, warnings=warnings)
     rigid = np.array(sorted(rigid_part_ids(model)), np.int64)
     for t in _UNSUPPORTED_TABLES:
         deformable = ~np.isin(getattr(model, t).pid, rigid)
@@ -593,7 +595,7 @@ def _build(model: Model) -> Setup:
     if beams is not None:
         beam_mass, rot_inertia = lumped(beams, n)
         mass += beam_mass
-    groups = _element_groups(model, rigid, n, problems)
+    groups = _element_groups(model, rigid, n, problems, warnings)
     for g in groups:
         m_g, j_g = g.lumped(n)
         mass += m_g
@@ -701,4 +703,5 @@ def _build(model: Model) -> Setup:
         end_energy=float(term[0].get("endeng", 0.0) or 0.0) if term else 0.0,
         node_ids=model.nodes.ids.astype(np.int64), source=str(model.source or ""),
         skew_nodes=skew_nodes, skew_held=np.array([skew[i][0] for i in skew_nodes]).reshape(-1, 3, 3),
-        skew_held_rot=np.array([skew[i][1] for i in skew_nodes]).reshape(-1, 3, 3), groups=groups)
+        skew_held_rot=np.array([skew[i][1] for i in skew_nodes]).reshape(-1, 3, 3), groups=groups,
+        warnings=warnings)

@@ -1,8 +1,12 @@
-"""Which deck cards the solver runs, and which it refuses.
+"""Which deck cards the solver runs, which it passes over, and which it refuses.
 
 A card that would change the physics but is not run by the solver is an
 error before the first cycle (every such card listed), never silently
-ignored. Output requests and bookkeeping cards are accepted as they are.
+ignored. Bookkeeping cards and the outputs crashlite writes are accepted as
+they are; cards that cannot change the solution but that crashlite does not
+act on (other output requests, parallel and memory settings, sensors that no
+*SENSOR_CONTROL uses) run with one warning per keyword, as LS-DYNA would run
+them.
 """
 
 from __future__ import annotations
@@ -22,11 +26,24 @@ RUN = (
     "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE", "CONTROL_CONTACT",
     "CONTACT_TIED_", "CONSTRAINED_SPOTWELD", "CONSTRAINED_GENERALIZED_WELD", "ELEMENT_DIRECT_MATRIX_INPUT",
 )
-# cards with no effect on the mechanics: output requests, run controls of other codes
+# bookkeeping and the outputs crashlite writes: accepted without a word
 NEUTRAL = (
-    "KEYWORD", "TITLE", "END", "COMMENT", "DATABASE_", "CONTROL_OUTPUT", "CONTROL_ENERGY", "CONTROL_CPU",
-    "CONTROL_PARALLEL", "CONTROL_MPP", "KEYWORD_ID",
+    "KEYWORD", "TITLE", "END", "COMMENT", "CONTROL_ENERGY", "KEYWORD_ID",
+    "DATABASE_GLSTAT", "DATABASE_MATSUM", "DATABASE_NODOUT", "DATABASE_RWFORC", "DATABASE_SECFORC",
+    "DATABASE_DEFORC", "DATABASE_RCFORC", "DATABASE_SPCFORC", "DATABASE_HISTORY_NODE",
+    "DATABASE_BINARY_D3PLOT", "DATABASE_CROSS_SECTION",
 )
+# cards that cannot change the solution but are not acted on: keyword -> why (one warning each)
+PASSED_OVER = {
+    "DATABASE_": "an output crashlite does not write",
+    "CONTROL_OUTPUT": "output settings of LS-DYNA's own files",
+    "CONTROL_CPU": "a CPU-time limit", "CONTROL_PARALLEL": "parallel settings",
+    "CONTROL_MPP": "MPP decomposition settings", "CONTROL_UNITS": "a statement of the deck's units",
+    "INTERFACE_SPRINGBACK": "a springback output file",
+    # sensors act only through *SENSOR_CONTROL, which is refused when present
+    "SENSOR_DEFINE_": "a sensor that no *SENSOR_CONTROL uses", "SENSOR_SWITCH": "a sensor switch that no "
+                                                                               "*SENSOR_CONTROL uses",
+}
 
 
 def _name(rec) -> str:
@@ -43,17 +60,27 @@ def _where(rec) -> tuple[str, int]:
     return "", 0
 
 
-def unsupported_cards(model: Model, extra_run: tuple[str, ...] = ()) -> list[Problem]:
+def unsupported_cards(model: Model, extra_run: tuple[str, ...] = (),
+                      warnings: list | None = None) -> list[Problem]:
     """One Problem per card the solver does not run (``extra_run``: more
-    prefixes run by element families and constraints built elsewhere)."""
+    prefixes run by element families and constraints built elsewhere); one
+    warning per keyword passed over (appended to ``warnings``)."""
     known = RUN + NEUTRAL + tuple(extra_run)
-    problems, seen = [], set()
+    passed = tuple(PASSED_OVER)
+    problems, seen, warned = [], set(), set()
     for rec in list(model.keywords) + list(model.unknown):
         name = _name(rec)
         file, line = _where(rec)
         if name.startswith(known) or (file, line, name) in seen:
             continue
         seen.add((file, line, name))
+        if name.startswith(passed):
+            if warnings is not None and name not in warned:
+                warned.add(name)
+                why = next(v for k, v in PASSED_OVER.items() if name.startswith(k))
+                warnings.append(Problem(file or model.source or "", line, name, None,
+                                        f"passed over: {why}; it cannot change the solution"))
+            continue
         problems.append(Problem(file or model.source or "", line, name, None,
                                 f"*{name} is not run by the crashlite solver yet; remove it or run the deck "
                                 "in LS-DYNA"))

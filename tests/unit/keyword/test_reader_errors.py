@@ -42,15 +42,17 @@ def test_missing_card_and_bad_integer(deck):
         *KEYWORD
         *MAT_ELASTIC
                1.5     1e-09    2000.0       0.3
-        *SECTION_SHELL
-                 1         2
+        *RIGIDWALL_GEOMETRIC_CYLINDER
+                 0
+                 0         0         0         0         0         1
         *END
         """)
     with pytest.raises(DeckError) as e:
         read_deck(p)
     text = str(e.value)
     assert "bad2.k:3: *MAT_ELASTIC, field MID: expected an integer, got '1.5'" in text
-    assert "*SECTION_SHELL" in text and "missing" in text
+    # a missing card is a blank one (LS-DYNA), but RADCYL has no default
+    assert "*RIGIDWALL_GEOMETRIC_CYLINDER, field RADCYL" in text and "no default" in text
 
 
 def test_cli_reports_without_traceback(deck, capsys):

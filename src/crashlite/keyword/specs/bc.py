@@ -15,7 +15,7 @@ register(Spec("BOUNDARY_SPC_NODE", _rows_with_id(card(f"nid:i@node cid:i=0@coord
               options=("ID",), doc="Nodal single-point constraints (1 fixes a DOF)."))
 register(Spec("BOUNDARY_SPC_SET", _rows_with_id(card(f"nsid:i@set_node cid:i=0@coord {_DOFS}")),
               options=("ID",), doc="Single-point constraints on a node set."))
-_MOTION = "dof:i=0 vad:i=0 lcid:i=0@curve sf:f=1 vid:i=0@vector death:f=1e28 birth:f=0"
+_MOTION = "dof:i=0 vad:i=0 lcid:i=0@curve sf:f~1 vid:i=0@vector death:f~1e28 birth:f=0"
 register(Spec("BOUNDARY_PRESCRIBED_MOTION_NODE", _rows_with_id(card(f"nid:i@node {_MOTION}")),
               options=("ID",), doc="Prescribed velocity (VAD 0), acceleration (1) or displacement (2)."))
 register(Spec("BOUNDARY_PRESCRIBED_MOTION_SET", _rows_with_id(card(f"nsid:i@set_node {_MOTION}")),
@@ -39,10 +39,10 @@ register(Spec("INITIAL_VELOCITY_GENERATION", lambda o: Layout(head=(
         "STYP 1 part set, 2 part, 3 node set."))
 for _axis in "XYZ":
     register(Spec(f"LOAD_BODY_{_axis}", lambda o: Layout(head=(
-        card("lcid:i@curve sf:f=1 lciddr:i=0@curve xc:f=0 yc:f=0 zc:f=0 cid:i=0@coord"),)),
+        card("lcid:i@curve sf:f~1 lciddr:i=0@curve xc:f=0 yc:f=0 zc:f=0 cid:i=0@coord"),)),
         doc=f"Body acceleration along {_axis} (e.g. gravity)."))
 
-_NODAL_LOAD = "dof:i lcid:i@curve sf:f=1 cid:i=0@coord m1:i=0@node m2:i=0@node m3:i=0@node"
+_NODAL_LOAD = "dof:i lcid:i@curve sf:f~1 cid:i=0@coord m1:i=0@node m2:i=0@node m3:i=0@node"
 register(Spec("LOAD_NODE_POINT", lambda o: Layout(row=(card(f"nid:i@node {_NODAL_LOAD}"),)),
               doc="Nodal force (DOF 1-3), follower force (4), moment (5-7) or follower moment (8) "
                   "from a load curve."))
@@ -54,7 +54,7 @@ _RWID = card("rwid:i@rigidwall heading:s70")
 
 def _planar(options: frozenset) -> Layout:
     head = [_RWID] if "ID" in options else []
-    head += [card("nsid:i=0@set_node nsidex:i=0@set_node boxid:i=0 offset:f=0 birth:f=0 death:f=1e20 rwksf:f=1"),
+    head += [card("nsid:i=0@set_node nsidex:i=0@set_node boxid:i=0 offset:f=0 birth:f=0 death:f~1e20 rwksf:f~1"),
              card("xt:f=0 yt:f=0 zt:f=0 xh:f=0 yh:f=0 zh:f=0 fric:f=0 wvel:f=0")]
     if "FINITE" in options:
         head.append(card("xhev:f=0 yhev:f=0 zhev:f=0 lenl:f=0 lenm:f=0"))
@@ -73,13 +73,13 @@ register(Spec("RIGIDWALL_PLANAR", _planar, options=("ID", "FINITE", "MOVING", "F
 
 def _cylinder(options: frozenset) -> Layout:
     head = [_RWID] if "ID" in options else []
-    head += [card("nsid:i=0@set_node nsidex:i=0@set_node boxid:i=0 birth:f=0 death:f=1e20"),
+    head += [card("nsid:i=0@set_node nsidex:i=0@set_node boxid:i=0 birth:f=0 death:f~1e20"),
              card("xt:f=0 yt:f=0 zt:f=0 xh:f=0 yh:f=0 zh:f=0 fric:f=0"),
              card("radcyl:f lencyl:f=0")]
     if "MOTION" in options:
         head.append(card("lcid:i=0@curve opt:i=0 vx:f=0 vy:f=0 vz:f=0"))
     if "DISPLAY" in options:
-        head.append(card("pid:i=0 ro:f=1e-9 e:f=1e-4 pr:f=0.3"))
+        head.append(card("pid:i=0 ro:f~1e-9 e:f~1e-4 pr:f~0.3"))
     return Layout(head=tuple(head))
 
 

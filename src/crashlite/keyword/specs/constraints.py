@@ -35,7 +35,7 @@ register(Spec("CONSTRAINED_RIGID_BODIES", lambda o: Layout(row=(card("pidl:i@par
 
 
 def _spotweld(options: frozenset) -> Layout:
-    data = card("n1:i@node n2:i@node sn:f=0 ss:f=0 n:f=0 m:f=0 tf:f=1e20 ep:f=1e20")
+    data = card("n1:i@node n2:i@node sn:f=0 ss:f=0 n:f=0 m:f=0 tf:f~1e20 ep:f~1e20")
     return Layout(row=(card("wid:i"), data) if "ID" in options else (data,))
 
 
@@ -47,7 +47,7 @@ register(Spec("CONSTRAINED_SPOTWELD", _spotweld, options=("ID",), title_option=F
 def _gws(options: frozenset) -> Layout:
     head = (card("wid:i"),) if "ID" in options else ()
     return Layout(head=head + (card("nsid:i@set_node cid:i=0@coord filter:i=0 window:i=0 npr:i=0 nprt:i=0"),
-                               card("tfail:f=1e20 epsf:f=1e20 sn:f=0 ss:f=0 n:f=0 m:f=0")))
+                               card("tfail:f~1e20 epsf:f~1e20 sn:f=0 ss:f=0 n:f=0 m:f=0")))
 
 
 register(Spec("CONSTRAINED_GENERALIZED_WELD_SPOT", _gws, options=("ID",), title_option=False,

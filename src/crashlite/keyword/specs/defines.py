@@ -3,7 +3,7 @@
 from ..schema import Spec, card, fixed, register
 
 register(Spec("DEFINE_CURVE", fixed(
-    card("lcid:i@curve sidr:i=0 sfa:f=1 sfo:f=1 offa:f=0 offo:f=0 dattyp:i=0 lcint:i=0"),
+    card("lcid:i@curve sidr:i=0 sfa:f~1 sfo:f~1 offa:f=0 offo:f=0 dattyp:i=0 lcint:i=0"),
     row=[card("a1:f20=0 o1:f20=0")]), group="curves", id_field="lcid",
     doc="Curve: abscissa A1, ordinate O1, scaled by SFA/SFO and offset by OFFA/OFFO."))
 register(Spec("DEFINE_VECTOR", fixed(card("vid:i@vector xt:f=0 yt:f=0 zt:f=0 xh:f=0 yh:f=0 zh:f=0 cid:i=0@coord")),

@@ -52,7 +52,7 @@ register(Spec("ELEMENT_SOLID", _solid_layout, group="solids", bulk=True, title_o
                   "tetrahedra keep their corner nodes; crashlite uses 8)."))
 
 _BEAM = card("eid:i8@elem pid:i8@part n1:i8@node n2:i8@node n3:i8=0@node "
-             "rt1:i8=0 rr1:i8=0 rt2:i8=0 rr2:i8=0 local:i8=2")
+             "rt1:i8=0 rr1:i8=0 rt2:i8=0 rr2:i8=0 local:i8~2")
 _BEAM_THICK = card("parm1:f16=0 parm2:f16=0 parm3:f16=0 parm4:f16=0 parm5:f16=0")
 _BEAM_PID = card("pid1:i8=0@part pid2:i8=0@part")
 _BEAM_OFFSET = card("wx1:f16=0 wy1:f16=0 wz1:f16=0 wx2:f16=0 wy2:f16=0")
@@ -80,7 +80,7 @@ register(Spec("ELEMENT_BEAM", _beam_layout,
 
 register(Spec("ELEMENT_DISCRETE",
               fixed(row=[card("eid:i8@elem pid:i8@part n1:i8@node n2:i8=0@node vid:i8=0@sdo "
-                              "s:f16=1 pf:i8=0 offset:f16=0")]),
+                              "s:f16~1 pf:i8=0 offset:f16=0")]),
               group="discretes", bulk=True, title_option=False,
               doc="Springs/dampers between two nodes (n2=0: grounded); VID orientation, "
                   "S scale factor, PF print flag, OFFSET initial offset."))
