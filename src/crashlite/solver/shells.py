@@ -69,6 +69,7 @@ class ShellSet:
     bwc: int = 2  # 1: warping correction
     rotascl: float = 1.0  # rotary inertia scale factor
     warnings: list = field(default_factory=list)  # Problem: options run in an approximated way
+    isdo: int = 0  # *CONTROL_TIMESTEP ISDO: the characteristic length of the time step (0, 1, 2)
 
     def __len__(self) -> int:
         return len(self.ids)
@@ -110,7 +111,7 @@ def compute_forces(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
     """Advance the shells' state to t(n+1) and fill st.fe, st.me."""
     shell_forces(x, v, w, float(dt), s.conn, s.tri, s.mat_of, s.mtype, s.props, s.mcurve, s.curve_start,
                  s.curve_stop, s.curve_x, s.curve_y, s.nip, s.rule, s.shrf, s.hg_kind, s.hg_qm, s.hg_qb, s.hg_qw,
-                 s.rho, int(s.istupd == 1), int(s.bwc == 1), st.sig, st.back, st.epsp, st.ipfail, st.thick,
+                 s.rho, int(s.istupd == 1), int(s.bwc == 1), s.isdo, st.sig, st.back, st.epsp, st.ipfail, st.thick,
                  st.alive, st.hgq, st.energy, st.hg_energy, st.points, st.geometry, st.point_k, st.fe, st.me,
                  st.step)
 
@@ -143,7 +144,7 @@ def element_dt(s: ShellSet, x: np.ndarray, alive: np.ndarray | None = None) -> n
     """(n,) critical step of each shell at positions x (LS-DYNA rule, before TSSFAC)."""
     out = np.empty(len(s))
     shell_timestep(x, s.conn, s.tri, np.ones(len(s), np.int8) if alive is None else alive, s.mat_of, s.props,
-                   out)
+                   s.isdo, out)
     return out
 
 
@@ -304,6 +305,16 @@ def _control_shell(model: Model, problems: list, warns: list) -> tuple[int, int,
     return istupd, (1 if bwc == 1 else 2), intgrd, _num(r, "rotascl", 1.0) or 1.0
 
 
+def _isdo(model: Model, problems: list) -> int:
+    """*CONTROL_TIMESTEP ISDO: 0 longest side, 1 longest diagonal, 2 shortest side and bar wave speed."""
+    ts = model.find("CONTROL_TIMESTEP")
+    isdo = int(_num(ts[0], "isdo")) if ts else 0
+    if isdo not in (0, 1, 2):
+        problems.append(_problem(ts[0], "isdo", f"ISDO {isdo} is not one of 0, 1, 2"))
+        return 0
+    return isdo
+
+
 def _section(sec, part, p, intgrd, problems, warns):
     """(nip, rule, shrf, (t1..t4), marea) of a *SECTION_SHELL, or None."""
     ok = True
@@ -434,7 +445,7 @@ def build_shell_set(model: Model, rigid_pids, problems: list, warnings: list | N
     cs, ce, cx, cy = curves.arrays()
     s = ShellSet(ids, pid, conn, tri, mat_of, np.array(mat_ids, np.int64), np.array(mtypes, np.int64), props_a,
                  np.array(mcurves, np.int64).reshape(-1, ps.N_CURVES), cs, ce, cx, cy, thick0, area0, nip, rule,
-                 shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, marea, istupd, bwc, rotascl, warns)
+                 shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, marea, istupd, bwc, rotascl, warns, _isdo(model, problems))
     if warnings is not None:
         warnings.extend(warns)
     return s
@@ -482,7 +493,7 @@ class ShellGroup(ElementGroup):
         computed (the time loop asks right after them), else computed."""
         if not self._fresh:
             s = self.s
-            shell_timestep(st.x, s.conn, s.tri, self.st.alive, s.mat_of, s.props, self._dt)
+            shell_timestep(st.x, s.conn, s.tri, self.st.alive, s.mat_of, s.props, s.isdo, self._dt)
         self._fresh = False
         return float(self._dt.min()) if len(self._dt) else np.inf
 

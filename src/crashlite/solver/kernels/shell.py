@@ -58,7 +58,7 @@ Arrays (n elements; units of the model, e.g. mm, t, s, N, MPa):
   shrf (n,) float64 shear correction factor
   hg_kind (n,) int64 0 none, 1 viscous, 2 stiffness; hg_qm, hg_qb, hg_qw (n,) float64 coefficients
   rho (n,) float64 density incl. non-structural mass [mass/length³] (viscous hourglass)
-  istupd: 1 thickness change; bwc: 1 warping correction
+  istupd: 1 thickness change; bwc: 1 warping correction; isdo: *CONTROL_TIMESTEP ISDO (0, 1, 2)
   state, updated in place:
   sig, back (n, nip_max, 5) float64 stress and back stress σx σy τxy τyz τzx in the element frame [stress]
   epsp (n, nip_max) float64 effective plastic strain; ipfail (n, nip_max) int8 1: failed point
@@ -77,10 +77,10 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .plane_stress import (N_ROWS, P_E, P_G, P_WAVE, R_D, R_DEZ, R_FAILED, R_OK, R_WK, W, update_block,
+from .plane_stress import (N_ROWS, P_E, P_G, P_RO, P_WAVE, R_D, R_DEZ, R_FAILED, R_OK, R_WK, W, update_block,
                            update_point, work_density)
 from .shell_block import (BW, G_AREA, G_AREA1, G_DT, G_F, G_HG, G_HGS, G_LIVE, G_RATE, G_RES, N_G, block_forces,
-                          block_rates, gather_nodes)
+                          block_rates, char_length, gather_nodes)
 
 
 def _rules():
@@ -154,7 +154,7 @@ def _point(e, k, p, dt, mat_of, mtype, props, mcurve, cs, ce, cx, cy, shrf, sig,
 
 @njit(cache=True, error_model="numpy")
 def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, cs, ce, cx, cy, nip, rule,
-              shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq,
+              shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, isdo, sig, back, epsp, ipfail, thick, alive, hgq,
               energy, hg_energy, P, kk, G, fe, me, step):
     """Elements e0 .. e1 - 1 (one chunk; scratch rows ``P``, ``G``, point
     numbers ``kk``) in blocks of BLOCK: the strain rates at the mid-step
@@ -284,7 +284,7 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
             for i, val in enumerate((h0, h1, h2, h3, h4)):
                 G[(G_HGS + i) * BW + l] = val
         # forces at x(n+1)
-        block_forces(bwc, G)
+        block_forces(bwc, isdo, G)
         for e in range(first, last):
             l = e - first
             if G[G_LIVE * BW + l] <= 0.0:
@@ -295,7 +295,7 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
                 _kill(e, fe, me)
                 step[e] = np.inf
                 continue
-            step[e] = G[G_DT * BW + l] / math.sqrt(props[mat_of[e], P_WAVE])
+            step[e] = G[G_DT * BW + l] / math.sqrt(wave_speed2(isdo, props, mat_of[e]))
             for a in range(4):
                 for i in range(3):
                     fe[e, a, i] = G[(G_F + 6 * a + i) * BW + l]
@@ -331,7 +331,7 @@ def _hourglass(e, l, G, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, hg
 
 @njit(cache=True, parallel=True)
 def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve_start, curve_stop, curve_x,
-                 curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, sig, back, epsp, ipfail,
+                 curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, isdo, sig, back, epsp, ipfail,
                  thick, alive, hgq, energy, hg_energy, points, geometry, kk, fe, me, step):
     """One step of the shells (see the module docstring for the arrays):
     stresses, thickness, energies and state to t(n+1); corner forces fe
@@ -344,42 +344,50 @@ def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve
         gc = geometry[ch]
         _elements(ch * n // nc, (ch + 1) * n // nc, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve,
                   curve_start, curve_stop, curve_x, curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho,
-                  istupd, bwc, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, pts, kk, gc, fe, me, step)
+                  istupd, bwc, isdo, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, pts, kk, gc, fe, me,
+                  step)
+
+
+@njit(cache=True, inline="always")
+def wave_speed2(isdo, props, m):
+    """Squared wave speed of the shell step: the plate's E/(ρ(1 − ν²)), the
+    bar's E/ρ with ISDO 2."""
+    return props[m, P_E] / props[m, P_RO] if isdo == 2 else props[m, P_WAVE]
+
+
+@njit(cache=True, inline="always")
+def _d2(x, a, b):
+    return (x[b, 0] - x[a, 0]) ** 2 + (x[b, 1] - x[a, 1]) ** 2 + (x[b, 2] - x[a, 2]) ** 2
 
 
 @njit(cache=True, parallel=True)
-def shell_timestep(x, conn, tri, alive, mat_of, props, dt_out):
+def shell_timestep(x, conn, tri, alive, mat_of, props, isdo, dt_out):
     """LS-DYNA critical step of each shell (before TSSFAC): Δt = L/c with
-    c = sqrt(E/(ρ(1 − ν²))) and L = A / longest side (quadrilateral) or
-    2A / longest side (triangle), A from the diagonals (sides) cross
-    product at the current positions. Inactive elements: +inf.
-    dt_out (n,) [time]."""
+    L the characteristic length of *CONTROL_TIMESTEP ISDO
+    (kernels.shell_block.char_length) and c the plate wave speed
+    sqrt(E/(ρ(1 − ν²))) (ISDO 2: the bar's, sqrt(E/ρ)), at the current
+    positions. Inactive or degenerate elements: +inf. dt_out (n,) [time]."""
     for e in prange(conn.shape[0]):
         if alive[e] != 1:
             dt_out[e] = np.inf
             continue
-        i0, i1, i2, i3 = conn[e, 0], conn[e, 1], conn[e, 2], conn[e, 3]
-        if tri[e] == 1:
+        i0, i1, i2 = conn[e, 0], conn[e, 1], conn[e, 2]
+        i3 = i2 if tri[e] == 1 else conn[e, 3]
+        if tri[e] == 1:  # 2A = |x01 × x02|
             u0, u1, u2 = x[i1, 0] - x[i0, 0], x[i1, 1] - x[i0, 1], x[i1, 2] - x[i0, 2]
-            s0, s1, s2 = x[i2, 0] - x[i0, 0], x[i2, 1] - x[i0, 1], x[i2, 2] - x[i0, 2]
-            f = 1.0
-            lmax = max(u0 * u0 + u1 * u1 + u2 * u2, s0 * s0 + s1 * s1 + s2 * s2,
-                       (x[i2, 0] - x[i1, 0]) ** 2 + (x[i2, 1] - x[i1, 1]) ** 2 + (x[i2, 2] - x[i1, 2]) ** 2)
-        else:
+        else:  # 2A = |x02 × x13|
             u0, u1, u2 = x[i2, 0] - x[i0, 0], x[i2, 1] - x[i0, 1], x[i2, 2] - x[i0, 2]
+        if tri[e] == 1:
+            s0, s1, s2 = x[i2, 0] - x[i0, 0], x[i2, 1] - x[i0, 1], x[i2, 2] - x[i0, 2]
+        else:
             s0, s1, s2 = x[i3, 0] - x[i1, 0], x[i3, 1] - x[i1, 1], x[i3, 2] - x[i1, 2]
-            f = 0.5
-            lmax = 0.0
-            for a in range(4):
-                ia, ib = conn[e, a], conn[e, (a + 1) % 4]
-                lmax = max(lmax, (x[ib, 0] - x[ia, 0]) ** 2 + (x[ib, 1] - x[ia, 1]) ** 2
-                           + (x[ib, 2] - x[ia, 2]) ** 2)
         c0 = u1 * s2 - u2 * s1
         c1 = u2 * s0 - u0 * s2
         c2 = u0 * s1 - u1 * s0
-        area2 = math.sqrt(c0 * c0 + c1 * c1 + c2 * c2)  # 2A
-        if area2 <= 0.0 or lmax <= 0.0:
+        area = 0.5 * math.sqrt(c0 * c0 + c1 * c1 + c2 * c2)
+        length = char_length(isdo, 1.0 - tri[e], area, _d2(x, i0, i1), _d2(x, i1, i2), _d2(x, i2, i3),
+                             _d2(x, i3, i0), _d2(x, i0, i2), _d2(x, i1, i3))
+        if not area > 0.0 or not length > 0.0:
             dt_out[e] = np.inf
             continue
-        # quad: L = A/lmax = ½·2A/lmax; triangle: L = 2A/lmax
-        dt_out[e] = f * area2 / math.sqrt(lmax) / math.sqrt(props[mat_of[e], P_WAVE])
+        dt_out[e] = length / math.sqrt(wave_speed2(isdo, props, mat_of[e]))

@@ -42,7 +42,7 @@ G_F = 66  # 24 rows: force and moment ON corner a, component i at 6a + i and 6a 
 # fourth corner zero)
 G_AREA1 = 90  # area at x(n+1) (≤ 0 or NaN: degenerate)
 G_LIVE = 91  # kernels.shell's: the mid-step area of an element that gets forces this step (0: none)
-G_DT = 92  # at x(n+1): the critical step times the wave speed, L = A / longest side (a triangle's 2A / longest)
+G_DT = 92  # at x(n+1): the critical step times the wave speed, char_length
 G_Q1 = 93  # 12 rows, input: node a's position at x(n+1) relative to node 1
 N_G = 105
 
@@ -197,8 +197,26 @@ def _corner(b1, b2, g, k1, k2, wq, fr, tx, ty, tz, bx, by, bz, nx, ny, nz):
             -(mx * tx + my * bx), -(mx * ty + my * by), -(mx * tz + my * bz))
 
 
+@njit(cache=True, inline="always")
+def char_length(isdo, quad, area, s01, s12, s23, s30, d02, d13):
+    """LS-DYNA's characteristic length of a shell (*CONTROL_TIMESTEP ISDO)
+    from its area and squared sides s01..s30 and diagonals d02, d13; a
+    triangle (quad 0) is the quadrilateral with nodes 3 and 4 the same, β = 1:
+    0: (1 + β)·A / longest side; 1: (1 + β)·A / longest diagonal;
+    2: the larger of ISDO 0's and the shortest side (with the bar wave
+    speed, kernels.shell.wave_speed2)."""
+    f = 2.0 - quad  # 1 + β
+    if isdo == 1:
+        return f * area / math.sqrt(max(d02, d13))
+    length = f * area / math.sqrt(max(max(s01, s12), max(s23, s30)))
+    if isdo == 2:
+        shortest = min(min(s01, s12), min(s23 + (1.0 - quad) * 1e300, s30))
+        length = max(length, math.sqrt(shortest))
+    return length
+
+
 @njit(cache=True, error_model="numpy")
-def block_forces(bwc, G):
+def block_forces(bwc, isdo, G):
     """Corner forces and moments ON the nodes of the BW elements in G from
     their resultants and hourglass stresses (see the module docstring); the
     area and the length of the critical step at x(n+1)."""
@@ -237,4 +255,6 @@ def block_forces(bwc, G):
         s12 = (X2 - X1) ** 2 + (Y2 - Y1) ** 2 + (Z2 - Z1) ** 2
         s23 = (X3 - X2) ** 2 + (Y3 - Y2) ** 2 + (Z3 - Z2) ** 2
         s30 = (X0 - X3) ** 2 + (Y0 - Y3) ** 2 + (Z0 - Z3) ** 2
-        G[G_DT * BW + l] = (2.0 - quad) * area / math.sqrt(max(max(s01, s12), max(s23, s30)))
+        d02 = (X2 - X0) ** 2 + (Y2 - Y0) ** 2 + (Z2 - Z0) ** 2
+        d13 = (X3 - X1) ** 2 + (Y3 - Y1) ** 2 + (Z3 - Z1) ** 2
+        G[G_DT * BW + l] = char_length(isdo, quad, area, s01, s12, s23, s30, d02, d13)
