@@ -255,6 +255,29 @@ class ContactGroup(ElementGroup):
     def corner_forces(self) -> np.ndarray:
         return np.zeros((0, 5, 3))
 
+    def penetrations(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(normal (ns, 3), gap (ns,), segment nodes (ns, 4)) of every slave
+        entry at positions x, at rest and without friction: the contact
+        normal (from the segment to the node), the penetration (0: none) and
+        the nodes of the segment it penetrates (-1: none), leaving the
+        group's own state as it was (penetrations.remove_initial_penetrations)."""
+        c = self.c
+        ns, nm = len(c.snode), len(c.seg)
+        self._sort(x)
+        box = np.empty((nm, 6))
+        kc.segment_boxes(x, c.seg, self._reach, box)
+        prm = self.prm.copy()
+        prm[[kc.P_FS, kc.P_FD, kc.P_VDC, kc.P_SOFT_K]] = 0.0
+        prm[kc.P_ACTIVE] = 1.0
+        rows, rnode, gap = np.zeros((ns, 5, 3)), np.full((ns, 5), -1, np.int64), np.zeros(ns)
+        kc.contact_forces(x, np.zeros_like(x), 0.0, c.snode, c.sthick, c.sk, np.zeros(ns), c.seg, c.mthick, c.mk,
+                          np.zeros(nm), c.onesided, c.depth, c.msize, self.alive, box, self._cptr, self._cand, prm,
+                          np.zeros((ns, 3)), np.full(ns, -1, np.int64), np.zeros(ns, np.int8), rows, rnode, gap)
+        f = rows[:, 0, :]
+        size = np.linalg.norm(f, axis=1)
+        normal = np.where(size[:, None] > 0, f / np.where(size > 0, size, 1.0)[:, None], 0.0)
+        return normal, np.where(size > 0, gap, 0.0), rnode[:, 1:]
+
 
 # --- from the Model -------------------------------------------------------------------------------
 

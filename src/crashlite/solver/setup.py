@@ -118,6 +118,7 @@ class Setup:
     skew_held: np.ndarray = field(default_factory=lambda: np.zeros((0, 3, 3)))  # (k, 3, 3) held directions
     skew_held_rot: np.ndarray = field(default_factory=lambda: np.zeros((0, 3, 3)))  # (k, 3, 3) held axes
     warnings: list = field(default_factory=list)  # Problem: cards passed over, options run approximately
+    moved: list = field(default_factory=list)  # penetrations.Moved: slave nodes moved out at set-up
 
 
 class SetupError(DeckError):
@@ -645,6 +646,13 @@ def _build(model: Model) -> Setup:
     for i in massless[:10]:
         problems.append(Problem(model.source or "", 0, "ELEMENT_MASS", None,
                                 f"node {int(model.nodes.ids[i])} carries elements but has no mass"))
+    x0 = model.nodes.xyz.copy()
+    from .contact import ContactGroup
+    from .penetrations import remove_initial_penetrations, report
+
+    contacts = [g for g in groups if isinstance(g, ContactGroup)]
+    moved = remove_initial_penetrations(contacts, x0, ~fixed.all(axis=1) & ~driven) if contacts else []
+    warnings += report(moved, {g.cid: g.name for g in contacts}, model.nodes.ids, model.source or "")
     w0 = _initial_rotation(model, n)
     constraints = _constraint_objects(model, mass, rot_inertia, v0, w0, in_body, problems)
     term = model.find("CONTROL_TERMINATION")
@@ -687,7 +695,7 @@ def _build(model: Model) -> Setup:
     if problems:
         raise SetupError(problems)
     return Setup(
-        x0=model.nodes.xyz.copy(), v0=v0, mass=mass, fixed=fixed, discrete=disc, walls=walls,
+        x0=x0, v0=v0, mass=mass, fixed=fixed, discrete=disc, walls=walls,
         end_time=end_time, end_cycle=int(term[0].get("endcyc", 0)) if term else 0,
         tssfac=float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9,
         history_nodes=hist_idx[hist_idx >= 0], dt_max=dt_max, motions=motions, bodies=bodies,
@@ -704,4 +712,4 @@ def _build(model: Model) -> Setup:
         node_ids=model.nodes.ids.astype(np.int64), source=str(model.source or ""),
         skew_nodes=skew_nodes, skew_held=np.array([skew[i][0] for i in skew_nodes]).reshape(-1, 3, 3),
         skew_held_rot=np.array([skew[i][1] for i in skew_nodes]).reshape(-1, 3, 3), groups=groups,
-        warnings=warnings)
+        warnings=warnings, moved=moved)
