@@ -1,0 +1,113 @@
+"""Public LS-DYNA decks with LS-DYNA's own answers, run unchanged by crashlite.
+
+Each case names the public repository and commit its deck comes from, the
+deck, the parameters LS-DYNA ran it with (a *PARAMETER override, the way
+the study that produced the answers wrote them), and LS-DYNA's figures with
+where they were published. The decks are not redistributed: ``fetch.sh``
+clones them into ``tests/parity/data/`` (or point CRASHLITE_PARITY_DATA at
+a folder holding ``owner+name`` clones).
+
+Quantities (what the study read from LS-DYNA's binout, what crashlite
+reads from its Results):
+  fmax  largest x force on rigid wall 2 (the pole), in magnitude [N]
+  dmax  final x displacement of history node 605 (body, rear centre) [mm]
+  vfin  final matsum x rigid-body velocity of part 1 (body) [mm/s]
+  IE    final glstat internal energy [N·mm]
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).parent
+GSA_REPO = "dbrizard/GSA-car-crash"
+GSA_COMMIT = "477fb0578b764fb8dd630608b18d0b808b1fc12a"
+GSA_DECK = "lsopt_car6_v3/car6_crash_v223.k"
+# *PARAMETER of the nominal design (lsopt_car6_v3/main_v223.k)
+GSA_NOMINAL = {"tbumper": 3.0, "trailb": 2.0, "trailf": 5.0, "yrailb": 400.0, "tgrill": 1.0, "thood": 1.0,
+               "ybumper": 400.0, "yrailf": 400.0, "ybody": 400.0}
+
+
+@dataclass
+class Case:
+    name: str
+    repo: str
+    commit: str
+    deck: str  # the included model, relative to the repository
+    parameters: dict  # *PARAMETER values of the main deck LS-DYNA ran
+    reference: dict  # quantity -> LS-DYNA's value
+    source: str  # where LS-DYNA's figures were published
+    spread: dict = field(default_factory=dict)  # quantity -> relative scatter of LS-DYNA's own repeated runs
+
+
+def data_root() -> Path:
+    return Path(os.environ.get("CRASHLITE_PARITY_DATA", HERE / "data"))
+
+
+def repo_dir(case: Case) -> Path:
+    return data_root() / case.repo.replace("/", "+")
+
+
+def available(case: Case) -> bool:
+    return (repo_dir(case) / case.deck).is_file()
+
+
+def main_deck(case: Case, folder: Path) -> Path:
+    """The main deck as the study wrote it: *PARAMETER (R fields) and an
+    *INCLUDE of the model, unchanged."""
+    lines = ["*KEYWORD", "*PARAMETER"]
+    for k, v in case.parameters.items():
+        lines.append(f"R{k:>9}{v:>10.6g}")
+    lines += ["*INCLUDE", str(repo_dir(case) / case.deck), "*END"]
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / f"{case.name}.k"
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+def measure(res) -> dict:
+    """The case quantities from crashlite Results (see the module docstring)."""
+    wall = list(res.wall_ids).index(2)
+    node = list(res.history_nodes).index(605)
+    part = list(res.part_ids).index(1)
+    # LS-DYNA's rwforc x force of the pole is positive (the study takes its largest value), crashlite
+    # writes the nodes' force on the wall (negative here): the peak magnitude is compared
+    return {"fmax": float(np.max(np.abs(res.wall_force[:, wall, 0]))),
+            "dmax": float(res.node_displacement[-1, node, 0]),
+            "vfin": float(res.part_rigid_velocity[-1, part, 0]),
+            "IE": float(res.internal[-1])}
+
+
+def _lhs(n: int) -> list[Case]:
+    """LS-DYNA's answers for the first ``n`` designs of the study's 200-point
+    Latin hypercube over (tbumper, trailb, trailf, yrailf)."""
+    root = data_root() / GSA_REPO.replace("/", "+") / "LHS" / "4param"
+    if not (root / "LHS-200_X.csv").is_file():
+        return []
+    x = np.loadtxt(root / "LHS-200_X.csv", delimiter=",", ndmin=2)
+    y = {q: np.loadtxt(root / f"LHS-200_Y_{q}.csv", ndmin=1) for q in ("fmax", "dmax", "vfin", "IE")}
+    out = []
+    for i in range(min(n, len(x))):
+        p = dict(GSA_NOMINAL, tbumper=x[i, 0], trailb=x[i, 1], trailf=x[i, 2], yrailf=x[i, 3])
+        out.append(Case(f"gsa-car-lhs{i:03d}", GSA_REPO, GSA_COMMIT, GSA_DECK, p,
+                        {q: float(y[q][i]) for q in y}, "LHS/4param/LHS-200_{X,Y_*}.csv, row %d" % i))
+    return out
+
+
+def cases(lhs: int = 5) -> list[Case]:
+    """The parity set: the nominal small car against a pole (LS-DYNA R10.1,
+    five repeated runs, their mean and scatter), and ``lhs`` designs of the
+    study's Latin hypercube."""
+    runs = {"fmax": [772836.8, 775579.75, 772913.4, 770100.4, 773196.4],
+            "dmax": [-641.87, -643.65, -642.13, -643.91, -642.20],
+            "vfin": [-710.95, -716.19, -693.02, -730.54, -706.61],
+            "IE": [1.20394832e8, 1.2032208e8, 1.20379344e8, 1.2035144e8, 1.20424064e8]}
+    nominal = Case("gsa-car-nominal", GSA_REPO, GSA_COMMIT, GSA_DECK, dict(GSA_NOMINAL),
+                   {q: float(np.mean(v)) for q, v in runs.items()},
+                   "lsopt_car6_v3/MODIFICATIONS_LOG.md, 'base design output 2024-05-03' (5 runs)",
+                   {q: float(np.ptp(v) / abs(np.mean(v))) for q, v in runs.items()})
+    return [nominal] + _lhs(lhs)

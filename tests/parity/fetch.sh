@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Clone the public repositories of the parity decks (not redistributed with
+# crashlite: see README.md beside this script) into tests/parity/data/.
+# Needs network access to github.com; run once.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+data="${CRASHLITE_PARITY_DATA:-$here/data}"
+mkdir -p "$data"
+fetch() {  # owner/name commit
+  local dir="$data/${1/\//+}"
+  if [ ! -d "$dir/.git" ]; then
+    git clone --quiet "https://github.com/$1.git" "$dir"
+  fi
+  git -C "$dir" checkout --quiet "$2"
+  echo "$1 @ $2 -> $dir"
+}
+fetch dbrizard/GSA-car-crash 477fb0578b764fb8dd630608b18d0b808b1fc12a
