@@ -134,28 +134,34 @@ def _energy_ok(res, tol=0.01):
 
 def _slide(tmp_path, fs, fd, dc, v0=500.0, acc=1.0e5, m=1e-4):
     """A mass pressed on a fixed plate by a body load ``acc`` and launched
-    along it at v0: (Results, displacement along the plate)."""
+    along it at v0: (Results, displacement along the plate). It starts on
+    the plate's contact surface (a start inside it would be moved out, as
+    LS-DYNA does) and settles into its static penetration m·acc/k within a
+    few periods of the penalty spring, damped by VDC = 40 % of critical."""
     soft = (RHO, E / 100, NU)  # a soft plate: a longer time step, the same physics
     k = _shell_k(5.0, soft[1] / (3 * (1 - 2 * NU)))
     d = Deck()
     plate = d.plate(1, 4, 2, 20.0, 10.0, mat=soft)
-    (node,) = d.nodes([[3.0, 5.0, 0.5 - m * acc / k]])  # at its static penetration
+    (node,) = d.nodes([[3.0, 5.0, 0.5]])  # on the contact surface (the plate's half thickness)
     d.mass(node, m)
     d.node_set(1, [node])
     d.fix(plate)
     d.velocity([node], (v0, 0.0, 0.0))
-    d.contact("NODES_TO_SURFACE", "1,1,4,3", f"{fs},{fd},{dc}")
+    d.contact("NODES_TO_SURFACE", "1,1,4,3", f"{fs},{fd},{dc},0,40")
     d.extra += ["*LOAD_BODY_Z", f"1,{acc}", "*DEFINE_CURVE", "1", "0.0,1.0", "1.0,1.0"]  # gravity -z
     t_stop = 1.3 * v0 / (min(fs, fd) * acc)
     res, (g,), s = run(d.write(tmp_path / "slide.k", t_stop))
-    return res, res.final_x[node - 1] - [3.0, 5.0, 0.5 - m * acc / k], res.final_v[node - 1]
+    return res, res.final_x[node - 1] - [3.0, 5.0, 0.5 - m * acc / k], res.final_v[node - 1]  # from rest
 
 
 def test_friction_stops_a_sliding_mass_after_v0_squared_over_2_mu_g(tmp_path):
     mu, v0, acc, m = 0.3, 500.0, 1.0e5, 1e-4
     res, (dist, dy, _), v = _slide(tmp_path, mu, mu, 0.0, v0, acc, m)
     assert dist == pytest.approx(v0 ** 2 / (2 * mu * acc), rel=0.03)
-    assert abs(v[0]) < 0.01 * v0 and abs(dy) < 1e-9
+    # stopped: what is left is the stick oscillation on the tangential penalty spring, whose speed
+    # is at most μ·acc/ω (the spring let go at μ·m·acc, ω² = k/m)
+    k = _shell_k(5.0, E / 100 / (3 * (1 - 2 * NU)))
+    assert abs(v[0]) <= 1.05 * mu * acc * math.sqrt(m / k) < 0.05 * v0 and abs(dy) < 1e-9
     # the energy taken by the interface is the friction work μ·m·g·d
     assert res.sliding[-1] == pytest.approx(mu * m * acc * dist, rel=0.03)
     assert res.energy_ratio[-1] == pytest.approx(1.0, abs=0.01)
