@@ -23,6 +23,7 @@ class PartAccount:
                                                                               np.int64)]
         self.part_ids = np.unique(np.concatenate(pids)) if pids else np.zeros(0, np.int64)
         self.bodies = bodies
+        self._mass = None  # (n_parts,) part masses, summed at the first rigid_velocity
         self.body_part = np.searchsorted(self.part_ids, [b.body_id for b in bodies]).astype(np.int64)
         in_body = np.zeros(n_nodes, bool)
         for b in bodies:
@@ -73,7 +74,11 @@ class PartAccount:
 
     def rigid_velocity(self, mass: np.ndarray, momentum: np.ndarray) -> np.ndarray:
         """(n_parts, 3) rigid-body velocity from the parts' ``momentum``:
-        momentum / mass, the CoG velocity (NaN for a part without mass)."""
-        m = self.mass(mass)
+        momentum / mass, the CoG velocity (NaN for a part without mass).
+        The part masses are summed once: the nodal masses do not change in
+        the time loop."""
+        if self._mass is None:
+            self._mass = self.mass(mass)
+        m = self._mass
         with np.errstate(divide="ignore", invalid="ignore"):
             return momentum / np.where(m > 0, m, np.nan)[:, None]
