@@ -95,3 +95,33 @@ def test_the_run_steps_at_tssfac_times_the_smallest_element_step(tmp_path, tssfa
     model = _deck(tmp_path, *RECT, f"0.0,{tssfac},0", end=2e-6)
     r = run(model, output_dt=1e-6)
     assert r.time_step[1] == pytest.approx(factor * 4.0 / C_PLATE, rel=1e-9)  # [0] is t = 0
+
+
+def test_solid_step_is_volume_over_largest_face_at_the_dilatational_wave_speed(tmp_path):
+    """ELFORM 1 brick 10 × 20 × 5 at rest: L = V / A_max = 1000 / 200 = 5,
+    c = sqrt(E(1 − ν) / ((1 + ν)(1 − 2ν)ρ)) (no bulk viscosity at rest)."""
+    from crashlite.solver.solids import build_solids
+    from crashlite.solver.solids import element_dt as solid_dt
+
+    corners = [(0, 0, 0), (10, 0, 0), (10, 20, 0), (0, 20, 0), (0, 0, 5), (10, 0, 5), (10, 20, 5), (0, 20, 5)]
+    lines = ["*KEYWORD", "*NODE"] + [f"{i + 1},{x},{y},{z}" for i, (x, y, z) in enumerate(corners)]
+    lines += ["*ELEMENT_SOLID", "1,1,1,2,3,4,5,6,7,8", "*PART", "p", "1,1,1", "*SECTION_SOLID", "1,1",
+              "*MAT_ELASTIC", f"1,{RHO},{E},{NU}", "*CONTROL_TERMINATION", "1e-6", "*END"]
+    path = tmp_path / "brick.k"
+    path.write_text("\n".join(lines) + "\n")
+    model = read_deck(path)
+    (dt,) = solid_dt(build_solids(model, np.zeros(0, np.int64), []), model.nodes.xyz)
+    c = math.sqrt(E * (1 - NU) / ((1 + NU) * (1 - 2 * NU) * RHO))
+    assert dt == pytest.approx(5.0 / c, rel=1e-12)
+
+
+def test_spring_step_is_the_two_mass_oscillators(tmp_path):
+    """A linear spring k between masses m1, m2: Δt = 2·sqrt(m1·m2 / (k(m1 + m2))), × TSSFAC."""
+    k, m1, m2 = 1.0e4, 2.0e-3, 5.0e-3
+    lines = ["*KEYWORD", "*NODE", "1,0,0,0", "2,10,0,0", "*ELEMENT_DISCRETE", "1,1,1,2",
+             "*PART", "s", "1,1,1", "*SECTION_DISCRETE", "1,0", "*MAT_SPRING_ELASTIC", f"1,{k}",
+             "*ELEMENT_MASS", f"1,1,{m1}", f"2,2,{m2}", "*CONTROL_TERMINATION", "1e-4", "*END"]
+    path = tmp_path / "spring.k"
+    path.write_text("\n".join(lines) + "\n")
+    r = run(read_deck(path), output_dt=1e-5)
+    assert r.time_step[1] == pytest.approx(0.9 * 2.0 * math.sqrt(m1 * m2 / (k * (m1 + m2))), rel=1e-12)
