@@ -298,7 +298,7 @@ def test_undefined_part_set_names_the_card_and_field(tmp_path):
 
 @pytest.mark.parametrize("card_a, extra, field", [
     ("2", [], "SOFT"),
-    ("0,0.1,0,0,0,0,0,0\n0,0,0,0,0,0,0,0\n0,1", [], "IGNORE"),
+    ("0,0.1,0,0,0,0,0,0\n0,0,0,0,0,0,0,0\n0,3", [], "IGNORE"),  # 0, 1, 2 run
     (None, ["*CONTROL_CONTACT", "0.1,0,1,0,4"], "PENOPT"),
 ])
 def test_options_not_run_are_refused(tmp_path, card_a, extra, field):

@@ -63,7 +63,7 @@ _FIXED = {
     "penmax": ((0.0,), "release of deeply penetrated nodes"), "thkopt": ((0,), "thickness option"),
     "isym": ((0,), "symmetry planes"), "i2d3d": ((0,), "2D/3D segment priority"),
     "sldthk": ((0.0,), "solid contact thickness"), "sldstf": ((0.0,), "solid contact stiffness"),
-    "ignore": ((0,), "ignoring initial penetrations"), "dprfac": ((0.0,), "depth of penetration reduction"),
+    "dprfac": ((0.0,), "depth of penetration reduction"),
     "cid_rcf": ((0,), "rcforc in a local system"), "q2tri": ((0,), "quad splitting"),
     "dtpchk": ((0.0,), "penetration time step check"), "sfnbr": ((0.0,), "neighbour segment scale"),
     "fnlscl": ((0.0,), "non-linear penalty"), "dnlscl": ((0.0,), "non-linear penalty depth"),
@@ -77,7 +77,7 @@ _FIXED = {
     "ssftyp": ((0,), "SSF type"), "swtpr": ((0,), "tapered shell thickness"), "tetfac": ((0.0,), "tetrahedra factor"),
     "shloff": ((0.0,), "shell offset"),
 }
-_CONTROL_FIXED = {"ignore": ((0,), "ignoring initial penetrations"), "sfric": ((0.0,), "default friction"),
+_CONTROL_FIXED = {"sfric": ((0.0,), "default friction"),
                   "penopt": ((0, 1), "penalty other than the smaller of segment and node (PENOPT 0/1)"),
                   "thkchg": ((0,), "shell thickness changes in contact"),
                   "dfric": ((0.0,), "default friction"), "edc": ((0.0,), "default friction decay"),
@@ -158,6 +158,7 @@ class Interface:
     birth: float = 0.0
     death: float = 1e20
     bsort: int = BSORT_DEFAULT
+    ignore: int = 0  # initial penetrations: 0 moved out at set-up, 1 and 2 tracked (IGNORE)
 
 
 class ContactGroup(ElementGroup):
@@ -191,6 +192,7 @@ class ContactGroup(ElementGroup):
         # how far from a segment a slave node's mid-surface may be in contact, less the node's half thickness
         self._reach = 0.5 * c.mthick + np.where(c.onesided != 0, c.depth + 1e-2 * c.msize, 0.0)
         self.gap = np.zeros(ns)
+        self.offset = np.zeros(ns)  # tracked initial penetration of each entry (IGNORE 1, 2) [length]
         self.max_gap = 0.0  # largest penetration met so far [length]
         self.sorts = 0  # bucket sorts done
         self.prm = np.zeros(kc.N_PRM)
@@ -245,7 +247,7 @@ class ContactGroup(ElementGroup):
         kc.segment_boxes(st.x, c.seg, self._reach, self._box)
         kc.contact_forces(st.x, st.v, float(st.dt), c.snode, c.sthick, c.sk, self._smass, c.seg, c.mthick, c.mk,
                           self._mmass, c.onesided, c.depth, c.msize, self.alive, self._box, self._cptr, self._cand,
-                          self.prm, self.ft, self.prev, self.side, self.rows, self.rnode, self.gap)
+                          self.prm, self.ft, self.prev, self.side, self.rows, self.rnode, self.gap, self.offset)
         p_new = kc.scatter(self.rows, self.rnode, self.gap, st.v, c.node_side, st.f, self.resultant)
         # work of the contact forces over the step (trapezoid); stored and dissipated energy count positive
         self.energy[0] -= 0.5 * float(st.dt) * (p_old + p_new)
@@ -272,7 +274,8 @@ class ContactGroup(ElementGroup):
         rows, rnode, gap = np.zeros((ns, 5, 3)), np.full((ns, 5), -1, np.int64), np.zeros(ns)
         kc.contact_forces(x, np.zeros_like(x), 0.0, c.snode, c.sthick, c.sk, np.zeros(ns), c.seg, c.mthick, c.mk,
                           np.zeros(nm), c.onesided, c.depth, c.msize, self.alive, box, self._cptr, self._cand, prm,
-                          np.zeros((ns, 3)), np.full(ns, -1, np.int64), np.zeros(ns, np.int8), rows, rnode, gap)
+                          np.zeros((ns, 3)), np.full(ns, -1, np.int64), np.zeros(ns, np.int8), rows, rnode, gap,
+                          np.zeros(ns))
         f = rows[:, 0, :]
         size = np.linalg.norm(f, axis=1)
         normal = np.where(size[:, None] > 0, f / np.where(size > 0, size, 1.0)[:, None], 0.0)
@@ -292,15 +295,26 @@ def _num(rec, fld, default=0.0) -> float:
     return default if v is None else float(v)
 
 
-def _slsfac(model: Model, problems: list) -> float:
+def _control(model: Model, problems: list) -> tuple[float, int]:
+    """(SLSFAC, IGNORE) of *CONTROL_CONTACT (0.1 and 0 without it)."""
     recs = model.find("CONTROL_CONTACT")
     if not recs:
-        return 0.1
+        return 0.1, 0
     r = recs[0]
     for fld, (ok, what) in _CONTROL_FIXED.items():
         if r.get(fld) is not None and float(r.get(fld)) not in ok:
             problems.append(_problem(r, fld, f"{what} ({fld.upper()} = {r.get(fld)}) is not supported"))
-    return _num(r, "slsfac", 0.1) or 0.1
+    return _num(r, "slsfac", 0.1) or 0.1, _ignore(r, problems)
+
+
+def _ignore(rec, problems: list) -> int:
+    """IGNORE: 0 initial penetrations moved out, 1 tracked, 2 tracked (LS-DYNA also prints them)."""
+    val = int(_num(rec, "ignore"))
+    if val not in (0, 1, 2):
+        problems.append(_problem(rec, "ignore", f"IGNORE {val} is not supported (0 move nodes, 1 and 2 track "
+                                                "the initial penetrations)"))
+        return 0
+    return val
 
 
 def _shell_thickness(model: Model, sel: np.ndarray, conn: np.ndarray, problems: list, rec) -> np.ndarray:
@@ -538,7 +552,7 @@ def _options(rec, problems: list) -> dict | None:
                 fsf=pos("fsf", 1.0), soft=soft, sofscl=pos("sofscl", 0.1), birth=_num(rec, "bt"),
                 death=pos("dt", 1e20), bsort=int(pos("bsort", BSORT_DEFAULT)), sfs=pos("sfs", 1.0),
                 sfm=pos("sfm", 1.0), sst=_num(rec, "sst"), mst=_num(rec, "mst"), sfst=pos("sfst", 1.0),
-                sfmt=pos("sfmt", 1.0), dtstif=_num(rec, "dtstif"))
+                sfmt=pos("sfmt", 1.0), dtstif=_num(rec, "dtstif"), ignore=_ignore(rec, problems))
 
 
 def _interface(model: Model, rec, number: int, slsfac: float, problems: list) -> Interface | None:
@@ -598,7 +612,7 @@ def _interface(model: Model, rec, number: int, slsfac: float, problems: list) ->
                      seg.solid, seg.partner,
                      fs=o["fs"], fd=o["fd"], dc=o["dc"], vdc=o["vdc"], fsf=o["fsf"], soft=o["soft"],
                      sofscl=o["sofscl"], dt0=o["dtstif"] if o["dtstif"] > 0 else np.inf, birth=o["birth"],
-                     death=o["death"], bsort=o["bsort"])
+                     death=o["death"], bsort=o["bsort"], ignore=o["ignore"])
 
 
 def _initial_dt(model: Model, groups) -> float:
@@ -625,12 +639,13 @@ def build_contacts(model: Model, groups, problems: list) -> list[ContactGroup]:
     recs = [r for r in model.keywords if getattr(r, "keyword", "") in KINDS and hasattr(r, "get")]
     if not recs:
         return out
-    slsfac = _slsfac(model, problems)
+    slsfac, ignore = _control(model, problems)
     dt0 = None
     for i, rec in enumerate(recs):
         c = _interface(model, rec, i + 1, slsfac, problems)
         if c is None:
             continue
+        c.ignore = c.ignore or ignore  # the contact's own, else *CONTROL_CONTACT's
         if c.soft == 1 and not np.isfinite(c.dt0):
             dt0 = _initial_dt(model, groups) if dt0 is None else dt0
             c.dt0 = dt0

@@ -1,6 +1,8 @@
 """Initial penetrations of the contacts, removed before the first cycle as
 LS-DYNA does by default (*CONTACT_AUTOMATIC_... and *CONTROL_CONTACT
-IGNORE = 0: "move nodes to eliminate initial penetrations").
+IGNORE = 0: "move nodes to eliminate initial penetrations"), or tracked
+(IGNORE = 1, 2: only the penetration beyond the initial one pushes, and
+the tracked value shrinks as the node moves out, kernels.contact).
 
 A slave node that starts inside the contact thickness of a segment would
 be pushed out by a penalty spring that nothing compressed: the contact
@@ -28,17 +30,24 @@ MAX_PASSES = 12
 class Moved:
     cid: int  # contact interface ID
     node: int  # node index
-    depth: float  # penetration removed [length] (0 where the node could not move)
-    moved: bool
+    depth: float  # initial penetration [length]
+    moved: bool  # moved out (False: held, rigid or driven, or tracked)
+    tracked: bool = False  # IGNORE 1, 2: kept and tracked
 
 
 def remove_initial_penetrations(contacts, x: np.ndarray, movable: np.ndarray) -> list[Moved]:
     """Move the penetrating slave nodes of ``contacts`` (ContactGroup, active
     at t = 0) out of their segments in ``x`` (n, 3), in place; ``movable``
-    (n,) bool. Returns one Moved per node and interface (the deepest
-    penetration it had there)."""
+    (n,) bool. Contacts with IGNORE 1 or 2 keep them: their groups' offsets
+    track them instead. Returns one Moved per node and interface (the
+    deepest penetration it had there)."""
     found: dict[tuple[int, int], Moved] = {}
-    active = [g for g in contacts if g.c.birth <= 0.0]
+    for g in contacts:  # IGNORE 1, 2: the initial penetrations stay, tracked
+        if g.c.birth <= 0.0 and g.c.ignore:
+            g.offset[:] = g.penetrations(x)[1]
+            for i in np.flatnonzero(g.offset > 0.0):
+                found[(g.cid, int(g.c.snode[i]))] = Moved(g.cid, int(g.c.snode[i]), float(g.offset[i]), False, True)
+    active = [g for g in contacts if g.c.birth <= 0.0 and not g.c.ignore]
     for _ in range(MAX_PASSES):
         depth = np.zeros(len(x))
         shift = np.zeros_like(x)
@@ -71,6 +80,14 @@ def report(moved: list[Moved], names: dict[int, str], node_ids: np.ndarray, sour
     out = []
     for cid in sorted({m.cid for m in moved}):
         mine = [m for m in moved if m.cid == cid]
+        kept = [m for m in mine if m.tracked]
+        if kept:
+            deep = max(kept, key=lambda m: m.depth)
+            out.append(Problem(source, 0, names.get(cid, "CONTACT"), None,
+                               f"contact {cid}: {len(kept)} slave node(s) start inside the contact thickness; "
+                               f"IGNORE keeps and tracks their penetration (deepest {deep.depth:.4g} at node "
+                               f"{int(node_ids[deep.node])}); every node in initial_penetrations.csv"))
+            continue
         done = [m for m in mine if m.moved]
         stuck = [m for m in mine if not m.moved]
         text = f"contact {cid}: {len(done)} slave node(s) started inside the contact thickness and were moved out"
@@ -87,8 +104,8 @@ def report(moved: list[Moved], names: dict[int, str], node_ids: np.ndarray, sour
 
 
 def write_csv(path, moved: list[Moved], node_ids: np.ndarray) -> None:
-    """contact, node ID, penetration removed, moved (1) or not (0)."""
-    lines = ["contact,node,depth,moved"]
-    lines += [f"{m.cid},{int(node_ids[m.node])},{m.depth:.6g},{int(m.moved)}"
+    """contact, node ID, initial penetration, moved out (1) or not (0), tracked (1: IGNORE 1, 2)."""
+    lines = ["contact,node,depth,moved,tracked"]
+    lines += [f"{m.cid},{int(node_ids[m.node])},{m.depth:.6g},{int(m.moved)},{int(m.tracked)}"
               for m in sorted(moved, key=lambda m: (m.cid, int(node_ids[m.node])))]
     path.write_text("\n".join(lines) + "\n")

@@ -375,7 +375,7 @@ def _relative_velocity(v, nd, n0, n1, n2, n3, w0, w1, w2, w3):
 
 @njit(cache=True, parallel=True)
 def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, onesided, depth, msize, alive, box,
-                   cptr, cand, prm, ft, prev, side, rows, rnode, gap):
+                   cptr, cand, prm, ft, prev, side, rows, rnode, gap, offset):
     """Rows of the pair forces of every slave entry (see the module doc).
 
     The segment of an entry is the nearest one it penetrates; a node behind
@@ -383,7 +383,10 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
     stays behind it, so that a node at a corner is not handed to the side
     face it grazes; a node on a shell keeps the side it came from (side
     (ns,) int8, ±1 along the segment normal) while it stays over the same
-    segment, so a node pushed past the mid-surface is still pushed back."""
+    segment, so a node pushed past the mid-surface is still pushed back.
+    offset (ns,) float64: a tracked initial penetration (LS-DYNA's IGNORE
+    1, 2): only the penetration beyond it pushes, and it shrinks to the
+    penetration as the node moves out; 0 once the node is out of contact."""
     fs, fd, dc, vdc, fsf, soft_k = prm[P_FS], prm[P_FD], prm[P_DC], prm[P_VDC], prm[P_FSF], prm[P_SOFT_K]
     active = prm[P_ACTIVE] != 0.0
     friction = fs > 0.0 or fd > 0.0
@@ -464,6 +467,14 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
                         best_cls = -1  # no other candidate replaces it
         prev[i] = best
         side[i] = bsg if best >= 0 else 0
+        if best >= 0 and offset[i] > 0.0:  # a tracked initial penetration: only what goes beyond it
+            if bg < offset[i]:
+                offset[i] = bg
+            bg -= offset[i]
+            if bg <= 0.0:
+                best = -1
+        elif best < 0:
+            offset[i] = 0.0
         if best < 0:
             ft[i, 0] = 0.0
             ft[i, 1] = 0.0
