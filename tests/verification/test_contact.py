@@ -505,3 +505,26 @@ def test_the_solid_behind_a_deleted_one_still_bears(tmp_path, fail):
         assert solids.eroded == 0 and lowest > 20.0 + 10.0 * 0.3  # on the top element, crushed but there
     total = res.kinetic + res.internal + res.sliding + res.hourglass
     assert np.max(np.abs(total - total[0])) < 0.02 * total[0]
+
+
+@pytest.mark.parametrize("control, sst, kind, want", [
+    ([], "", "SINGLE_SURFACE", 0.8),  # 40 % of the 2 mm edge, not the 2 mm shell
+    (["*CONTROL_CONTACT", "0.1", "0,0,0,0,4,1"], "", "SINGLE_SURFACE", 2.0),  # SSTHK = 1: the shell's
+    ([], "0,0,1.5", "SINGLE_SURFACE", 1.5),  # SST given: no limit
+    ([], "", "SURFACE_TO_SURFACE", 2.0),  # the rule is single surface's only
+])
+def test_single_surface_shell_thickness_is_at_most_40_percent_of_the_shortest_edge(tmp_path, control, sst, kind,
+                                                                                    want):
+    """LS-DYNA: for single-surface contact with SSTHK = 0 and no SST, a
+    shell's contact thickness is limited to 40 % of its shortest edge."""
+    d = Deck()
+    d.plate(1, 5, 2, 10.0, 4.0, thick=2.0)  # 2 × 2 mm elements
+    d.plate(2, 5, 2, 10.0, 4.0, z=5.0, thick=2.0)
+    d.lines += ["*SET_PART_LIST", "1", "1,2"]
+    c1 = "1,0,2" if kind == "SINGLE_SURFACE" else "1,2,3,3"
+    d.contact(kind, c1, "", sst)
+    d.extra += control
+    s = build(read_deck(d.write(tmp_path / "t.k", 1e-5)))
+    (g,) = [g for g in s.groups if g.kind == "contact"]
+    np.testing.assert_allclose(g.c.mthick, want, rtol=1e-12)
+    np.testing.assert_allclose(g.c.sthick, want, rtol=1e-12)

@@ -3,7 +3,8 @@ _NODES_TO_SURFACE and _SURFACE_TO_SURFACE as time-loop groups.
 
 Each interface becomes one ContactGroup (kind "contact": its energy counts
 as sliding energy). Segments are the shells of the surface's parts (both
-sides, contact thickness = shell thickness, or SST/MST) and the exterior
+sides, contact thickness = shell thickness, at most 40 % of the shortest
+edge in single-surface contact unless SSTHK = 1, or SST/MST) and the exterior
 faces of their solids (faces used by one element of the surface, outward
 normals, zero thickness); where solids may be deleted (*CONTROL_TIMESTEP
 ERODE = 1, a material failure strain) also every inner face, once for each
@@ -295,16 +296,16 @@ def _num(rec, fld, default=0.0) -> float:
     return default if v is None else float(v)
 
 
-def _control(model: Model, problems: list) -> tuple[float, int]:
-    """(SLSFAC, IGNORE) of *CONTROL_CONTACT (0.1 and 0 without it)."""
+def _control(model: Model, problems: list) -> tuple[float, int, int]:
+    """(SLSFAC, IGNORE, SSTHK) of *CONTROL_CONTACT (0.1, 0, 0 without it)."""
     recs = model.find("CONTROL_CONTACT")
     if not recs:
-        return 0.1, 0
+        return 0.1, 0, 0
     r = recs[0]
     for fld, (ok, what) in _CONTROL_FIXED.items():
         if r.get(fld) is not None and float(r.get(fld)) not in ok:
             problems.append(_problem(r, fld, f"{what} ({fld.upper()} = {r.get(fld)}) is not supported"))
-    return _num(r, "slsfac", 0.1) or 0.1, _ignore(r, problems)
+    return _num(r, "slsfac", 0.1) or 0.1, _ignore(r, problems), int(_num(r, "ssthk"))
 
 
 def _ignore(rec, problems: list) -> int:
@@ -555,7 +556,17 @@ def _options(rec, problems: list) -> dict | None:
                 sfmt=pos("sfmt", 1.0), dtstif=_num(rec, "dtstif"), ignore=_ignore(rec, problems))
 
 
-def _interface(model: Model, rec, number: int, slsfac: float, problems: list) -> Interface | None:
+def _limit_thickness(surf: Surface, x: np.ndarray) -> None:
+    """LS-DYNA's single-surface rule (*CONTROL_CONTACT SSTHK = 0, no SST):
+    a shell segment's contact thickness is at most 40 % of its shortest edge."""
+    seg = surf.seg
+    edge = np.stack([np.linalg.norm(x[seg[:, (j + 1) % 4]] - x[seg[:, j]], axis=1) for j in range(4)], axis=1)
+    shortest = np.where(edge > 0, edge, np.inf).min(axis=1)  # a triangle's n3 = n4 edge is no edge
+    shell = surf.solid == 0
+    surf.thick[shell] = np.minimum(surf.thick[shell], 0.4 * shortest[shell])
+
+
+def _interface(model: Model, rec, number: int, slsfac: float, problems: list, ssthk: int = 0) -> Interface | None:
     kind = rec.keyword
     n = len(model.nodes)
     o = _options(rec, problems)
@@ -573,6 +584,8 @@ def _interface(model: Model, rec, number: int, slsfac: float, problems: list) ->
     s_surf = (build_surface(model, slave[1], slsfac, o["sfs"], o["sst"], o["sfst"], problems, rec)
               if slave[0] == "parts" else Surface.empty())
     if kind == KINDS[0]:
+        if o["sst"] <= 0 and not ssthk:
+            _limit_thickness(s_surf, model.nodes.xyz)
         nodes = s_surf.nodes()
         t, k = s_surf.node_values(nodes, n)
         side = np.full(len(nodes), -1, np.int64)
@@ -639,10 +652,10 @@ def build_contacts(model: Model, groups, problems: list) -> list[ContactGroup]:
     recs = [r for r in model.keywords if getattr(r, "keyword", "") in KINDS and hasattr(r, "get")]
     if not recs:
         return out
-    slsfac, ignore = _control(model, problems)
+    slsfac, ignore, ssthk = _control(model, problems)
     dt0 = None
     for i, rec in enumerate(recs):
-        c = _interface(model, rec, i + 1, slsfac, problems)
+        c = _interface(model, rec, i + 1, slsfac, problems, ssthk)
         if c is None:
             continue
         c.ignore = c.ignore or ignore  # the contact's own, else *CONTROL_CONTACT's
