@@ -161,3 +161,41 @@ def test_nodal_load_errors_name_the_card(tmp_path):
         build(read_deck(p))
     msg = str(e.value)
     assert "LOAD_NODE_POINT" in msg and "rotational" in msg and "DOF 4" in msg
+
+
+def test_membrane_hourglass_stiffness_is_belytschko_tsays(tmp_path):
+    """A free square shell set swinging in its in-plane hourglass mode
+    (v_x = V·(1, −1, 1, −1)), IHQ 4: Belytschko–Tsay's stiffness
+    Q̇ = QM·E·t·A·B·B/8·q̇ puts QM·E·t per unit nodal amplitude on each
+    node, so the mode oscillates at ω² = 4·QM·E/(ρA) with amplitude V/ω
+    (central difference: ω_h = (2/Δt)·asin(ωΔt/2), amplitude V·Δt/sin(ω_hΔt)). ν = 0: a single free
+    element with ν > 0 is not stable at TSSFAC 0.9 (its breathing mode has
+    ω = 2c/L·sqrt(1 + ν)), in LS-DYNA's rule as here."""
+    import math
+
+    from crashlite import read_deck
+    from crashlite.solver import run
+
+    e, rho, size, t, qm, v = 2.0e5, 7.85e-9, 10.0, 1.0, 0.1, 100.0
+    h = [1, -1, 1, -1]
+    lines = ["*KEYWORD", "*NODE", "1,0,0,0", f"2,{size},0,0", f"3,{size},{size},0", f"4,0,{size},0",
+             "*ELEMENT_SHELL", "1,1,1,2,3,4", "*PART", "p", "1,1,1,0,1", "*SECTION_SHELL", "1,2,1,2",
+             f"{t},{t},{t},{t}", "*MAT_ELASTIC", f"1,{rho},{e},0.0", "*HOURGLASS", f"1,4,{qm}",
+             "*INITIAL_VELOCITY_NODE", *[f"{i + 1},{v * h[i]},0,0" for i in range(4)],
+             "*BOUNDARY_SPC_NODE", *[f"{i + 1},0,0,0,1,1,1,1" for i in range(4)],
+             "*DATABASE_HISTORY_NODE", "1,2,3,4", "*CONTROL_TERMINATION", "2e-4", "*END"]
+    path = tmp_path / "hourglass.k"
+    path.write_text("\n".join(lines) + "\n")
+    r = run(read_deck(path), output_dt=1e-7)
+    u = r.node_displacement[:, :, 0]
+    np.testing.assert_allclose(u * np.array(h)[None, :], np.broadcast_to(u[:, :1], u.shape), rtol=1e-3, atol=1e-9)  # the mode
+    omega = math.sqrt(4 * qm * e / (rho * size * size))
+    dt = float(r.time_step[2])
+    omega_h = 2.0 / dt * math.asin(0.5 * omega * dt)
+    crossings = r.time[1:][np.diff(np.sign(u[:, 0])) != 0]
+    half = np.diff(crossings).mean()
+    assert half == pytest.approx(math.pi / omega_h, rel=0.1 * dt / (math.pi / omega_h) + 1e-3)
+    # the discrete oscillator started at v(½) = V swings to V·Δt / sin(ω_h·Δt) (V/ω as Δt → 0)
+    assert np.abs(u[:, 0]).max() == pytest.approx(v * dt / math.sin(omega_h * dt), rel=0.01)
+    total = r.kinetic + r.internal + r.hourglass
+    assert np.abs(total / total[0] - 1.0).max() < 0.1  # the stored hourglass energy swings with the kinetic
