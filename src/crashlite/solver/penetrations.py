@@ -42,11 +42,6 @@ def remove_initial_penetrations(contacts, x: np.ndarray, movable: np.ndarray) ->
     track them instead. Returns one Moved per node and interface (the
     deepest penetration it had there)."""
     found: dict[tuple[int, int], Moved] = {}
-    for g in contacts:  # IGNORE 1, 2: the initial penetrations stay, tracked
-        if g.c.birth <= 0.0 and g.c.ignore:
-            g.offset[:] = g.penetrations(x)[1]
-            for i in np.flatnonzero(g.offset > 0.0):
-                found[(g.cid, int(g.c.snode[i]))] = Moved(g.cid, int(g.c.snode[i]), float(g.offset[i]), False, True)
     active = [g for g in contacts if g.c.birth <= 0.0 and not g.c.ignore]
     for _ in range(MAX_PASSES):
         depth = np.zeros(len(x))
@@ -69,6 +64,11 @@ def remove_initial_penetrations(contacts, x: np.ndarray, movable: np.ndarray) ->
                 others = seg[seg >= 0]
                 shift[node] = d * (0.5 if (depth[others] > 0).any() else 1.0)
         x += shift * (1.0 + 1e-9)  # just clear of the contact thickness
+    for g in contacts:  # IGNORE 1, 2: the initial penetrations stay (where the moves left them), tracked
+        if g.c.birth <= 0.0 and g.c.ignore:
+            g.offset[:] = g.penetrations(x)[1]
+            for i in np.flatnonzero(g.offset > 0.0):
+                found[(g.cid, int(g.c.snode[i]))] = Moved(g.cid, int(g.c.snode[i]), float(g.offset[i]), False, True)
     return list(found.values())
 
 
