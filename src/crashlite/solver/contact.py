@@ -262,8 +262,10 @@ class ContactGroup(ElementGroup):
         """(normal (ns, 3), gap (ns,), segment nodes (ns, 4)) of every slave
         entry at positions x, at rest and without friction: the contact
         normal (from the segment to the node), the penetration (0: none) and
-        the nodes of the segment it penetrates (-1: none), leaving the
-        group's own state as it was (penetrations.remove_initial_penetrations)."""
+        the nodes of the segment it penetrates (-1: none). The candidate lists
+        are sorted anew at x; the contact state of the time loop (forces,
+        friction, segments held) is left as it was
+        (penetrations.remove_initial_penetrations)."""
         c = self.c
         ns, nm = len(c.snode), len(c.seg)
         self._sort(x)
@@ -566,7 +568,10 @@ def _limit_thickness(surf: Surface, x: np.ndarray) -> None:
     surf.thick[shell] = np.minimum(surf.thick[shell], 0.4 * shortest[shell])
 
 
-def _interface(model: Model, rec, number: int, slsfac: float, problems: list, ssthk: int = 0) -> Interface | None:
+def _interface(model: Model, rec, number: int, slsfac: float, problems: list, ssthk: int = 0,
+               ignore: int = 0) -> Interface | None:
+    """One interface; ``ssthk``, ``ignore``: *CONTROL_CONTACT's (the contact's
+    own IGNORE wins where it is not 0)."""
     kind = rec.keyword
     n = len(model.nodes)
     o = _options(rec, problems)
@@ -625,7 +630,7 @@ def _interface(model: Model, rec, number: int, slsfac: float, problems: list, ss
                      seg.solid, seg.partner,
                      fs=o["fs"], fd=o["fd"], dc=o["dc"], vdc=o["vdc"], fsf=o["fsf"], soft=o["soft"],
                      sofscl=o["sofscl"], dt0=o["dtstif"] if o["dtstif"] > 0 else np.inf, birth=o["birth"],
-                     death=o["death"], bsort=o["bsort"], ignore=o["ignore"])
+                     death=o["death"], bsort=o["bsort"], ignore=o["ignore"] or ignore)
 
 
 def _initial_dt(model: Model, groups) -> float:
@@ -655,10 +660,9 @@ def build_contacts(model: Model, groups, problems: list) -> list[ContactGroup]:
     slsfac, ignore, ssthk = _control(model, problems)
     dt0 = None
     for i, rec in enumerate(recs):
-        c = _interface(model, rec, i + 1, slsfac, problems, ssthk)
+        c = _interface(model, rec, i + 1, slsfac, problems, ssthk, ignore)
         if c is None:
             continue
-        c.ignore = c.ignore or ignore  # the contact's own, else *CONTROL_CONTACT's
         if c.soft == 1 and not np.isfinite(c.dt0):
             dt0 = _initial_dt(model, groups) if dt0 is None else dt0
             c.dt0 = dt0

@@ -471,7 +471,9 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
     res.spc_nodes = model.nodes.ids[res.spc_nodes]
     res.node_ids = model.nodes.ids.astype(np.int64)
     res.info["elements"] = element_counts(model)
-    passed = {w.keyword for w in s.warnings if "passed over" in w.message}  # said once, by the solver
+    from .support import PASSED
+
+    passed = {w.keyword for w in s.warnings if w.message.startswith(PASSED)}  # said once, by the solver
     res.info["warnings"] = ([str(w) for w in model.warnings if w.keyword not in passed]
                             + [str(w) for w in s.warnings] + res.info.get("warnings", []))
     if out is not None:

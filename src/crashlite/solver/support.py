@@ -33,6 +33,7 @@ NEUTRAL = (
     "DATABASE_DEFORC", "DATABASE_RCFORC", "DATABASE_SPCFORC", "DATABASE_HISTORY_NODE",
     "DATABASE_BINARY_D3PLOT", "DATABASE_CROSS_SECTION",
 )
+PASSED = "passed over"  # how a passed-over card's warning begins (run() names each card once)
 # cards that cannot change the solution but are not acted on: keyword -> why (one warning each)
 PASSED_OVER = {
     "DATABASE_": "an output crashlite does not write",
@@ -79,7 +80,7 @@ def unsupported_cards(model: Model, extra_run: tuple[str, ...] = (),
                 warned.add(name)
                 why = next(v for k, v in PASSED_OVER.items() if name.startswith(k))
                 warnings.append(Problem(file or model.source or "", line, name, None,
-                                        f"passed over: {why}; it cannot change the solution"))
+                                        f"{PASSED}: {why}; it cannot change the solution"))
             continue
         problems.append(Problem(file or model.source or "", line, name, None,
                                 f"*{name} is not run by the crashlite solver yet; remove it or run the deck "
