@@ -166,8 +166,10 @@ def test_nodal_load_errors_name_the_card(tmp_path):
 def test_membrane_hourglass_stiffness_is_belytschko_tsays(tmp_path):
     """A free square shell set swinging in its in-plane hourglass mode
     (v_x = V·(1, −1, 1, −1)), IHQ 4: Belytschko–Tsay's stiffness
-    Q̇ = QM·E·t·A·B·B/8·q̇ puts QM·E·t per unit nodal amplitude on each
-    node, so the mode oscillates at ω² = 4·QM·E/(ρA) with amplitude V/ω
+    Q̇ = QM·E·t·A·B·B/8·q̇ on Flanagan–Belytschko's hourglass vector
+    γ = ¼(±1) of a square (q̇ = γ·v̇ = V) puts QM·E·t/16 per unit nodal
+    amplitude on each node, so the mode oscillates at ω² = QM·E/(4ρA)
+    (LS-DYNA's IHQ 4: tests/parity, docs/parity.md) with amplitude V/ω
     (central difference: ω_h = (2/Δt)·asin(ωΔt/2), amplitude V·Δt/sin(ω_hΔt)). ν = 0: a single free
     element with ν > 0 is not stable at TSSFAC 0.9 (its breathing mode has
     ω = 2c/L·sqrt(1 + ν)), in LS-DYNA's rule as here."""
@@ -189,7 +191,7 @@ def test_membrane_hourglass_stiffness_is_belytschko_tsays(tmp_path):
     r = run(read_deck(path), output_dt=1e-7)
     u = r.node_displacement[:, :, 0]
     np.testing.assert_allclose(u * np.array(h)[None, :], np.broadcast_to(u[:, :1], u.shape), rtol=1e-3, atol=1e-9)  # the mode
-    omega = math.sqrt(4 * qm * e / (rho * size * size))
+    omega = math.sqrt(qm * e / (4 * rho * size * size))
     dt = float(r.time_step[2])
     omega_h = 2.0 / dt * math.asin(0.5 * omega * dt)
     crossings = r.time[1:][np.diff(np.sign(u[:, 0])) != 0]

@@ -32,7 +32,7 @@ q̇ = γ·v̂x − ¼(γ·ẑ)Σθ̂y, γ·v̂y + ¼(γ·ẑ)Σθ̂x (rigid rota
 elements excluded), out-of-plane γ·v̂z, bending γ·θ̂x, γ·θ̂y.
 Stiffness (IHQ 4, 5): Q̇ = r k q̇ with k = E t A B·B/8 (membrane),
 SHRF G t³ B·B/12 (out-of-plane), E t³ A B·B/192 (bending), as in the
-BT element; r = QM, QW, QB. Viscous (IHQ 1–3): Q = r c q̇ with c the
+BT element; r = QM, QW, QB; on Flanagan–Belytschko's γ/4 (see FB). Viscous (IHQ 1–3): Q = r c q̇ with c the
 critical damping 2·sqrt(k·m/|γ|²) of the mode at the element's lumped
 mass (rotary inertia m·A/8), so QM is the fraction of critical damping.
 
@@ -302,6 +302,15 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
                     me[e, a, i] = G[(G_F + 6 * a + 3 + i) * BW + l]
 
 
+# The stiffness form acts on Flanagan and Belytschko's hourglass vector
+# γ_FB = ¼(h − (h·x̂)B1 − (h·ŷ)B2) (their quadrilateral, eq. 72; so too the
+# one-point shells of Belytschko's group), a quarter of the γ above: rates and
+# forces each carry ¼, the stiffness 1/16. LS-DYNA's IHQ 4 is this: the
+# parity car (tests/parity) lands on LS-DYNA's energies with it, and 16 times
+# too stiff without it (docs/parity.md).
+FB = 1.0 / 16.0
+
+
 @njit(cache=True, error_model="numpy", inline="always")
 def _hourglass(e, l, G, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, hgq, hg_energy):
     """Hourglass generalized stresses of the step from the mid-step rates of
@@ -313,8 +322,8 @@ def _hourglass(e, l, G, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, hg
     km = young * t * area * bb / 8.0
     kw = ks * shear * t * t * t * bb / 12.0
     kb = young * t * t * t * area * bb / 192.0
-    if kind == 2:  # stiffness: incremental
-        c0, c2, c3 = qm * km * dt, qw * kw * dt, qb * kb * dt
+    if kind == 2:  # stiffness: incremental, on Flanagan–Belytschko's γ/4 (hence k/16)
+        c0, c2, c3 = qm * km * dt * FB, qw * kw * dt * FB, qb * kb * dt * FB
         n0, n1, n2 = hgq[e, 0] + c0 * r0, hgq[e, 1] + c0 * r1, hgq[e, 2] + c2 * r2
         n3, n4 = hgq[e, 3] + c3 * r3, hgq[e, 4] + c3 * r4
     else:  # viscous: QM × critical damping of the mode at the lumped mass
