@@ -21,7 +21,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "parity"))
 
-from cases import available, cases, main_deck, measure  # noqa: E402
+from cases import available, cases, main_deck, measured  # noqa: E402
 
 from crashlite.solver import run  # noqa: E402
 
@@ -40,7 +40,7 @@ def main(argv=None) -> int:
         t0 = time.perf_counter()
         res = run(main_deck(case, args.out / case.name), out=args.out / case.name)
         wall = time.perf_counter() - t0
-        got = measure(res)
+        got = measured(case, res)
         for q, ref in case.reference.items():
             spread = f"  (LS-DYNA's own scatter {100 * case.spread[q]:.2g} %)" if q in case.spread else ""
             print(f"{case.name:<20} {q:<6} {got[q]:>13.6g} {ref:>13.6g} {got[q] / ref:>7.3f}{spread}")
@@ -49,7 +49,7 @@ def main(argv=None) -> int:
         print(f"{case.name:<20} kinetic energy at the end {res.kinetic[-1]:.4g}, hourglass {res.hourglass[-1]:.4g}, "
               f"sliding lowest {res.sliding.min():.4g} ({100 * res.sliding.min() / res.internal.max():.2f} % of "
               f"the internal energy), end {res.sliding[-1]:.4g}; energy balance "
-              f"{np.abs(total / supplied - 1).max() * 100:.2f} %; {res.cycles} cycles, {wall:.0f} s")
+              f"{np.abs(total - supplied).max() / np.abs(supplied).max() * 100:.2f} %; {res.cycles} cycles, {wall:.0f} s")
         for w in res.info.get("warnings", []):
             print(f"{'':<20} warning: {w}")
     return 0

@@ -15,3 +15,4 @@ fetch() {  # owner/name commit
   echo "$1 @ $2 -> $dir"
 }
 fetch dbrizard/GSA-car-crash 477fb0578b764fb8dd630608b18d0b808b1fc12a
+fetch scheckmate/test_fe_simulation c68038116845f02a3ba27f8d9bd378396140174d

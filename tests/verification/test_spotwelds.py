@@ -53,7 +53,9 @@ def test_lap_shear_welds_fail_at_the_predicted_pull(tmp_path, z):
     (within 2 %)."""
     cards = ("*CONSTRAINED_SPOTWELD\n{a[1][9]},{b[1][1]},5000.0,500.0,2.0,2.0\n"
              "{a[3][9]},{b[3][1]},5000.0,500.0,2.0,2.0")
-    path, a, b = _lap_joint(tmp_path, cards, z=z)
+    # 0.3 mm: the 1 mm offset sheets, point-loaded at the weld nodes, yield to the pull through their
+    # (IHQ 4) hourglass modes as much as through strain, so the reaction reaches 2·SS only past 0.1 mm
+    path, a, b = _lap_joint(tmp_path, cards, umax=0.3, z=z)
     s, r = _run(path, 2.5e-6)
     w = _welds(s)
     assert [e[0] for e in w.log] == [1, 2] and {e[2] for e in w.log} == {"force"}
@@ -71,7 +73,7 @@ def test_lap_shear_welds_fail_at_the_predicted_pull(tmp_path, z):
     assert gap[-1, 0] > 0.02
     # energy: the work of the pull (the quasi-static reaction over the end
     # displacement) is the strain and kinetic energy, up to the failure
-    u = np.interp(r.time, *_ramp(1e-3, 0.1))
+    u = np.interp(r.time, *_ramp(1e-3, 0.3))
     work = np.concatenate([[0.0], np.cumsum(0.5 * (reaction[1:] + reaction[:-1]) * np.diff(u))])
     k = np.flatnonzero(before)[-1]
     assert r.internal[k] + r.kinetic[k] + r.hourglass[k] == pytest.approx(work[k], rel=0.02)

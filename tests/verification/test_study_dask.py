@@ -137,7 +137,8 @@ def test_killed_worker_loses_nothing_and_rerun_runs_nothing(study):
     assert designs[killed["key"]].info["attempt"] == 2  # run again after its worker died
     assert designs[killed["key"]].info["pid"] != killed["pid"]
     for d in designs.values():
-        assert d.responses["mass"] > 0 and 5.0 < d.responses["crush"] < 60.0
+        # a crush, not noise, and shorter than the crash box and rail together (100 + 150 mm)
+        assert d.responses["mass"] > 0 and 5.0 < d.responses["crush"] < 250.0
     # the same study file again: resumes, runs nothing, adds no trial
     s = run_study(load_study(study), executor=DaskExecutor(workers=2), progress=Progress(cfg, quiet=True))
     assert (s.ran, s.skipped) == (0, 16)

@@ -12,7 +12,9 @@ from crashlite.solver import run
 from crashlite.units import kmh
 from crashlite.vehicle import generic_vehicle, usncap_deck
 
-END = 0.004  # s: about 60 mm of travel into the wall
+# s: about 120 mm of travel into the wall, past the first folds of the bumper beam (at 4 ms, its
+# first fold, the hourglass energy is 13 % of a still small internal energy, with LS-DYNA's IHQ 4)
+END = 0.008
 
 
 @pytest.fixture(scope="module")

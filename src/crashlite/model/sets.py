@@ -37,3 +37,19 @@ def set_members(model, kind: str, sid: int, _seen: frozenset = frozenset()) -> n
             subs = [set_members(model, kind, int(s), _seen | {key}) for s in ids]
             ids = np.concatenate(subs) if subs else np.zeros(0, np.int64)
     return np.unique(ids.astype(np.int64))
+
+
+def history_nodes(model) -> np.ndarray:
+    """Sorted node indices that *DATABASE_HISTORY_NODE asks nodout for: IDs
+    (eight per row, or one per _ID row) and, with _SET, the members of the
+    node sets."""
+    out = []
+    for rec in model.find("DATABASE_HISTORY_NODE"):
+        ids = [np.asarray(v, np.int64).ravel() for k, v in (rec.rows or {}).items() if k.startswith("id")]
+        ids = np.concatenate(ids) if ids else np.zeros(0, np.int64)
+        ids = ids[ids > 0]
+        if "SET" in rec.options:
+            ids = np.concatenate([set_members(model, "NODE", int(s)) for s in ids] or [np.zeros(0, np.int64)])
+        out.append(model.node_index(ids))
+    idx = np.concatenate(out) if out else np.zeros(0, np.int64)
+    return np.unique(idx[idx >= 0]).astype(np.int64)

@@ -15,6 +15,7 @@ import numpy as np
 
 from ..keyword.errors import DeckError, Problem
 from ..model.model import Model
+from ..model.sets import history_nodes
 from .kernels.discrete import CURVE, DAMPER, GENERAL, INELASTIC, LINEAR
 
 # constraint code of *NODE TC (and RC, same numbering) -> held (x, y, z)
@@ -661,11 +662,7 @@ def _build(model: Model) -> Setup:
     if end_time <= 0:
         problems.append(Problem(model.source or "", 0, "CONTROL_TERMINATION", "ENDTIM",
                                 "an end time > 0 is needed"))
-    hist = [model.node_index(r.rows[f"id{i}"]) for r in model.find("DATABASE_HISTORY_NODE")
-            if "SET" not in r.options and "ID" not in r.options for i in range(1, 9)]
-    hist += [model.node_index(r.rows["id"]) for r in model.find("DATABASE_HISTORY_NODE")
-             if "SET" not in r.options and "ID" in r.options]  # _ID: one node and its heading per card
-    hist_idx = np.unique(np.concatenate(hist)) if hist else np.zeros(0, np.int64)
+    hist_idx = history_nodes(model)  # IDs, _ID rows and _SET members
     dt_max = None
     if ts and ts[0].get("lctm"):
         if int(ts[0]["lctm"]) in model.curves:

@@ -47,6 +47,7 @@ import numpy as np
 
 from ..model.mesh import Beams, Discretes, Inertias, Nodes
 from ..model.model import Model
+from ..model.sets import history_nodes
 from .cut import ELEMENT_TABLES, Cut
 from .massprops import ReplacedMass, element_moments, split_replaced
 from .records import id_list, record
@@ -176,25 +177,12 @@ class _Ids:
         return first
 
 
-def _history_nodes(model: Model) -> np.ndarray:
-    """Node indices of *DATABASE_HISTORY_NODE (IDs and sets)."""
-    out = []
-    for rec in model.find("DATABASE_HISTORY_NODE"):
-        ids = np.concatenate([np.asarray(v) for k, v in (rec.rows or {}).items() if k.startswith("id")] or [[]])
-        ids = ids[ids > 0].astype(np.int64)
-        if "SET" in rec.options:
-            ids = np.concatenate([model.set_members("NODE", int(s)) for s in ids] or [np.zeros(0, np.int64)])
-        out.append(model.node_index(ids))
-    idx = np.concatenate(out) if out else np.zeros(0, np.int64)
-    return np.unique(idx[idx >= 0]).astype(np.int64)
-
-
 def kept_front(cut: Cut, keep_nodes=None) -> tuple[Truncated, np.ndarray]:
     """The kept structure (``truncate``) and the removed nodes that ride on
     the rear body with it: the replaced structure's history nodes (so
     nodout of the full and the simplified run compare node by node) and
     ``keep_nodes``."""
-    hist = _history_nodes(cut.model)
+    hist = history_nodes(cut.model)
     ride = hist[cut.removed_nodes[hist]]
     if keep_nodes is not None:
         ride = np.union1d(ride, np.asarray(keep_nodes, np.int64))
