@@ -44,6 +44,20 @@ class FieldError(ValueError):
     pass
 
 
+INT_MIN, INT_MAX = -(2**63) + 1, 2**63 - 1  # what an int64 column holds (sign-symmetric)
+
+
+def check_int(v: int, text) -> int:
+    """``v`` when a 64-bit integer holds it; a FieldError otherwise (an ID
+    past 64 bits must not wrap round to another entity's)."""
+    if not INT_MIN <= v <= INT_MAX:
+        shown = text.strip() if isinstance(text, str) else str(text)
+        if len(shown) > 40:
+            shown = f"{shown[:20]}...{shown[-8:]} ({len(shown)} characters)"
+        raise FieldError(f"integer {shown} is outside the 64-bit range (|value| < 2**63)")
+    return v
+
+
 def to_number(text: str, kind: str):
     """Convert a Fortran-style number; raise FieldError when it is not one."""
     t = text.strip().replace("d", "e").replace("D", "E")
@@ -52,7 +66,7 @@ def to_number(text: str, kind: str):
         t = f"{m.group(1)}e{m.group(2)}"
     if kind == INT:
         try:
-            return int(t)
+            return check_int(int(t), text)
         except ValueError:
             pass
         try:
@@ -61,7 +75,7 @@ def to_number(text: str, kind: str):
             raise FieldError(f"expected an integer, got {text.strip()!r}") from None
         if not math.isfinite(v) or v != int(v):
             raise FieldError(f"expected an integer, got {text.strip()!r}")
-        return int(v)
+        return check_int(int(v), text)
     try:
         v = float(t)
     except ValueError:
@@ -100,7 +114,7 @@ def _number(t: str, f: Field, params: dict):
         if f.kind == INT:
             if v != int(v):
                 raise FieldError(f"parameter '&{name}' = {v} is not an integer")
-            v = int(v)
+            v = check_int(int(v), f"'&{name}'")
         else:
             v = float(v)
         return -v if neg else v

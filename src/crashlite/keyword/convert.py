@@ -191,6 +191,15 @@ def build_model(records: list[Record | RawKeyword], problems: Collector) -> tupl
 
 
 def _add_entity(store: dict, key, rec: Record, problems: Collector, what: str) -> None:
+    if (key[1] if isinstance(key, tuple) else key) is None:
+        # blank, or unreadable (already reported): nothing can refer to it
+        fld = rec.spec.id_field
+        file, line = rec.where(fld)
+        if not any(p.file == file and p.line == line and p.field == fld.upper()
+                   for p in problems.problems):
+            problems.error(file, line, rec.name, fld.upper(),
+                           f"{fld.upper()} is blank: the definition needs an ID")
+        return
     if key in store:
         first = store[key].source
         problems.error(rec.source[0], rec.source[1], rec.name, None,

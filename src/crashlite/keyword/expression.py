@@ -51,8 +51,9 @@ __all__ = ["ExpressionError", "evaluate", "names_used"]
 
 #: Deeper nesting than this is refused rather than risking RecursionError.
 MAX_DEPTH = 100
-#: Integer powers whose result would exceed this many bits are refused, so
-#: ``9**9**9`` fails fast instead of tying up the reader.
+#: Integer results (powers checked before computing) past this many bits are
+#: refused, so ``9**9**9`` or a chain of squares fails fast instead of tying
+#: up the reader.
 MAX_INT_BITS = 4096
 
 
@@ -276,6 +277,10 @@ class _Compute:
                 r = self.power(a, b, pos)
         except OverflowError:  # an integer too large to become a float
             raise self.fail("numeric overflow", pos) from None
+        if isinstance(r, int) and r.bit_length() > MAX_INT_BITS:
+            # a chain a = 2**4000, b = a*a, c = b*b, ... would double its
+            # size (and time) at every step
+            raise self.fail(f"integer result is too large (more than {MAX_INT_BITS} bits)", pos)
         return self.finite(r, pos)
 
     def power(self, a: Number, b: Number, pos: int) -> Number:

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .cards import LONG
+from .cards import INT_MAX, INT_MIN, LONG
 from .errors import Collector
 from .lexer import Block
 
@@ -113,9 +113,27 @@ class ParameterTable:
         if isinstance(v, str):
             problems.error(file, lineno, kw, "VAL", f"numeric parameter got text {v!r}")
             return None
+        field = "EXPRESSION" if expr else "VAL"
         if t == "I":
             if v != int(v):
-                problems.error(file, lineno, kw, "VAL", f"integer parameter got {v}")
+                problems.error(file, lineno, kw, field, f"integer parameter got {v}")
+                return None
+            if not INT_MIN <= int(v) <= INT_MAX:
+                problems.error(file, lineno, kw, field,
+                               f"integer parameter is {_magnitude(v)}, outside the 64-bit range "
+                               "(|value| < 2**63)")
                 return None
             return int(v)
-        return float(v)
+        try:
+            return float(v)
+        except OverflowError:  # an integer result past the largest double
+            problems.error(file, lineno, kw, field,
+                           f"real parameter is {_magnitude(v)}, past the largest double (1.8e308)")
+            return None
+
+
+def _magnitude(v) -> str:
+    """A short description of a (possibly huge) number for a message."""
+    if isinstance(v, int) and abs(v) >= 2**63:
+        return f"{'-' if v < 0 else ''}about 2**{abs(v).bit_length() - 1}"
+    return repr(v)

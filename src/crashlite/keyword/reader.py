@@ -75,7 +75,7 @@ def read_records(path, problems: Collector | None = None, strict: bool = False):
         recs = parse_block(blk, spec, options, visible[blk.scope], problems)
         for ctx in reversed(blk.contexts):  # innermost include first
             for r in recs:
-                apply_offsets(r, ctx)
+                apply_offsets(r, ctx, problems)
         if blk.contexts:
             transformed.append((blk, recs))
         records.extend(recs)

@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from .cards import FieldError, to_number
+from .cards import INT_MAX, INT_MIN, FieldError, to_number
 from .errors import Collector
 from .lexer import Block, IncludeContext
 from .schema import INT, Record
@@ -34,25 +34,25 @@ def include_context(blk: Block, problems: Collector) -> IncludeContext | None:
         problems.error(blk.file, blk.line, blk.keyword, "FILENAME", "file name card missing")
         return None
 
-    def fields(k, names):
+    def fields(k, names, kind="f"):
         if k >= len(lines):
-            return {n: 0.0 for n in names}
+            return {n: 0 for n in names}
         text, ln = lines[k]
         toks = text.split(",") if "," in text else [text[i:i + 10] for i in range(0, 10 * len(names), 10)]
         out = {}
         for n, t in zip(names, toks + [""] * len(names)):
             t = t.strip()
             try:
-                out[n] = to_number(t, "f") if t else 0.0
+                out[n] = to_number(t, kind) if t else 0
             except FieldError as e:
                 problems.error(blk.file, ln, blk.keyword, n, str(e))
-                out[n] = 0.0
+                out[n] = 0
         return out
 
-    c2 = fields(1, _OFFSET_FIELDS)
-    c3 = fields(2, ("IDROFF",))
+    c2 = fields(1, _OFFSET_FIELDS, INT)
+    c3 = fields(2, ("IDROFF",), INT)
     c4 = fields(3, ("FCTMAS", "FCTTIM", "FCTLEN"))
-    c5 = fields(4, ("TRANID",))
+    c5 = fields(4, ("TRANID",), INT)
     for name in ("FCTMAS", "FCTTIM", "FCTLEN"):
         if c4[name] not in (0.0, 1.0):
             problems.error(blk.file, lines[3][1], blk.keyword, name,
@@ -65,21 +65,37 @@ def include_context(blk: Block, problems: Collector) -> IncludeContext | None:
     return IncludeContext(offsets, int(c5["TRANID"]), blk.file, blk.line)
 
 
-def apply_offsets(rec: Record, ctx: IncludeContext) -> None:
-    """Add the include's ID offsets to every ID field of a record."""
+def apply_offsets(rec: Record, ctx: IncludeContext, problems: Collector | None = None) -> None:
+    """Add the include's ID offsets to every ID field of a record; an ID
+    the offset takes past 64 bits is reported (and left unchanged)."""
     lay = rec.spec.layout(rec.options)
+
+    def too_large(name, v, off):
+        if problems is not None:
+            problems.error(*rec.where(name), rec.name, name.upper(),
+                           f"ID {int(v)} plus the *INCLUDE_TRANSFORM offset {off} (at {ctx.file}:{ctx.line}) "
+                           "is past the 64-bit range")
+
     for c in lay.head:
         for f in c.fields:
             off = ctx.offsets.get(f.ref, 0) if f.ref else 0
             v = rec.values.get(f.name)
             if off and f.kind == INT and isinstance(v, int) and v > 0:
+                if not INT_MIN <= v + off <= INT_MAX:
+                    too_large(f.name, v, off)
+                    continue
                 rec.values[f.name] = v + off
     if rec.rows:
         for f in lay.row_fields:
             off = ctx.offsets.get(f.ref, 0) if f.ref else 0
             if off and f.kind == INT and f.name in rec.rows:
-                col = rec.rows[f.name]
-                rec.rows[f.name] = np.where(col > 0, col + off, col)
+                col = np.asarray(rec.rows[f.name], dtype=np.int64)
+                pos = col > 0
+                over = pos & ((col > INT_MAX - off) if off > 0 else (col < INT_MIN - off))
+                if over.any():
+                    too_large(f.name, col[np.argmax(over)], off)
+                    pos &= ~over
+                rec.rows[f.name] = np.where(pos, col + off, col)
 
 
 def matrix(tr: Record, problems: Collector) -> np.ndarray:

@@ -183,7 +183,10 @@ def index_map(ids: np.ndarray):
             if q.dtype.kind != "i":
                 q = q.astype(np.int64)
             out = np.empty(q.shape, dtype=np.int64 if len(ids) >= 2**31 else np.int32)
-            q2 = q.reshape(1, 1) if q.ndim == 0 else q if q.ndim == 2 else q.reshape(len(q), -1)
+            # (rows, columns) for the kernel; explicit sizes, since -1 cannot
+            # be inferred for an empty query
+            q2 = q if q.ndim == 2 else q.reshape(q.size, 1) if q.ndim < 2 else \
+                q.reshape(q.shape[0], q.size // max(q.shape[0], 1))
             gather_index(table, q2, out.reshape(q2.shape))
             return out
 
