@@ -142,6 +142,10 @@ def _node_set(model: Model, sid: int) -> np.ndarray:
     return model.node_index(model.set_members("NODE", sid))
 
 
+# spring and damper constants that must not be negative, by field
+_SPRING_CONSTANTS = {"k": ("MAT_SPRING_ELASTIC",), "dc": ("MAT_DAMPER_VISCOUS",), "ku": ("MAT_SPRING_INELASTIC",)}
+
+
 def _discrete(model: Model, problems: list) -> Discrete:
     d = model.discretes
     n = len(d)
@@ -171,6 +175,10 @@ def _discrete(model: Model, problems: list) -> Discrete:
         if mat is None:
             problems.append(_problem(part, "mid", "discrete elements need a *MAT_SPRING/_DAMPER material"))
             continue
+        for fld, what in (("k", "stiffness K"), ("dc", "damping constant DC"), ("ku", "unloading stiffness KU")):
+            if mat.keyword in _SPRING_CONSTANTS.get(fld, ()) and float(mat.get(fld, 0.0) or 0.0) < 0:
+                problems.append(_problem(mat, fld, f"material {mat.get('mid')}: {what} = {float(mat[fld]):g} < 0 "
+                                                   "gives energy instead of storing it: it must be >= 0"))
         if mat.keyword == "MAT_SPRING_ELASTIC":
             kind[sel], k[sel] = LINEAR, float(mat["k"])
         elif mat.keyword == "MAT_DAMPER_VISCOUS":
@@ -511,6 +519,98 @@ def _bodies(model: Model, x, v, mass, problems: list, used: np.ndarray | None = 
     return bodies
 
 
+def row_line(model: Model, keyword: str, eid: int) -> tuple[str, int]:
+    """(file, line) of the row of element ``eid`` under a ``*keyword`` card
+    (any of its options) in the files of the model, for messages; (source, 0)
+    when not found. Only called when there is something to report."""
+    from pathlib import Path
+
+    for f in (model.files or [model.source or ""]):
+        try:
+            lines = Path(f).read_text(errors="replace").splitlines()
+        except OSError:
+            continue
+        inside = False
+        for k, ln in enumerate(lines, 1):
+            if ln.startswith("*"):
+                inside = ln[1:].strip().upper().startswith(keyword)
+                continue
+            if not inside or ln.startswith("$") or not ln.strip():
+                continue
+            first = ln.replace(",", " ").split()[0] if "," in ln else ln[:8].strip()
+            for cand in (first, ln[:10].strip(), ln[:20].strip()):
+                try:
+                    if int(cand) == eid:
+                        return str(f), k
+                except ValueError:
+                    pass
+    return str(model.source or ""), 0
+
+
+def _massless_cards(model: Model, rigid: np.ndarray) -> list[Problem]:
+    """Cards that give nodes a negative or no mass, named where they are
+    (negative *ELEMENT_MASS, shell thickness <= 0, beam area <= 0, an
+    inverted solid); checked before the elements are built, so the run is
+    refused naming the card, not a node left without mass."""
+    out: list[Problem] = []
+    src = str(model.source or "")
+    m = model.masses
+    for i in np.flatnonzero(m.mass < 0)[:10]:
+        eid, nid = int(m.ids[i]), int(model.nodes.ids[m.node[i]]) if m.node[i] >= 0 else -1
+        out.append(Problem(*row_line(model, "ELEMENT_MASS", eid), "ELEMENT_MASS", "MASS",
+                           f"element {eid} on node {nid} has mass {float(m.mass[i]):g} < 0: a mass must be >= 0"))
+    sh = model.shells
+    for p in np.unique(sh.pid[~np.isin(sh.pid, rigid)]):
+        part = model.parts.get(int(p))
+        sec = model.sections.get(part.get("secid")) if part is not None else None
+        if sec is None or sec.keyword != "SECTION_SHELL":
+            continue  # the shell builder names it
+        t1 = float(sec.get("t1", 0.0) or 0.0)
+        t = np.array([float(sec.get(f"t{k}", 0.0) or 0.0) for k in range(1, 5)])
+        t = np.where(t > 0, t, t1)
+        rows = np.flatnonzero(sh.pid == p)
+        given = sh.thickness[rows]
+        tn = np.where(np.isfinite(given) & (given > 0), given, t)
+        bad = rows[tn.mean(axis=1) <= 0]
+        if len(bad):
+            ids = ", ".join(str(int(e)) for e in sh.ids[bad[:5]]) + (", ..." if len(bad) > 5 else "")
+            out.append(Problem(*sec.where("t1"), sec.name, "T1",
+                               f"section {sec.get('secid')} (part {int(p)}): shell thickness T1 = {t1:g} <= 0 and "
+                               f"{len(bad)} shell(s) give none of their own ({ids}): a shell needs a thickness > 0"))
+    bm = model.beams
+    for p in np.unique(bm.pid[~np.isin(bm.pid, rigid)]):
+        part = model.parts.get(int(p))
+        sec = model.sections.get(part.get("secid")) if part is not None else None
+        if sec is None or sec.keyword != "SECTION_BEAM" or int(sec.get("elform", 1) or 1) in (3, 6, 9):
+            continue  # the beam builder names it; trusses of ELFORM 3, discrete beams: not here
+        from ..model.properties import section_area
+
+        a = section_area(sec)
+        if not a > 0:
+            given = int(sec.get("elform", 1) or 1) in (2, 12, 13) or sec.get("ts1") is None
+            fld = "A" if given else "TS1"
+            n = int((bm.pid == p).sum())
+            out.append(Problem(*sec.where(fld.lower()), sec.name, fld,
+                               f"section {sec.get('secid')} (part {int(p)}, {n} beam(s)): cross-section area "
+                               f"{a:g} <= 0: a beam needs an area > 0"
+                               + ("" if given else " (from TS1, TT1 and CST)")))
+    so = model.solids
+    deformable = np.flatnonzero(~np.isin(so.pid, rigid) & np.all(so.nodes[:, :4] >= 0, axis=1))
+    if len(deformable):
+        from .kernels.solid import N_CHUNKS, N_WORK, solid_volumes
+
+        conn = so.nodes[deformable].astype(np.int64)
+        conn = np.where(conn >= 0, conn, conn[:, 3:4])  # unset N5-N8: a tetrahedron's repeated N4
+        vol = np.empty(len(conn))
+        solid_volumes(model.nodes.xyz.astype(float), conn, np.zeros((N_CHUNKS, N_WORK)), vol)
+        for i in np.flatnonzero(vol <= 0)[:10]:
+            eid = int(so.ids[deformable[i]])
+            out.append(Problem(*row_line(model, "ELEMENT_SOLID", eid), "ELEMENT_SOLID", "N1",
+                               f"solid {eid} has volume {vol[i]:.4g} <= 0: its nodes N1-N4 and N5-N8 are "
+                               "in inverted order (or the element is flat)"))
+    return out
+
+
 _UNSUPPORTED_TABLES: tuple[str, ...] = ()
 
 
@@ -579,6 +679,9 @@ def _build(model: Model) -> Setup:
     warnings: list[Problem] = []
     problems: list[Problem] = unsupported_cards(model, warnings=warnings)
     rigid = np.array(sorted(rigid_part_ids(model)), np.int64)
+    massless = _massless_cards(model, rigid)
+    if massless:  # nodes without mass follow from these: name the cards, not the nodes
+        raise SetupError(problems + massless)
     for t in _UNSUPPORTED_TABLES:
         deformable = ~np.isin(getattr(model, t).pid, rigid)
         if deformable.any():
@@ -662,6 +765,16 @@ def _build(model: Model) -> Setup:
     if end_time <= 0:
         problems.append(Problem(model.source or "", 0, "CONTROL_TERMINATION", "ENDTIM",
                                 "an end time > 0 is needed"))
+    end_cycle = int(term[0].get("endcyc", 0) or 0) if term else 0
+    if end_cycle < 0:  # as LS-DYNA: the cycle limit applies only when ENDCYC > 0
+        warnings.append(_problem(term[0], "endcyc", f"ENDCYC = {end_cycle} < 0 is read as 0: no cycle limit, "
+                                                    "the run ends at ENDTIM"))
+        end_cycle = 0
+    tssfac = float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9
+    if not 0 < tssfac <= 1:
+        problems.append(_problem(ts[0], "tssfac", f"TSSFAC = {tssfac:g}: the time step scale factor must lie in "
+                                                  "(0, 1]; above 1 the steps exceed the stable step and the "
+                                                  "run goes unstable (0.9 is LS-DYNA's default)"))
     hist_idx = history_nodes(model)  # IDs, _ID rows and _SET members
     dt_max = None
     if ts and ts[0].get("lctm"):
@@ -693,8 +806,7 @@ def _build(model: Model) -> Setup:
         raise SetupError(problems)
     return Setup(
         x0=x0, v0=v0, mass=mass, fixed=fixed, discrete=disc, walls=walls,
-        end_time=end_time, end_cycle=int(term[0].get("endcyc", 0)) if term else 0,
-        tssfac=float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9,
+        end_time=end_time, end_cycle=end_cycle, tssfac=tssfac,
         history_nodes=hist_idx[hist_idx >= 0], dt_max=dt_max, motions=motions, bodies=bodies,
         body_loads=loads, nodal_loads=nodal_loads, dt2ms=float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0,
         beams=beams, rot_inertia=rot_inertia, fixed_rot=fixed_rot,

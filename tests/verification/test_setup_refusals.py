@@ -1,0 +1,161 @@
+"""Controls and cards without physical meaning are refused at set-up naming
+the card (file, line, keyword, field), never run to a wrong answer nor
+reported as a node "without mass" (issue 35).
+
+Each deck is the pulse example (one mass on a spring) or a one-element
+model with one field changed.
+"""
+
+from importlib import resources
+
+import numpy as np
+import pytest
+
+from crashlite import read_deck
+from crashlite.solver import run
+from crashlite.solver.setup import SetupError, build
+
+PULSE = (resources.files("crashlite") / "examples" / "pulse" / "pulse.k").read_text()
+
+
+def _pulse(tmp_path, old: str, new: str, name: str = "pulse.k") -> str:
+    assert old in PULSE
+    p = tmp_path / name
+    p.write_text(PULSE.replace(old, new, 1))
+    return str(p)
+
+
+def _line_of(path: str, text: str) -> int:
+    return next(k for k, ln in enumerate(open(path).read().splitlines(), 1) if ln.startswith(text))
+
+
+def _refused(deck: str):
+    with pytest.raises(SetupError) as e:
+        build(read_deck(deck))
+    assert not any("has no mass" in p.message for p in e.value.problems), e.value
+    return e.value.problems
+
+
+def test_tssfac_above_one_is_refused_naming_the_card(tmp_path):
+    """TSSFAC = 3 stepped past the stable step: one step past ENDTIM and an
+    energy ratio of 56, exit 0."""
+    deck = _pulse(tmp_path, "       0.0      0.01\n", "       0.0       3.0\n")
+    (p,) = _refused(deck)
+    assert (p.file, p.keyword, p.field) == (deck, "CONTROL_TIMESTEP", "TSSFAC")
+    assert p.line == _line_of(deck, "       0.0       3.0")
+    assert "TSSFAC = 3" in p.message and "(0, 1]" in p.message
+
+
+def test_tssfac_of_one_is_accepted(tmp_path):
+    """The stable step itself (TSSFAC = 1) is LS-DYNA's upper bound: not refused."""
+    deck = _pulse(tmp_path, "       0.0      0.01\n", "       0.0       1.0\n")
+    assert build(read_deck(deck)).tssfac == 1.0
+
+
+def test_a_spring_with_negative_stiffness_is_refused(tmp_path):
+    deck = _pulse(tmp_path, "         1        &k\n", "         1   -1000.0\n")
+    (p,) = _refused(deck)
+    assert (p.keyword, p.field) == ("MAT_SPRING_ELASTIC", "K")
+    assert p.line == _line_of(deck, "         1   -1000.0") and "K = -1000 < 0" in p.message
+
+
+def test_a_negative_endcyc_sets_no_cycle_limit(tmp_path):
+    """ENDCYC < 0 ran 0 cycles; as LS-DYNA, only ENDCYC > 0 limits the
+    cycles: the run reaches ENDTIM, with a warning naming the field."""
+    ref = run(_pulse(tmp_path, "      0.12\n", "      0.12         0\n", "ref.k"))
+    deck = _pulse(tmp_path, "      0.12\n", "      0.12        -5\n")
+    res = run(deck)
+    assert res.cycles == ref.cycles > 100 and res.time[-1] >= 0.12
+    assert any("ENDCYC" in w and "-5" in w and deck in w for w in res.info["warnings"])
+
+
+def test_a_negative_element_mass_is_named(tmp_path):
+    deck = _pulse(tmp_path, "     100       2              &m\n", "     100       2            -1.0\n")
+    (p,) = _refused(deck)
+    assert (p.file, p.keyword, p.field) == (deck, "ELEMENT_MASS", "MASS")
+    assert p.line == _line_of(deck, "     100       2            -1.0")
+    assert "element 100 on node 2" in p.message and "-1 < 0" in p.message
+
+
+SHELL = """*KEYWORD
+*NODE
+1,0,0,0
+2,10,0,0
+3,10,10,0
+4,0,10,0
+*ELEMENT_SHELL
+1,1,1,2,3,4
+*PART
+plate
+1,1,1
+*SECTION_SHELL
+1,2,0.8333,2
+{t}
+*MAT_ELASTIC
+1,7.85e-9,210000.0,0.3
+*CONTROL_TERMINATION
+1e-5
+*END
+"""
+
+
+@pytest.mark.parametrize("t", ["0.0,0.0,0.0,0.0", "-1.0,-1.0,-1.0,-1.0"])
+def test_a_shell_section_without_thickness_is_named(tmp_path, t):
+    deck = tmp_path / "shell.k"
+    deck.write_text(SHELL.format(t=t))
+    (p,) = _refused(str(deck))
+    assert (p.keyword, p.field, p.line) == ("SECTION_SHELL", "T1", 14)
+    assert "part 1" in p.message and "thickness" in p.message
+
+
+def test_a_shell_giving_its_own_thickness_needs_none_from_the_section(tmp_path):
+    deck = tmp_path / "shell.k"
+    deck.write_text(SHELL.format(t="0.0,0.0,0.0,0.0").replace("*ELEMENT_SHELL\n1,1,1,2,3,4\n",
+                                                             "*ELEMENT_SHELL_THICKNESS\n1,1,1,2,3,4\n1.0,1.0,1.0,1.0\n"))
+    s = build(read_deck(str(deck)))
+    assert s.mass.sum() == pytest.approx(7.85e-9 * 100.0)
+
+
+def test_a_beam_section_without_area_is_named(tmp_path):
+    deck = tmp_path / "beam.k"
+    deck.write_text("*KEYWORD\n*NODE\n1,0,0,0\n2,100,0,0\n3,200,0,0\n*ELEMENT_BEAM\n1,1,1,2\n2,1,2,3\n"
+                    "*PART\nbar\n1,1,1\n*SECTION_BEAM\n1,2\n0.0,1.0,1.0,2.0\n*MAT_ELASTIC\n"
+                    "1,7.85e-9,210000.0,0.3\n*CONTROL_TERMINATION\n1e-5\n*END\n")
+    (p,) = _refused(str(deck))
+    assert (p.keyword, p.field, p.line) == ("SECTION_BEAM", "A", 14)
+    assert "area 0 <= 0" in p.message and "2 beam(s)" in p.message
+
+
+SOLID = """*KEYWORD
+*NODE
+1,0,0,0
+2,10,0,0
+3,10,10,0
+4,0,10,0
+5,0,0,10
+6,10,0,10
+7,10,10,10
+8,0,10,10
+*ELEMENT_SOLID
+{row}
+*PART
+block
+1,1,1
+*SECTION_SOLID
+1,1
+*MAT_ELASTIC
+1,7.85e-9,210000.0,0.3
+*CONTROL_TERMINATION
+1e-5
+*END
+"""
+
+
+def test_an_inverted_solid_is_named(tmp_path):
+    deck = tmp_path / "solid.k"
+    deck.write_text(SOLID.format(row="7,1,5,6,7,8,1,2,3,4"))
+    (p,) = _refused(str(deck))
+    assert (p.keyword, p.line) == ("ELEMENT_SOLID", 12)
+    assert "solid 7 has volume -1000 <= 0" in p.message and "inverted" in p.message
+    deck.write_text(SOLID.format(row="7,1,1,2,3,4,5,6,7,8"))
+    assert build(read_deck(str(deck))).mass.sum() == pytest.approx(7.85e-9 * 1000.0)
