@@ -23,6 +23,9 @@ def _info(args) -> int:
 def _convert(args) -> int:
     from . import read_deck, write_deck
 
+    if Path(args.output).is_dir():  # checked before reading: a deck may take minutes to read
+        raise IsADirectoryError(f"-o {args.output} is a folder: -o names the deck file to write "
+                                f"(e.g. {Path(args.output) / Path(args.deck).name})")
     model = read_deck(args.deck, strict=args.strict)
     written = write_deck(model, args.output, fmt=args.format, split=args.split)
     for w in model.warnings:
@@ -31,17 +34,65 @@ def _convert(args) -> int:
     return 0
 
 
-def _run(args) -> int:
-    from .solver import run
+INTERRUPTED = 130  # exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells report it
 
-    res = run(args.deck, out=args.output, quiet=args.quiet)
+
+def _added_mass(res, model) -> str:
+    """'; mass scaling (DT2MS) added ...' for the summary, or ''."""
+    added = res.info.get("added_mass") or {}
+    total = float(sum(added.values()))
+    if total <= 0:
+        return ""
+    try:
+        base = float(model.mass_properties().mass)
+    except Exception:  # the summary goes on without the share  # noqa: BLE001
+        base = 0.0
+    share = f" to a model of {base:.4g} (+{100.0 * total / base:.3g} %)" if base > 0 else ""
+    parts = ", ".join(f"part {p}: {m:.4g}" for p, m in sorted(added.items())[:10])
+    return f"; mass scaling (DT2MS) added {total:.4g}{share} ({parts})"
+
+
+def _run(args) -> int:
+    from . import read_deck
+    from .results.folder import OutputFolder
+    from .solver import run
+    from .solver.loop import RunError
+
+    folder = OutputFolder(args.output, deck=args.deck, force=args.force)
+    folder.check()  # before the deck is read or anything run: a file, the deck, foreign files
+    model = read_deck(args.deck)
+    folder.check(model.files)  # the includes too
+    try:
+        folder.clear()  # the previous run's files: no stale history or state beside the new ones
+        try:
+            res = run(model, out=args.output, quiet=args.quiet)
+        except RunError as e:
+            res = e.results
+            for w in res.info.get("warnings", []):
+                print(f"warning: {w}", file=sys.stderr)
+            print(f"error: {e}; the states until then are in {args.output}", file=sys.stderr)
+            return 2
+        except KeyboardInterrupt:
+            print("interrupted during set-up: nothing was run, no results written", file=sys.stderr)
+            return INTERRUPTED
+    finally:
+        folder.record()
     for w in res.info.get("warnings", []):
         print(f"warning: {w}", file=sys.stderr)
     ratio = res.energy_ratio
-    print(f"{res.cycles} cycles, dt {res.dt:.4g}, end time {res.time[-1]:.6g}, "
-          f"energy ratio {ratio.min():.4f}..{ratio.max():.4f}, {res.wall_time:.2f} s wall; "
-          f"results in {args.output}/results.npz")
-    return 0
+    stopped = res.info.get("stopped") or ""
+    head = f"{stopped}: " if stopped else ""
+    print(f"{head}{res.cycles} cycles, dt {res.dt:.4g}, end time {res.time[-1]:.6g}, "
+          f"energy ratio {ratio.min():.4f}..{ratio.max():.4f}, {res.wall_time:.2f} s wall"
+          f"{_added_mass(res, model)}; results{' so far' if stopped else ''} in {args.output}/results.npz")
+    return INTERRUPTED if stopped.startswith("interrupted") else 0
+
+
+def _path_arg(text: str) -> Path:
+    """A path argument; an empty one (-o "") names nothing and is refused."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("an empty path names no file or folder")
+    return Path(text)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -55,7 +106,7 @@ def build_parser() -> argparse.ArgumentParser:
     info.set_defaults(func=_info)
     conv = sub.add_parser("convert", help="read a deck and write it again (format, includes resolved)")
     conv.add_argument("deck", type=Path)
-    conv.add_argument("-o", "--output", type=Path, required=True)
+    conv.add_argument("-o", "--output", type=_path_arg, required=True, help="the deck file to write")
     conv.add_argument("--format", choices=("fixed", "long", "i10", "free"), default="fixed")
     conv.add_argument("--split", action="store_true", help="nodes and elements in an include file")
     conv.add_argument("--strict", action="store_true")
@@ -63,7 +114,12 @@ def build_parser() -> argparse.ArgumentParser:
     run = sub.add_parser("run", help="run a deck with the explicit solver (masses, springs, dampers, "
                                      "beams, rigid bodies, rigid walls at this stage)")
     run.add_argument("deck", type=Path)
-    run.add_argument("-o", "--output", type=Path, required=True, help="results folder")
+    run.add_argument("-o", "--output", type=_path_arg, required=True,
+                     help="results folder; one reused by an earlier run is emptied of that run's files (listed in "
+                          "its crashlite-run.json) first; files of the names a run writes that no run wrote "
+                          "refuse the run, and the deck is never overwritten")
+    run.add_argument("--force", action="store_true", help="overwrite files in the results folder that have the "
+                                                          "names a run writes but no crashlite run wrote")
     run.add_argument("--quiet", action="store_true", help="no progress bar")
     run.set_defaults(func=_run)
     from .cli_barrier import add_commands as barrier_commands
@@ -88,9 +144,12 @@ def main(argv: list[str] | None = None) -> int:
     except DeckError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
-    except (FileExistsError, FileNotFoundError, ValueError, KeyError, FloatingPointError) as e:
+    except (OSError, ValueError, KeyError, FloatingPointError) as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print(f"interrupted (crashlite {args.command})", file=sys.stderr)
+        return INTERRUPTED
 
 
 if __name__ == "__main__":

@@ -401,11 +401,51 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock) -> Results:
         stopped = str(e)
     except KeyboardInterrupt:
         stopped = f"interrupted at t = {t:.6g} (cycle {cycle})"
-    return _results(s, rec, groups, parts, walls, st, locals_=dict(
-        cycles=cycle, dt=dt, wall_time=_time.perf_counter() - t_start, states_t=states_t, states_x=states_x,
-        loop_time=_time.perf_counter() - t_loop - (clock.seconds - compile_loop),
-        cpu_time=_time.process_time() - cpu_loop - (clock.seconds - compile_loop), compile_time=clock.seconds,
-        added_mass=added_mass, stopped=stopped))
+    with HeldInterrupts() as held:  # a further Ctrl-C now would lose the states: held until they are out
+        res = _results(s, rec, groups, parts, walls, st, locals_=dict(
+            cycles=cycle, dt=dt, wall_time=_time.perf_counter() - t_start, states_t=states_t, states_x=states_x,
+            loop_time=_time.perf_counter() - t_loop - (clock.seconds - compile_loop),
+            cpu_time=_time.process_time() - cpu_loop - (clock.seconds - compile_loop), compile_time=clock.seconds,
+            added_mass=added_mass, stopped=stopped))
+    if held.hit and not stopped:
+        res.info["stopped"] = f"interrupted at t = {t:.6g} (cycle {cycle}), after the last cycle"
+    return res
+
+
+class HeldInterrupts:
+    """Ctrl-C (SIGINT) held while results are assembled and written: one
+    pressed meanwhile is remembered in ``hit`` instead of raising
+    KeyboardInterrupt half-way through a file. Only in the main thread
+    (elsewhere Python delivers no SIGINT); nests."""
+
+    def __init__(self):
+        self.hit = False
+        self._old = None
+
+    def _hold(self, *_):
+        self.hit = True
+
+    def __enter__(self):
+        import signal
+        import threading
+
+        if threading.current_thread() is threading.main_thread():
+            try:
+                self._old = signal.signal(signal.SIGINT, self._hold)
+            except (ValueError, OSError):  # no signals here (embedded interpreter)
+                self._old = None
+        return self
+
+    def __exit__(self, *exc):
+        import signal
+
+        if self._old is not None:
+            signal.signal(signal.SIGINT, self._old)
+            outer = getattr(self._old, "__self__", None)
+            if self.hit and isinstance(outer, HeldInterrupts):  # an outer hold learns of the Ctrl-C too
+                outer.hit = True
+            self._old = None
+        return False
 
 
 def _results(s, rec, groups, parts, walls, st, locals_) -> Results:
@@ -477,17 +517,21 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
     res.info["warnings"] = ([str(w) for w in model.warnings if w.keyword not in passed]
                             + [str(w) for w in s.warnings] + res.info.get("warnings", []))
     if out is not None:
-        res.save(Path(out))  # also when the run stopped early: the states so far are kept
-        if s.moved:
-            from .penetrations import write_csv
+        with HeldInterrupts() as held:  # Ctrl-C while saving: every file is still written, then reported
+            res.save(Path(out))  # also when the run stopped early: the states so far are kept
+            if s.moved:
+                from .penetrations import write_csv
 
-            write_csv(Path(out) / "initial_penetrations.csv", s.moved, model.nodes.ids)
-        if len(res.states_time):
-            from ..results.vtk import element_field, write_states
+                write_csv(Path(out) / "initial_penetrations.csv", s.moved, model.nodes.ids)
+            if len(res.states_time):
+                from ..results.vtk import element_field, write_states
 
-            eps = element_field(model, {"shells": res.shell_ids, "solids": res.solid_ids},
-                                {"shells": res.shell_plastic_strain, "solids": res.solid_plastic_strain})
-            write_states(Path(out) / "states", model, res.states_time, res.states_x, {"plastic_strain": eps})
+                eps = element_field(model, {"shells": res.shell_ids, "solids": res.solid_ids},
+                                    {"shells": res.shell_plastic_strain, "solids": res.solid_plastic_strain})
+                write_states(Path(out) / "states", model, res.states_time, res.states_x, {"plastic_strain": eps})
+        if held.hit and not res.info["stopped"]:
+            res.info["stopped"] = (f"interrupted at t = {res.time[-1]:.6g} (cycle {res.cycles}), while saving "
+                                   "the results (every file written)")
     if res.info["stopped"] and not res.info["stopped"].startswith("interrupted"):
         raise RunError(res.info["stopped"], res)
     return res
