@@ -66,6 +66,17 @@ def _status(args) -> int:
     return 0
 
 
+def _workers(text: str) -> int:
+    """--workers: a whole number of 1 or more."""
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"a whole number of worker processes, got {text!r}") from None
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"must be 1 or more, got {n}")
+    return n
+
+
 def add_commands(sub) -> None:
     """Register ``study`` and its subcommands on the top-level parser."""
     fmt = argparse.ArgumentDefaultsHelpFormatter
@@ -75,7 +86,7 @@ def add_commands(sub) -> None:
     r.add_argument("study", type=Path, help="study file (TOML)")
     r.add_argument("--scheduler", default=None, help="address of a running Dask scheduler (tcp://host:8786); "
                                                      "default: a LocalCluster on this machine")
-    r.add_argument("--workers", type=int, default=None, help="LocalCluster worker processes (default: one per core)")
+    r.add_argument("--workers", type=_workers, default=None, help="LocalCluster worker processes (default: one per core)")
     r.add_argument("--serial", action="store_true", help="run the designs one by one in this process (no Dask)")
     r.add_argument("--force", action="store_true", help="take over a study whose session looks alive")
     r.add_argument("--report", action="store_true", help="write the report when the study is done")

@@ -267,6 +267,7 @@ def load_study(path, build_template: bool = True) -> StudyConfig:
     if sens is not None and sens.method == "sobol" and not sens.runs and (doe is None or doe.designs == 0) \
             and opt is None:
         r.fail("[sensitivity]", "Sobol indices from the metamodel need designs: add [doe] (or runs = true)")
+    _check_sizes(r, len(variables), doe, sens, opt)
     cfg = StudyConfig(path=path, name=name.strip(), deck=deck, storage=storage, directory=directory,
                       variables=variables, responses=responses, objectives=objectives, constraints=constraints,
                       doe=doe, sensitivity=sens, optimization=opt, metamodel=mm, execution=ex)
@@ -275,6 +276,45 @@ def load_study(path, build_template: bool = True) -> StudyConfig:
 
         cfg.template = DeckTemplate.build(cfg)
     return cfg
+
+
+DESIGN_BYTES = 4096  # memory one planned design takes (plan entry, stored trial, progress), per variable 64 more
+POINT_BYTES = 8  # one coordinate of a point the metamodel is evaluated at (Sobol indices without runs)
+
+
+def memory_bytes() -> int:
+    """Physical memory of this machine (8 GiB when it cannot be told)."""
+    try:
+        return int(os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE"))
+    except (ValueError, OSError, AttributeError):
+        return 8 << 30
+
+
+def _check_sizes(r: _Reader, d: int, doe, sens, opt) -> None:
+    """Designs (and metamodel points) a study plans must fit in a quarter of
+    the memory, else the key that asks for them is named before anything
+    is allocated (designs = 1e9 ended in a MemoryError traceback)."""
+    budget = memory_bytes() // 4
+    per_design = DESIGN_BYTES + 64 * max(d, 1)
+    asked = []
+    if doe is not None:
+        asked.append(("[doe] designs", doe.designs, doe.designs, per_design))
+    if sens is not None and sens.method == "morris":
+        asked.append(("[sensitivity] trajectories", sens.trajectories, sens.trajectories * (d + 1), per_design))
+    if sens is not None and sens.method == "sobol":
+        n = sens.samples * (2 * d + 2)
+        asked.append(("[sensitivity] samples", sens.samples, n,
+                      per_design if sens.runs else POINT_BYTES * (2 * d + 4)))
+    if opt is not None:
+        asked.append(("[optimization] trials", opt.trials, opt.trials, per_design))
+        asked.append(("[optimization] points", opt.points, opt.points * opt.iterations, per_design))
+    for key, value, n, each in asked:
+        if n * each > budget:
+            most = budget // each
+            scale = n / max(value, 1)
+            r.fail(key, f"{value} asks for {n:,} planned designs or points, about {n * each / 2**30:.3g} GiB of "
+                        f"memory; a quarter of this machine's {memory_bytes() / 2**30:.3g} GiB holds at most "
+                        f"{int(most / scale):,}")
 
 
 def _metamodel_table(r: _Reader, t: dict) -> str:
@@ -447,9 +487,15 @@ def _execution(r: _Reader, data: dict) -> ExecutionSettings:
     t = r.table(data, "execution", "top level") or {}
     w = "[execution]"
     r.known(t, ("workers", "threads_per_run", "scheduler", "allowed_failures", "memory_limit", "keep"), w)
-    return ExecutionSettings(workers=r.number(t, "workers", w, 0, integer=True),
+    workers = r.number(t, "workers", w, 0, integer=True)
+    if workers < 0:
+        r.fail(f"{w} workers", f"must be 1 or more (0 or absent: one per core), got {workers}")
+    failures = r.number(t, "allowed_failures", w, 3, integer=True)
+    if failures < 0:
+        r.fail(f"{w} allowed_failures", f"must not be negative, got {failures}")
+    return ExecutionSettings(workers=workers,
                              threads_per_run=r.number(t, "threads_per_run", w, 1, positive=True, integer=True),
                              scheduler=r.string(t, "scheduler", w),
-                             allowed_failures=r.number(t, "allowed_failures", w, 3, integer=True),
+                             allowed_failures=failures,
                              memory_limit=str(t.get("memory_limit", "auto")),
                              keep=r.string(t, "keep", w, "all", ("all", "decks")))

@@ -74,6 +74,8 @@ class DaskExecutor:
 
     def __init__(self, workers: int = 0, threads: int = 1, address: str | None = None,
                  allowed_failures: int = 3, memory_limit: str = "auto", dashboard: bool = False):
+        if workers < 0:  # a LocalCluster of -4 workers waits for them forever
+            raise ValueError(f"workers must be 1 or more (0: one per core), got {workers}")
         self.workers = workers or (os.cpu_count() or 1)
         self.threads = threads
         self.address = address

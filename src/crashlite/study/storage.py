@@ -62,16 +62,19 @@ def _quiet_optuna():
     return optuna
 
 
-def make_storage(url: str):
+def make_storage(url: str, where: str = ""):
+    """optuna storage of ``url``; ``where`` ("study.toml: [study] storage")
+    prefixes the error when it cannot be opened or made."""
     optuna = _quiet_optuna()
+    head = f"{where}: " if where else ""
     kwargs = {}
-    if url.startswith("sqlite:///"):
-        Path(url[len("sqlite:///"):]).parent.mkdir(parents=True, exist_ok=True)
-        kwargs = {"connect_args": {"timeout": 60}}
     try:
+        if url.startswith("sqlite:///"):
+            Path(url[len("sqlite:///"):]).parent.mkdir(parents=True, exist_ok=True)
+            kwargs = {"connect_args": {"timeout": 60}}
         return optuna.storages.RDBStorage(url, engine_kwargs=kwargs)
-    except Exception as e:  # noqa: BLE001 - bad URL, missing driver, server down
-        raise StudyError(f"cannot open the study storage {url!r}: {type(e).__name__}: {e}") from None
+    except Exception as e:  # noqa: BLE001 - bad URL, missing driver, server down, a folder not writable
+        raise StudyError(f"{head}cannot open the study storage {url!r}: {type(e).__name__}: {e}") from None
 
 
 def _native() -> bool:
@@ -94,7 +97,8 @@ class StudyStore:
     def __init__(self, cfg: StudyConfig, sampler=None, readonly: bool = False):
         optuna = _quiet_optuna()
         self.cfg = cfg
-        self.storage = make_storage(cfg.storage)
+        where = f"{cfg.path}: [study] storage"
+        self.storage = make_storage(cfg.storage, where)
         self.directions = [o.goal for o in cfg.objectives] or ["minimize"]
         if readonly:
             try:
@@ -103,8 +107,12 @@ class StudyStore:
                 raise StudyError(f"{cfg.path}: [study] name: no study {cfg.name!r} in {cfg.storage} "
                                  f"(run it first: crashlite study run {cfg.path})") from None
         else:
-            self.study = optuna.create_study(storage=self.storage, study_name=cfg.name, load_if_exists=True,
-                                             directions=self.directions, sampler=sampler)
+            try:
+                self.study = optuna.create_study(storage=self.storage, study_name=cfg.name, load_if_exists=True,
+                                                 directions=self.directions, sampler=sampler)
+            except Exception as e:  # noqa: BLE001 - a storage that opens but cannot be written
+                raise StudyError(f"{where}: cannot write the study {cfg.name!r} to {cfg.storage!r}: "
+                                 f"{type(e).__name__}: {e}") from None
             self._check_fingerprint()
         stored = [d.name.lower() for d in self.study.directions]
         if stored != self.directions:
