@@ -86,7 +86,8 @@ def add_commands(sub) -> None:
     r.add_argument("study", type=Path, help="study file (TOML)")
     r.add_argument("--scheduler", default=None, help="address of a running Dask scheduler (tcp://host:8786); "
                                                      "default: a LocalCluster on this machine")
-    r.add_argument("--workers", type=_workers, default=None, help="LocalCluster worker processes (default: one per core)")
+    r.add_argument("--workers", type=_workers, default=None,
+                   help="LocalCluster worker processes (default: one per core)")
     r.add_argument("--serial", action="store_true", help="run the designs one by one in this process (no Dask)")
     r.add_argument("--force", action="store_true", help="take over a study whose session looks alive")
     r.add_argument("--report", action="store_true", help="write the report when the study is done")

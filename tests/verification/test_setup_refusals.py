@@ -110,8 +110,8 @@ def test_a_shell_section_without_thickness_is_named(tmp_path, t):
 
 def test_a_shell_giving_its_own_thickness_needs_none_from_the_section(tmp_path):
     deck = tmp_path / "shell.k"
-    deck.write_text(SHELL.format(t="0.0,0.0,0.0,0.0").replace("*ELEMENT_SHELL\n1,1,1,2,3,4\n",
-                                                             "*ELEMENT_SHELL_THICKNESS\n1,1,1,2,3,4\n1.0,1.0,1.0,1.0\n"))
+    own = "*ELEMENT_SHELL_THICKNESS\n1,1,1,2,3,4\n1.0,1.0,1.0,1.0\n"
+    deck.write_text(SHELL.format(t="0.0,0.0,0.0,0.0").replace("*ELEMENT_SHELL\n1,1,1,2,3,4\n", own))
     s = build(read_deck(str(deck)))
     assert s.mass.sum() == pytest.approx(7.85e-9 * 100.0)
 

@@ -92,8 +92,8 @@ def test_doe_is_stored_and_resumes(tmp_path):
 
 
 def test_failed_design_is_recorded_and_the_study_goes_on(tmp_path):
-    """m < 0 gives a node without mass: the solver refuses the design, its
-    message is stored, the other designs complete."""
+    """m < 0 is a negative *ELEMENT_MASS: the solver refuses the design
+    naming the card, its message is stored, the other designs complete."""
     cfg = _write(tmp_path, n=8, lo=-2.0)
     s = _run(cfg)
     designs = StudyStore(cfg, readonly=True).designs()
@@ -101,7 +101,8 @@ def test_failed_design_is_recorded_and_the_study_goes_on(tmp_path):
     assert bad and s.failed == len(bad) and s.complete == 8 - len(bad)
     for d in bad:
         assert d.status == "failed"
-        assert "running: SetupError" in d.message and "has no mass" in d.message
+        assert "running: SetupError" in d.message and "*ELEMENT_MASS, field MASS" in d.message
+        assert f"has mass {d.values['m']:g} < 0" in d.message
     assert _run(cfg).ran == 0  # failed designs are not run again
 
 
