@@ -30,7 +30,7 @@ def split(line: str, fields: tuple[Field, ...], mode: str) -> list[str]:
     if "," in line:
         toks = line.split(",")
         toks += [""] * (len(fields) - len(toks))
-        return [t.strip() for t in toks[: len(fields)]]
+        return [t.strip(BLANKS) for t in toks[: len(fields)]]
     out = []
     pos = 0
     for f in fields:
@@ -58,30 +58,43 @@ def check_int(v: int, text) -> int:
     return v
 
 
+#: What counts as blank around a number: ASCII only. Python's own strip()
+#: and float() also take a no-break space (byte 0xA0 read as latin-1) or
+#: underscores, which would make "\xa0.85e-09" or "1_000" read silently.
+BLANKS = " \t\f\v"
+_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?\Z", re.ASCII)
+
+
+def _not_a_number(text: str, kind: str) -> FieldError:
+    shown = text.strip(BLANKS)
+    what = "an integer" if kind == INT else "a real number"
+    if shown.lower().lstrip("+-") in ("inf", "infinity", "nan"):
+        what = "a finite real number" if kind != INT else what
+    odd = next((c for c in shown if not (" " <= c <= "~") and c != "\t"), None)
+    if odd is not None:
+        name = {"\xa0": "a no-break space", "\x00": "a NUL byte"}.get(odd, "a non-ASCII character")
+        return FieldError(f"expected {what}, got {shown!r}: it holds {name} (byte 0x{ord(odd):02X})")
+    return FieldError(f"expected {what}, got {shown!r}")
+
+
 def to_number(text: str, kind: str):
     """Convert a Fortran-style number; raise FieldError when it is not one."""
-    t = text.strip().replace("d", "e").replace("D", "E")
+    t = text.strip(BLANKS).replace("d", "e").replace("D", "E")
     m = _FORTRAN_EXP.match(t)
     if m:  # Fortran allows "1.5-3" for 1.5e-3
         t = f"{m.group(1)}e{m.group(2)}"
+    if not _NUMBER.match(t):
+        raise _not_a_number(text, kind)
     if kind == INT:
-        try:
+        if "." not in t and "e" not in t:
             return check_int(int(t), text)
-        except ValueError:
-            pass
-        try:
-            v = float(t)
-        except ValueError:
-            raise FieldError(f"expected an integer, got {text.strip()!r}") from None
+        v = float(t)  # "12." or "1.2e1": accepted when integral
         if not math.isfinite(v) or v != int(v):
-            raise FieldError(f"expected an integer, got {text.strip()!r}")
+            raise FieldError(f"expected an integer, got {text.strip(BLANKS)!r}")
         return check_int(int(v), text)
-    try:
-        v = float(t)
-    except ValueError:
-        raise FieldError(f"expected a real number, got {text.strip()!r}") from None
+    v = float(t)
     if not math.isfinite(v):
-        raise FieldError(f"expected a finite real number, got {text.strip()!r}")
+        raise FieldError(f"expected a finite real number, got {text.strip(BLANKS)!r}")
     return v
 
 
@@ -89,7 +102,7 @@ def convert(text: str, f: Field, params: dict):
     """Value of one field: blank (and 0 where the field's default is
     LS-DYNA's "EQ.0" default) gives the default, ``&name``/``-&name`` a
     parameter (``params`` maps lower-case names to values)."""
-    t = text.strip()
+    t = text.strip() if f.kind == STR else text.strip(BLANKS)
     if f.kind == STR:
         if t.startswith("&") and t[1:].lower() in params:
             return str(params[t[1:].lower()])

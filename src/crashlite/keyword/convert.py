@@ -39,11 +39,42 @@ def _nan0(a: np.ndarray) -> np.ndarray:
     return a
 
 
+def _codes(r: Record, name: str, problems: Collector) -> np.ndarray:
+    """TC or RC of a *NODE block as int8, each checked to be 0 to 7 (a code
+    out of range must not wrap round to another: 300 would read 44)."""
+    col = np.asarray(r.rows[name])
+    bad = np.flatnonzero((col < 0) | (col > 7))
+    for i in bad[:10]:
+        problems.error(*r.source, r.name, name.upper(),
+                       f"node {int(r.rows['nid'][i])}: {name.upper()} = {int(col[i])} is not a "
+                       "constraint code (0 to 7)")
+    if len(bad) > 10:
+        problems.error(*r.source, r.name, name.upper(), f"... and {len(bad) - 10} more nodes")
+    return np.where((col < 0) | (col > 7), 0, col).astype(np.int8)
+
+
+def _positive_ids(r: Record, ids: np.ndarray, what: str, field: str, problems: Collector) -> None:
+    """IDs must be positive: 0 reads as a blank ID, and LS-DYNA numbers entities from 1."""
+    bad = np.flatnonzero(ids <= 0)
+    for i in bad[:10]:
+        problems.error(*r.source, r.name, field,
+                       f"{what} ID {int(ids[i])} (row {int(i) + 1} of the block): IDs must be positive")
+    if len(bad) > 10:
+        problems.error(*r.source, r.name, field, f"... and {len(bad) - 10} more {what} IDs not positive")
+
+
 def _mesh_tables(recs: dict[str, list[Record]], problems: Collector):
     nodes = Nodes.concat([
         Nodes(_i64(r.rows["nid"]), np.ascontiguousarray(_block(r, "x", "y", "z")),
-              r.rows["tc"].astype(np.int8), r.rows["rc"].astype(np.int8))
+              _codes(r, "tc", problems), _codes(r, "rc", problems))
         for r in recs.get("NODE", [])])
+    for r in recs.get("NODE", []):
+        _positive_ids(r, r.rows["nid"], "node", "NID", problems)
+    for kw, what in (("ELEMENT_SHELL", "shell"), ("ELEMENT_SOLID", "solid"), ("ELEMENT_BEAM", "beam"),
+                     ("ELEMENT_DISCRETE", "discrete"), ("ELEMENT_MASS", "mass"),
+                     ("ELEMENT_INERTIA", "inertia")):
+        for r in recs.get(kw, []):
+            _positive_ids(r, r.rows["eid"], what, "EID", problems)
     shell_parts = []
     for r in recs.get("ELEMENT_SHELL", []):
         n = len(r.rows["eid"])

@@ -97,7 +97,7 @@ def _tokenize(expr: str) -> list[_Tok]:
     toks: list[_Tok] = []
     pos, n = 0, len(expr)
     while True:
-        while pos < n and expr[pos].isspace():
+        while pos < n and expr[pos] in " \t\f\v":  # ASCII: a no-break space is an error
             pos += 1
         if pos >= n:
             toks.append(_Tok("end", "", n))

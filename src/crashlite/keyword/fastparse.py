@@ -24,13 +24,21 @@ def _chunks(nb: int) -> tuple[int, int]:
     return nchunk, (nb + nchunk - 1) // nchunk
 
 
+@njit(cache=True, inline="always")
+def _is_eol(buf, i, nb):
+    """A line ends at buf[i]: a \\n, or a \\r not followed by \\n (old Mac
+    files end lines with \\r alone; \\r\\n ends at its \\n)."""
+    c = buf[i]
+    return c == 10 or (c == 13 and (i + 1 == nb or buf[i + 1] != 10))
+
+
 @njit(cache=True, parallel=True)
 def _count_newlines(buf, nchunk, size, counts):
     nb = buf.shape[0]
     for c in prange(nchunk):
         k = 0
         for i in range(c * size, min(nb, (c + 1) * size)):
-            if buf[i] == 10:
+            if _is_eol(buf, i, nb):
                 k += 1
         counts[c + 1] = k
 
@@ -41,34 +49,32 @@ def _fill_lines(buf, nchunk, size, counts, starts, ends):
     for c in prange(nchunk):
         n = counts[c]
         for i in range(c * size, min(nb, (c + 1) * size)):
-            if buf[i] == 10:
-                ends[n] = i - 1 if i > 0 and buf[i - 1] == 13 else i
+            if _is_eol(buf, i, nb):
+                ends[n] = i - 1 if buf[i] == 10 and i > 0 and buf[i - 1] == 13 else i
+                starts[n + 1] = i + 1  # the next line starts past the newline
                 n += 1
     n = ends.shape[0]
-    if nb > 0 and buf[nb - 1] != 10:  # last line without a newline
-        ends[n - 1] = nb - 1 if buf[nb - 1] == 13 else nb
-    if n > 0:
-        starts[0] = 0
-    for k in prange(1, n):
-        e = ends[k - 1]  # the next line starts past this line's \n (or \r\n)
-        starts[k] = e + 2 if e < nb and buf[e] == 13 else e + 1
+    if nb > 0 and buf[nb - 1] != 10 and buf[nb - 1] != 13:  # last line without a newline
+        ends[n - 1] = nb
+    starts[0] = 0
 
 
 def split_lines(buf: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Start and end byte offsets of every line of ``buf`` (uint8); ends
-    exclude ``\\r\\n``. Two parallel passes over chunks: count, then fill."""
+    exclude the newline: ``\\n``, ``\\r\\n`` or a lone ``\\r``. Two parallel
+    passes over chunks: count, then fill."""
     nb = buf.shape[0]
     nchunk, size = _chunks(nb)
     counts = np.zeros(nchunk + 1, dtype=np.int64)
     if nb:
         _count_newlines(buf, nchunk, size, counts)
     np.cumsum(counts, out=counts)
-    n = int(counts[-1]) + (1 if nb and buf[nb - 1] != 10 else 0)
-    starts = np.empty(n, dtype=np.int64)
+    n = int(counts[-1]) + (1 if nb and buf[nb - 1] not in (10, 13) else 0)
+    starts = np.empty(n + 1, dtype=np.int64)  # one spare: the start past the last newline
     ends = np.empty(n, dtype=np.int64)
     if n:
         _fill_lines(buf, nchunk, size, counts, starts, ends)
-    return starts, ends
+    return starts[:n], ends
 
 
 @njit(cache=True, inline="always")
@@ -156,7 +162,7 @@ def _parse_number(buf, a, b, is_int, pow10):
             return OK, False, -mant if neg else mant, 0.0
         # "12." or "1.2e1": accepted when integral
         if exp10 >= 0:
-            if exp10 > 18:
+            if ndig + exp10 > 18:  # could pass int64: the Python parser decides
                 return FALLBACK, False, 0, 0.0
             v = mant
             for _ in range(exp10):
@@ -347,6 +353,9 @@ def parse_int_rows(buf, starts, ends, width, def_i, out_i, status):
                         if seen:
                             ended = True
                     elif 48 <= c <= 57 and not ended:
+                        if v >= 100000000000000000:  # an 18th digit could wrap int64
+                            st = FALLBACK
+                            break
                         v = v * 10 + (c - 48)
                         seen = True
                     elif (c == 45 or c == 43) and not seen and not ended and not neg:

@@ -22,9 +22,11 @@ from .fastparse import split_lines
 @dataclass
 class SourceFile:
     path: Path
-    buf: np.ndarray  # (n_bytes,) uint8
+    buf: np.ndarray  # (n_bytes,) uint8 (past a UTF-8 byte-order mark)
     starts: np.ndarray  # (n_lines,) int64 byte offset of each line
     ends: np.ndarray  # (n_lines,) int64 end offset (without \r\n)
+    nul: int = -1  # offset of the first NUL byte in buf (-1: none): not a text file
+    utf16: bool = False  # starts with a UTF-16 byte-order mark
 
     def text(self, i: int) -> str:
         return self.buf[self.starts[i] : self.ends[i]].tobytes().decode("latin-1")
@@ -84,10 +86,18 @@ def read_source(path: Path) -> SourceFile:
             else:
                 mm = mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ)
             buf = np.frombuffer(mm, dtype=np.uint8)
+            nul = mm.find(b"\x00")  # memchr: a text deck has none
+            utf16 = mm[:2] in (b"\xff\xfe", b"\xfe\xff")
     else:
-        buf = np.zeros(0, np.uint8)
+        buf, nul, utf16 = np.zeros(0, np.uint8), -1, False
+    if buf[:3].tobytes() == _BOM:  # a UTF-8 byte-order mark is no part of the first line
+        buf = buf[3:]
+        nul = nul - 3 if nul >= 0 else nul
     starts, ends = split_lines(buf)
-    return SourceFile(path, buf, starts, ends)
+    return SourceFile(path, buf, starts, ends, nul, utf16)
+
+
+_BOM = b"\xef\xbb\xbf"
 
 
 def keyword_mode(kw_line: str, default: str) -> tuple[str, str]:
@@ -124,6 +134,11 @@ def blocks_of(src: SourceFile) -> list[tuple[int, np.ndarray]]:
     return out
 
 
+#: Deeper *INCLUDE nesting than this is an error (LS-DYNA nests includes,
+#: but a chain this deep is a mistake; Python's recursion would end it anyway).
+MAX_INCLUDE_DEPTH = 100
+
+
 @dataclass
 class Lexer:
     """Walks a deck and its includes in input order."""
@@ -149,10 +164,19 @@ class Lexer:
         return None
 
     def walk(self, path: Path, parent_scope: int = -1, contexts: tuple = (),
-             stack: tuple = (), mode: str = STD) -> None:
+             stack: tuple = (), mode: str = STD, via: tuple | None = None) -> None:
+        """Blocks of ``path`` and its includes; ``via``: (file, line, keyword)
+        of the *INCLUDE that names it (None for the deck itself)."""
         path = Path(path)
         if path.resolve() in stack:
             self.problems.error(path, 0, "INCLUDE", None, "file includes itself (include loop)")
+            return
+        if len(stack) >= MAX_INCLUDE_DEPTH:
+            chain = [p.name for p in stack] + [path.name]
+            shown = " -> ".join(chain[:3] + ["..."] + chain[-3:])
+            self.problems.error(via[0], via[1], via[2], "FILENAME",
+                                f"includes nested more than {MAX_INCLUDE_DEPTH} deep ({shown}); "
+                                "an include chain this deep is a mistake (or a loop through copies)")
             return
         try:
             src = read_source(path)
@@ -160,10 +184,13 @@ class Lexer:
             self.problems.error(path, 0, "", None, f"cannot read file: {e.strerror or e}")
             return
         self.files.append(path)
+        blocks = blocks_of(src)
+        if not self._is_deck_text(src, blocks, via):
+            return
         scope = self.new_scope(parent_scope)
         stack = (*stack, path.resolve())
         relative_paths: list[Path] = []
-        for kw_index, data, stop in blocks_of(src):
+        for kw_index, data, stop in blocks:
             line_text = src.text(kw_index)
             name, kmode = keyword_mode(line_text, mode)
             if name == "KEYWORD":
@@ -177,6 +204,44 @@ class Lexer:
                 self._include(blk, relative_paths, scope, contexts, stack, mode)
                 continue
             self.blocks.append(blk)
+
+    def _is_deck_text(self, src: SourceFile, blocks, via) -> bool:
+        """False (with the error) for a file that is no keyword deck: binary
+        data, UTF-16 text, or text without a keyword (LS-DYNA refuses these;
+        reading them as empty decks would lose a model without a word)."""
+        path = src.path
+        from_ = f" (included at {via[0]}:{via[1]})" if via else ""
+        if src.utf16:
+            self.problems.error(path, 0, "", None, f"UTF-16 text{from_}: save the deck as ASCII or UTF-8")
+            return False
+        if src.nul >= 0:
+            line = int(np.searchsorted(src.starts, src.nul, side="right"))
+            self.problems.error(path, line, "", None,
+                                f"binary data (a NUL byte at line {line}){from_}: not a keyword deck")
+            return False
+        head = src.buf[:65536]
+        ctrl = int(np.count_nonzero(((head < 32) & ~np.isin(head, (9, 10, 12, 13))) | (head == 127)))
+        if ctrl > max(8, len(head) // 100):  # text has next to none; a stray one is a field's problem
+            self.problems.error(path, 0, "", None, f"binary data ({ctrl} control bytes in the first "
+                                f"{len(head)}){from_}: not a keyword deck")
+            return False
+        first = blocks[0][0] if blocks else len(src.starts)
+        data = [i for i in range(first) if src.text(i).strip(" \t") and not src.text(i).startswith("$")]
+        if not blocks:
+            if via is None:
+                what = "the file is empty" if not len(src.buf) else "no keyword (a line starting with *)"
+                self.problems.error(path, 0, "", None,
+                                    f"not a keyword deck: {what}; a deck starts with *KEYWORD")
+            elif data:
+                self.problems.error(path, data[0] + 1, "", None,
+                                    f"holds text but no keyword{from_}: not a keyword deck")
+            else:
+                self.problems.warn(path, 0, "", None, f"holds no keyword{from_}")
+            return bool(not data and via is not None)
+        if data:
+            self.problems.warn(path, data[0] + 1, "", None,
+                               f"{len(data)} line(s) before the first keyword ignored")
+        return True
 
     def _include(self, blk: Block, relative_paths, scope, contexts, stack, mode) -> None:
         name = blk.keyword
@@ -193,6 +258,8 @@ class Lexer:
             return
         if name == "INCLUDE":
             names = _file_names(lines)
+            if not names:
+                self.problems.error(blk.file, blk.line, name, "FILENAME", "no file name given")
             for j, fname in names:
                 self._walk_named(blk, j, fname, relative_paths, scope, contexts, stack, mode)
             return
@@ -210,13 +277,17 @@ class Lexer:
 
     def _walk_named(self, blk, j, fname, relative_paths, scope, contexts, stack, mode):
         fname = fname.strip()
+        if not fname:
+            self.problems.error(blk.file, blk.line_no(j) if len(blk.data) else blk.line, blk.keyword,
+                                "FILENAME", "the file name is blank")
+            return
         target = self.resolve(fname, blk.src.path, [*relative_paths, *self.include_paths])
         if target is None:
             self.problems.error(blk.file, blk.line_no(j), blk.keyword, "FILENAME",
                                 f"include file {fname!r} not found (looked in "
                                 f"{os.fspath(blk.src.path.parent)} and the include paths)")
             return
-        self.walk(target, scope, contexts, stack, mode)
+        self.walk(target, scope, contexts, stack, mode, (blk.file, blk.line_no(j), blk.keyword))
 
 
 def _file_names(lines: list[str]) -> list[tuple[int, str]]:

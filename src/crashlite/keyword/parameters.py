@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .cards import INT_MAX, INT_MIN, LONG
+from .cards import BLANKS, INT_MAX, INT_MIN, LONG
 from .errors import Collector
 from .lexer import Block
 
@@ -71,24 +71,24 @@ class ParameterTable:
                     head, text = line[:w], line[w:]
                 pairs = [(head, text)]
             elif "," in line:
-                toks = [t.strip() for t in line.split(",")]
+                toks = [t.strip(BLANKS) for t in line.split(",")]
                 pairs = list(zip(toks[0::2], toks[1::2]))
             else:
                 pairs = [(line[i : i + w], line[i + w : i + 2 * w]) for i in range(0, len(line), 2 * w)]
             for head, text in pairs:
-                head = head.strip()
+                head = head.strip(BLANKS)
                 if not head:
                     continue
-                t, name = head[0].upper(), head[1:].strip()
+                t, name = head[0].upper(), head[1:].strip(BLANKS)
                 if t not in "RIC" or not name:
                     problems.error(blk.file, lineno, kw, "PRMR",
                                    f"expected a type letter R, I or C followed by a name, got {head!r}")
                     continue
-                value = self._value(t, text.strip(), expr, blk.scope, problems,
+                value = self._value(t, text.strip(BLANKS), expr, blk.scope, problems,
                                     (blk.file, lineno, kw))
                 if value is None:
                     continue
-                self.define(Parameter(name, t, value, text.strip() if expr else None, local,
+                self.define(Parameter(name, t, value, text.strip(BLANKS) if expr else None, local,
                                       (blk.file, lineno)), blk.scope)
 
     def _value(self, t, text, expr, scope, problems, where):

@@ -163,12 +163,12 @@ def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
     for r in slow:
         vals: dict = {}
         texts = [src.text(int(idx[r * nl + ci])) for ci in range(nl)]
-        if not any(t.strip() for t in texts):
+        if not any(t.strip(cards.BLANKS) for t in texts):
             status[r] = BLANK
             continue
         for ci, c in enumerate(lay.row):
             li = int(idx[r * nl + ci])
-            if texts[ci].strip():
+            if texts[ci].strip(cards.BLANKS):
                 _read_card(texts[ci], li + 1, c, blk, params, problems, vals)
         for k, f in enumerate(fields):
             v = vals.get(f.name)
