@@ -140,8 +140,8 @@ steel
          1         4       0.1
 *DEFINE_CURVE
         10
-       0.0       1.0
-       1.0       2.0
+                 0.0                 1.0
+                 1.0                 2.0
 *END
 """,
     "contacts": """\
@@ -160,6 +160,14 @@ steel
 *SET_PART_LIST
          3
          1
+*PART
+plate
+         1         1         1
+*SECTION_SHELL
+         1
+       1.0
+*MAT_ELASTIC
+         1   7.85e-9  210000.0       0.3
 *CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID
          1master
          1         3         0         2
@@ -216,6 +224,14 @@ steel
 *SET_PART_LIST
          4
          1
+*PART
+plate
+         1         1         1
+*SECTION_SHELL
+         1
+       1.0
+*MAT_ELASTIC
+         1   7.85e-9  210000.0       0.3
 *BOUNDARY_SPC_SET
          3         0         1         1         1         1         1         1
 *DATABASE_HISTORY_NODE
@@ -225,8 +241,8 @@ steel
     "parameters": """\
 *KEYWORD
 *PARAMETER
-R t            1.5I n             3
-R e       210000.0C name      steel
+R t              1.5I n               3
+R e         210000.0C name        steel
 *PARAMETER_EXPRESSION
 R half    t/2.0
 I sq      n**2
@@ -240,7 +256,7 @@ R loc          2.0
         &n   7.85e-9        &e       0.3
 *SECTION_SHELL
          1         2
-     &half     &half        -&t
+     &half     &half       -&t       &t
 *END
 """,
     "includes": """\
@@ -287,6 +303,13 @@ spring
        2             1.0             0.0             0.0
 *ELEMENT_DISCRETE
        1       1       1       2
+*PART
+spring
+         1         1         1
+*SECTION_DISCRETE
+         1         0
+*MAT_SPRING_ELASTIC
+         1    1000.0
 *END
 """,
 }
@@ -400,7 +423,7 @@ def m_garbage(rng, files, name):
     else:
         w = rng.choice((8, 10, 16, 20))
         k = rng.randrange(max(1, (len(line) + w - 1) // w))
-        ln[i] = line[: k * w] + g.rjust(w)[-max(w, len(g)):] + line[k * w + w :]
+        ln[i] = line[: k * w] + g.rjust(w) + line[k * w + w :]
     files[name] = _join(ln)
 
 

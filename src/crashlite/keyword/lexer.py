@@ -156,10 +156,10 @@ class Lexer:
     def resolve(self, name: str, here: Path, relative_to: list[Path]) -> Path | None:
         p = Path(name.strip())
         if p.is_absolute():
-            return p if p.is_file() else None
+            return p if _is_file(p) else None
         for base in [here.parent, *relative_to, Path.cwd()]:
             cand = base / p
-            if cand.is_file():
+            if _is_file(cand):
                 return cand
         return None
 
@@ -253,7 +253,7 @@ class Lexer:
                     p = Path(ln.strip())
                     if not p.is_absolute():
                         p = base / p if name == "INCLUDE_PATH_RELATIVE" else (
-                            Path.cwd() / p if (Path.cwd() / p).is_dir() else base / p)
+                            Path.cwd() / p if _is_dir(Path.cwd() / p) else base / p)
                     (relative_paths if name == "INCLUDE_PATH_RELATIVE" else self.include_paths).append(p)
             return
         if name == "INCLUDE":
@@ -288,6 +288,22 @@ class Lexer:
                                 f"{os.fspath(blk.src.path.parent)} and the include paths)")
             return
         self.walk(target, scope, contexts, stack, mode, (blk.file, blk.line_no(j), blk.keyword))
+
+
+def _is_file(p: Path) -> bool:
+    """Path.is_file, False also for a name the system refuses (too long, a
+    NUL byte): such a name is then reported as not found."""
+    try:
+        return p.is_file()
+    except (OSError, ValueError):
+        return False
+
+
+def _is_dir(p: Path) -> bool:
+    try:
+        return p.is_dir()
+    except (OSError, ValueError):
+        return False
 
 
 def _file_names(lines: list[str]) -> list[tuple[int, str]]:

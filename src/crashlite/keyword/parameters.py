@@ -65,7 +65,9 @@ class ParameterTable:
                 continue
             lineno = blk.line_no(j)
             if expr:
-                if "," in line:
+                # free format: a comma after the name; a comma inside a
+                # fixed-format expression (max(a, b)) comes after a '('
+                if "," in line and "(" not in line.partition(",")[0]:
                     head, _, text = line.partition(",")
                 else:
                     head, text = line[:w], line[w:]

@@ -45,8 +45,13 @@ def read_records(path, problems: Collector | None = None, strict: bool = False):
     own = problems is None
     problems = Collector() if own else problems
     path = Path(path)
-    if not path.is_file():
-        raise DeckError([_problem(path, "deck file not found")])
+    try:
+        found = path.is_file()
+    except (OSError, ValueError) as e:  # a name too long, a NUL byte in it
+        raise DeckError([_problem(path, f"deck file name cannot be used: {getattr(e, 'strerror', None) or e}")])
+    if not found:
+        raise DeckError([_problem(path, "deck path is a folder, not a file" if path.is_dir()
+                                  else "deck file not found")])
     lexer = Lexer(problems)
     lexer.walk(path)
     params = ParameterTable(lexer.scopes)

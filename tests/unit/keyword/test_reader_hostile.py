@@ -331,3 +331,22 @@ def test_include_chain_of_moderate_depth_reads(tmp_path):
     (tmp_path / "d30.k").write_text(_SPRING)
     (tmp_path / "m.k").write_text("*KEYWORD\n*INCLUDE\nd0.k\n*END\n")
     assert len(read_deck(tmp_path / "m.k").discretes) == 1
+
+
+def test_fixed_format_expression_with_a_comma(deck):
+    p = deck("m.k", "*KEYWORD\n*PARAMETER\nR t              1.5\n*PARAMETER_EXPRESSION\n"
+                    "R s       max(t, 2.0)*2\nR u,min(t,1.0)\n*END\n")
+    params = {x.name: x.value for x in read_deck(p).parameters}
+    assert params["s"] == 4.0 and params["u"] == 1.0
+
+
+def test_include_name_too_long(deck):
+    p = deck("m.k", _SPRING.replace("*END\n", "*INCLUDE\n" + "1" * 400 + "\n*END\n"))
+    probs = _problems(p)
+    assert len(probs) == 1 and probs[0].field == "FILENAME" and "not found" in probs[0].message
+
+
+@pytest.mark.parametrize("name", ["x" * 5000, "a\x00b.k", "."])
+def test_deck_path_that_cannot_be_a_deck(name):
+    with pytest.raises(DeckError):
+        read_deck(name)
