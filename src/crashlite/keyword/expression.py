@@ -113,9 +113,16 @@ def _tokenize(expr: str) -> list[_Tok]:
                     end += 1
                 raise ExpressionError(f"malformed number {expr[pos:end]!r}", expr, pos)
             real = any(c in text for c in ".eEdD")
-            value = float(text.translate(_D_TO_E)) if real else int(text)
-            if not math.isfinite(value):
-                raise ExpressionError(f"number {text!r} is out of range", expr, pos)
+            shown = text if len(text) <= 40 else f"{text[:20]}... ({len(text)} characters)"
+            if real:
+                value = float(text.translate(_D_TO_E))
+                if not math.isfinite(value):
+                    raise ExpressionError(f"number {shown!r} is out of range", expr, pos)
+            else:  # digits alone: an integer, held to MAX_INT_BITS as any result
+                if len(text) > MAX_INT_BITS // 3 or int(text).bit_length() > MAX_INT_BITS:
+                    raise ExpressionError(f"integer {shown!r} is too large (more than "
+                                          f"{MAX_INT_BITS} bits)", expr, pos)
+                value = int(text)
             toks.append(_Tok("num", text, pos, value))
         elif kind == "name":
             amp = text.startswith("&")

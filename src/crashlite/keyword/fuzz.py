@@ -507,6 +507,8 @@ def m_blank_include(rng, files, name):
 def m_include_odd(rng, files, name):
     """An include of a binary, empty, NUL-only or keyword-less file, or a folder."""
     kind = rng.randrange(5)
+    for k in [k for k in files if k == "odd.k" or k.startswith("odd.k/")]:
+        del files[k]  # a second include_odd replaces the first
     if kind == 0:
         files["odd.k"] = bytes(rng.randrange(256) for _ in range(rng.randrange(1, 300)))
     elif kind == 1:
@@ -619,11 +621,14 @@ def time_limit(seconds: float):
 
 
 def write_case(files: dict[str, bytes], folder: Path) -> Path:
-    for name, data in files.items():
+    for name, data in sorted(files.items()):
         p = folder / name
-        p.parent.mkdir(parents=True, exist_ok=True)
-        if not p.is_dir():
-            p.write_bytes(data)
+        try:
+            p.parent.mkdir(parents=True, exist_ok=True)
+            if not p.is_dir():
+                p.write_bytes(data)
+        except OSError:  # a file and a folder of the same name: the first one stays
+            pass
     return folder / "main.k"
 
 

@@ -350,3 +350,15 @@ def test_include_name_too_long(deck):
 def test_deck_path_that_cannot_be_a_deck(name):
     with pytest.raises(DeckError):
         read_deck(name)
+
+
+@pytest.mark.parametrize("literal", ["1" * 400, "9" * 5000])
+def test_huge_integer_literal_in_an_expression(deck, literal):
+    p = deck("m.k", f"*KEYWORD\n*PARAMETER_EXPRESSION\nR a       {literal}\n*END\n")
+    probs = _problems(p)
+    assert len(probs) == 1 and probs[0].field == "EXPRESSION" and probs[0].line == 3, probs
+
+
+def test_large_integer_literal_in_a_real_expression_reads(deck):
+    p = deck("m.k", f"*KEYWORD\n*PARAMETER_EXPRESSION\nR a       {10**30}*2\n*END\n")
+    assert read_deck(p).parameters[0].value == 2e30
