@@ -353,7 +353,7 @@ def parse_int_rows(buf, starts, ends, width, def_i, out_i, status):
                         if seen:
                             ended = True
                     elif 48 <= c <= 57 and not ended:
-                        if v >= 100000000000000000:  # an 18th digit could wrap int64
+                        if v >= 100000000000000000:  # a 19th digit could wrap int64
                             st = FALLBACK
                             break
                         v = v * 10 + (c - 48)
