@@ -185,8 +185,13 @@ def vehicle(out: Path, mesh_size: float = 60.0, end_time: float = 0.07) -> int:
               + twin_text(f["elastic_twin"]).lstrip("; "))
     t = f["time"]
     print(f"  time loop {t['full']['wall_time']:.1f} s -> {t['simplified']['wall_time']:.1f} s "
-          f"({t['reduction_percent']:.0f} % less); reports: {st.out / 'reduction.html'}, "
+          f"(reduction {t['reduction_percent']:.0f} %); reports: {st.out / 'reduction.html'}, "
           f"{st.out / 'verify' / 'index.html'}")
+    from .vehicle.verdict import verdict, verdict_lines
+
+    print("\n  the simplified vehicle against its bounds (US NCAP):")
+    for line in verdict_lines(verdict(f)):
+        print("    " + line)
     return 0
 
 

@@ -131,6 +131,11 @@ def test_simplified_car_follows_the_full_car(study):
     f = json.loads((study.out / "verify" / "summary.json").read_text())
     assert f["energy_rating_min"] >= 0.9
     assert abs(f["crash_box_internal_energy_deviation_percent"]) < 2.0
+    # the verdict table (no elastic twin in this study: the paper's 5 % bounds the largest intrusion)
+    assert f["firewall_intrusion_bound_percent"] == 5.0
+    assert [v["figure"] for v in f["verdict"]][:2] == ["energy ratings, lowest",
+                                                      "crash-box internal energy deviation [%]"]
+    assert f["verdict"][1]["passed"] is True
     fi = f["firewall_intrusion"]
     assert fi["max_intrusion_full"] > 10.0  # mm
     assert fi["split"]["carried_by_interface"]["max_deviation_percent"] < 5.0

@@ -43,6 +43,7 @@ from ..verify.filters import filter_signal
 from ..verify.timing import reduction, run_info
 from .massprops import node_indices
 from .rigidfit import rearward_in_frame, warping
+from .verdict import intrusion_bound, verdict
 
 FLAT = 0.02  # an energy curve varying less than this share of its magnitude (the total) is not rated
 ENERGY_KEYS = (("total_energy", "total"), ("kinetic_energy", "kinetic"), ("internal_energy", "internal"))
@@ -390,4 +391,6 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
                        "reduction_percent": reduction(info[0].wall_time, info[1].wall_time),
                        "elements_full": info[0].n_elements, "elements_simplified": info[1].n_elements}
     figures["time_reduction_percent"] = figures["time"]["reduction_percent"]
+    figures["firewall_intrusion_bound_percent"] = intrusion_bound(figures)
+    figures["verdict"] = [v.as_dict() for v in verdict(figures)]
     return VehicleVerification(tuple(names), figures, pairs, intrusion, notes)

@@ -101,6 +101,13 @@ def verification_page(v) -> str:
         [names[1], t["elements_simplified"], num(t["simplified"]["cycles"]), num(t["simplified"]["time_step"]),
          num(t["simplified"]["wall_time"]),
          "–" if t["reduction_percent"] is None else f"{t['reduction_percent']:.1f} %"]]))
+    if f.get("verdict"):
+        body.append("<h2>Verdict</h2><p>Each figure against its bound (energy ratings ≥ 0.95, crash-box energy "
+                    "within 2 %, intrusion within 3 % on average and the elastic twin's largest deviation + 5 "
+                    "points at its worst node, time reduction ≥ 60 %).</p>")
+        body.append(table(["figure", "measured", "bound", "verdict"], [
+            [r["figure"], num(r["value"], 3), r["bound"],
+             "not measured" if r["passed"] is None else "pass" if r["passed"] else "FAIL"] for r in f["verdict"]]))
     body.append("<h2>Curves</h2><div class=\"grid\">"
                 + "".join(image(pair_plot(p, names), p.name) for p in v.pairs) + "</div>")
     if v.notes:
