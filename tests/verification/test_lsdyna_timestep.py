@@ -125,3 +125,46 @@ def test_spring_step_is_the_two_mass_oscillators(tmp_path):
     path.write_text("\n".join(lines) + "\n")
     r = run(read_deck(path), output_dt=1e-5)
     assert r.time_step[1] == pytest.approx(0.9 * 2.0 * math.sqrt(m1 * m2 / (k * (m1 + m2))), rel=1e-12)
+
+
+def _bs_step(length, area, inertia):
+    """LS-DYNA's Belytschko–Schwer beam step: the bar wave L/c unless the
+    bending rule 0.5·L / (c·sqrt(3I·(3/(12I + AL²) + 1/(AL²)))) is shorter
+    (I the larger moment of inertia)."""
+    al2 = area * length * length
+    bend = 0.5 * length / (C_BAR * math.sqrt(3 * inertia * (3 / (12 * inertia + al2) + 1 / al2)))
+    return min(length / C_BAR, bend)
+
+
+@pytest.mark.parametrize("length", [25.0, 50.0, 200.0, 1000.0])
+def test_beam_step_is_belytschko_schwers_where_it_is_the_bar_wave(tmp_path, length):
+    """One free ELFORM 2 beam (solid 10 mm × 10 mm square: A = 100, I = 833):
+    the run steps at 0.9 × LS-DYNA's Belytschko–Schwer rule for a beam 2.5
+    times as long as it is deep or longer (the bar wave L/c governs both
+    rules); a stubbier one steps shorter (next test)."""
+    a, i = 100.0, 100.0 * 100.0 / 12.0
+    lines = ["*KEYWORD", "*NODE", "1,0,0,0", f"2,{length},0,0", "*ELEMENT_BEAM", "1,1,1,2", "*PART", "b", "1,1,1",
+             "*SECTION_BEAM", "1,2", f"{a},{i},{i},{2 * i}", "*MAT_ELASTIC", f"1,{RHO},{E},{NU}",
+             "*CONTROL_TERMINATION", "1e-5", "*END"]
+    path = tmp_path / "beam.k"
+    path.write_text("\n".join(lines) + "\n")
+    r = run(read_deck(path), output_dt=1e-6)
+    expected = 0.9 * _bs_step(length, a, i)
+    assert r.time_step[1] == pytest.approx(expected, rel=1e-9)
+
+
+@pytest.mark.parametrize("length", [5.0, 10.0])
+def test_stubby_beam_steps_shorter_than_belytschko_schwer(tmp_path, length):
+    """Beams shorter than 2.5 depths (here 10 mm deep): crashlite's nodal
+    rule of the rotation (rotary inertia m·L²/24 per end, ω² from the end
+    stiffness 6EI/L) takes 0.5–1 of LS-DYNA's bending rule: more cycles,
+    never a longer step than LS-DYNA's."""
+    a, i = 100.0, 100.0 * 100.0 / 12.0
+    lines = ["*KEYWORD", "*NODE", "1,0,0,0", f"2,{length},0,0", "*ELEMENT_BEAM", "1,1,1,2", "*PART", "b", "1,1,1",
+             "*SECTION_BEAM", "1,2", f"{a},{i},{i},{2 * i}", "*MAT_ELASTIC", f"1,{RHO},{E},{NU}",
+             "*CONTROL_TERMINATION", "1e-6", "*END"]
+    path = tmp_path / "stub.k"
+    path.write_text("\n".join(lines) + "\n")
+    r = run(read_deck(path), output_dt=1e-7)
+    ratio = r.time_step[1] / (0.9 * _bs_step(length, a, i))
+    assert 0.5 < ratio < 1.0
