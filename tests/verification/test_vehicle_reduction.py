@@ -136,6 +136,9 @@ def test_simplified_car_follows_the_full_car(study):
     assert [v["figure"] for v in f["verdict"]][:2] == ["energy ratings, lowest",
                                                       "crash-box internal energy deviation [%]"]
     assert f["verdict"][1]["passed"] is True
+    # each run's hourglass energy at its end, against its internal energy (issue 30: <= 10 %)
+    assert set(f["hourglass_share_percent"]) == {"full", "simplified"}
+    assert all(0.0 < v < 10.0 for v in f["hourglass_share_percent"].values())
     fi = f["firewall_intrusion"]
     assert fi["max_intrusion_full"] > 10.0  # mm
     assert fi["split"]["carried_by_interface"]["max_deviation_percent"] < 5.0

@@ -94,6 +94,15 @@ def history_node(model: Model, heading: str) -> int:
     raise KeyError(f"no history node titled {heading!r} in the deck")
 
 
+def _hourglass_share(h) -> float | None:
+    """Hourglass energy at the end of a run over its internal energy [%]
+    (glstat; None where the run did not record it)."""
+    hg, ie = _read(h, "glstat", "hourglass_energy"), _read(h, "glstat", "internal_energy")
+    if hg is None or ie is None or not len(ie) or ie[-1] <= 0:
+        return None
+    return 100.0 * float(hg[-1]) / float(ie[-1])
+
+
 def _read(h, cat, q):
     try:
         return np.asarray(h.read(cat, q))
@@ -317,6 +326,7 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
                      "deceleration_phase_end": t_stop, "reference_node": ref_node}
     pairs = []
     energies = {}
+    figures["hourglass_share_percent"] = {n: _hourglass_share(h) for n, h in zip(names, hist)}
     for key, label in ENERGY_KEYS:
         c = [(_read(h, "glstat", "time"), _read(h, "glstat", key)) for h in hist]
         if any(y is None for _, y in c):

@@ -37,6 +37,8 @@ def verification_page(v) -> str:
     rows = []
     for k, e in f.get("energies", {}).items():
         rows.append([f"{k} energy", num(e["rating"], 3), num(e["deviation_at_end_percent"], 3)])
+    for n, share in (f.get("hourglass_share_percent") or {}).items():
+        rows.append([f"hourglass / internal energy at the end, {n} [%]", "", num(share, 3)])
     cb = f["crash_box_internal_energy"]
     rows.append(["crash boxes internal energy", num(cb["rating"], 3), num(cb["deviation_percent"], 3)])
     eng = f.get("engine_top_acceleration")
