@@ -8,7 +8,6 @@ model with one field changed.
 
 from importlib import resources
 
-import numpy as np
 import pytest
 
 from crashlite import read_deck
@@ -159,3 +158,36 @@ def test_an_inverted_solid_is_named(tmp_path):
     assert "solid 7 has volume -1000 <= 0" in p.message and "inverted" in p.message
     deck.write_text(SOLID.format(row="7,1,1,2,3,4,5,6,7,8"))
     assert build(read_deck(str(deck))).mass.sum() == pytest.approx(7.85e-9 * 1000.0)
+
+
+@pytest.mark.parametrize("material, field", [("1,0.0,210000.0,0.3", "RO"), ("1,-7.85e-9,210000.0,0.3", "RO"),
+                                             ("1,7.85e-9,0.0,0.3", "E"), ("1,7.85e-9,-210000.0,0.3", "E"),
+                                             ("1,7.85e-9,210000.0,0.5", "PR")])
+def test_a_material_without_density_or_stiffness_names_its_field(tmp_path, material, field):
+    deck = tmp_path / "shell.k"
+    deck.write_text(SHELL.format(t="1.0,1.0,1.0,1.0").replace("1,7.85e-9,210000.0,0.3", material))
+    (p,) = _refused(str(deck))
+    assert (p.keyword, p.field, p.line) == ("MAT_ELASTIC", field, 16)
+
+
+@pytest.mark.parametrize("speed", ["1e30", "6e6"])
+def test_an_initial_velocity_faster_than_sound_is_refused(tmp_path, speed):
+    """The plate's steel carries sound at sqrt(E/RO) = 5.17e6 mm/s; a node
+    set off faster is no crash (at 1e30 the run went on for three steps to
+    an energy ratio of 1e300 and exit 0)."""
+    deck = tmp_path / "shell.k"
+    deck.write_text(SHELL.format(t="1.0,1.0,1.0,1.0").replace("*CONTROL_TERMINATION",
+                                                              f"*INITIAL_VELOCITY_NODE\n3,{speed},0,0\n"
+                                                              "*CONTROL_TERMINATION"))
+    (p,) = _refused(str(deck))
+    assert p.keyword == "INITIAL_VELOCITY_NODE" and p.line == 17  # the keyword line: rows keep none
+    assert "node 3" in p.message and "faster than sound" in p.message
+
+
+def test_a_crash_speed_is_not_refused(tmp_path):
+    deck = tmp_path / "shell.k"
+    deck.write_text(SHELL.format(t="1.0,1.0,1.0,1.0").replace("*CONTROL_TERMINATION",
+                                                              "*INITIAL_VELOCITY\n0\n17800.0,0,0\n"
+                                                              "*CONTROL_TERMINATION"))
+    s = build(read_deck(str(deck)))
+    assert s.v0[:, 0] == pytest.approx(17800.0)

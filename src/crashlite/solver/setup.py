@@ -17,6 +17,8 @@ from ..keyword.errors import DeckError, Problem
 from ..model.model import Model
 from ..model.sets import history_nodes
 from .kernels.discrete import CURVE, DAMPER, GENERAL, INELASTIC, LINEAR
+from .loads import build_nodal_loads
+from .records import _curve, _problem
 
 # constraint code of *NODE TC (and RC, same numbering) -> held (x, y, z)
 _TC = {0: (0, 0, 0), 1: (1, 0, 0), 2: (0, 1, 0), 3: (0, 0, 1), 4: (1, 1, 0), 5: (0, 1, 1),
@@ -126,18 +128,6 @@ class SetupError(DeckError):
     """The model uses something this solver stage cannot run."""
 
 
-def _problem(rec, field_, msg) -> Problem:
-    src = rec.where(field_) if rec is not None and hasattr(rec, "where") else ("", 0)
-    return Problem(src[0], src[1], getattr(rec, "name", ""), field_.upper() if field_ else None, msg)
-
-
-def _curve(model: Model, lcid: int):
-    c = model.curves[lcid]
-    a = np.asarray(c.rows["a1"], float) * float(c.get("sfa", 1.0) or 1.0) + float(c.get("offa", 0.0))
-    o = np.asarray(c.rows["o1"], float) * float(c.get("sfo", 1.0) or 1.0) + float(c.get("offo", 0.0))
-    return a, o
-
-
 def _node_set(model: Model, sid: int) -> np.ndarray:
     return model.node_index(model.set_members("NODE", sid))
 
@@ -241,34 +231,71 @@ def _discrete(model: Model, problems: list) -> Discrete:
                     ustart, ustop, yield_t, yield_c)
 
 
+def _fastest_wave(model: Model) -> float:
+    """The largest bar wave speed sqrt(E/RO) of the deck's materials (0
+    without any: springs and masses only) [length/time]."""
+    c = 0.0
+    for mat in model.materials.values():
+        try:
+            e, ro = float(mat.get("e", 0.0) or 0.0), float(mat.get("ro", 0.0) or 0.0)
+        except (TypeError, ValueError):
+            continue
+        if e > 0 and ro > 0:
+            c = max(c, float(np.sqrt(e / ro)))
+    return c
+
+
 def _initial_velocity(model: Model, v: np.ndarray, problems: list) -> None:
+    """Initial velocities of the nodes from every *INITIAL_VELOCITY card;
+    a card that sets a node faster than sound travels in the stiffest
+    material of the deck is refused (no crash is, and the first steps
+    would turn the elements inside out)."""
     n = len(v)
+    c_max = _fastest_wave(model)
     for rec in model.keywords:
         name = getattr(rec, "keyword", "")
-        if name == "INITIAL_VELOCITY":
-            nodes = np.arange(n) if not rec.get("nsid") else _node_set(model, rec["nsid"])
-            v[nodes] = [rec.get("vx", 0.0), rec.get("vy", 0.0), rec.get("vz", 0.0)]
-            if rec.get("nsidex"):
-                ex = _node_set(model, rec["nsidex"])
-                v[ex] = [rec.get("vxe", 0.0), rec.get("vye", 0.0), rec.get("vze", 0.0)]
-        elif name == "INITIAL_VELOCITY_NODE":
-            idx = model.node_index(rec.rows["nid"])
-            v[idx] = np.stack([rec.rows["vx"], rec.rows["vy"], rec.rows["vz"]], axis=1)
-        elif name == "INITIAL_VELOCITY_GENERATION":
-            styp = int(rec.get("styp", 2))
-            if styp == 3:
-                nodes = _node_set(model, rec["id"])
-            else:
-                pids = [rec["id"]] if styp == 2 else model.set_members("PART", rec["id"])
-                nodes = _part_nodes(model, pids)
-            axis = np.array([rec.get("nx", 0.0), rec.get("ny", 0.0), rec.get("nz", 0.0)], float)
-            omega = float(rec.get("omega", 0.0))
-            vt = np.array([rec.get("vx", 0.0), rec.get("vy", 0.0), rec.get("vz", 0.0)], float)
-            v[nodes] = vt
-            if omega and np.linalg.norm(axis) > 0:
-                w = omega * axis / np.linalg.norm(axis)
-                c = np.array([rec.get("xc", 0.0), rec.get("yc", 0.0), rec.get("zc", 0.0)], float)
-                v[nodes] += np.cross(w, model.nodes.xyz[nodes] - c)
+        if not name.startswith("INITIAL_VELOCITY"):
+            continue
+        before = v.copy() if c_max > 0 else None
+        _one_initial_velocity(model, rec, name, v, n)
+        if before is not None:
+            speed = np.linalg.norm(v - before, axis=1)
+            changed = np.flatnonzero(speed > 0)
+            fastest = np.linalg.norm(v[changed], axis=1) if len(changed) else np.zeros(0)
+            if len(fastest) and fastest.max() > c_max:
+                i = int(changed[np.argmax(fastest)])
+                field = "vx" if name != "INITIAL_VELOCITY_NODE" else None
+                problems.append(_problem(rec, field, f"node {int(model.nodes.ids[i])} starts at {fastest.max():.4g}, "
+                                                     f"faster than sound in any material of the deck "
+                                                     f"(sqrt(E/RO) at most {c_max:.4g})"))
+
+
+def _one_initial_velocity(model: Model, rec, name: str, v: np.ndarray, n: int) -> None:
+    """The velocities one *INITIAL_VELOCITY card sets, into ``v``."""
+    if name == "INITIAL_VELOCITY":
+        nodes = np.arange(n) if not rec.get("nsid") else _node_set(model, rec["nsid"])
+        v[nodes] = [rec.get("vx", 0.0), rec.get("vy", 0.0), rec.get("vz", 0.0)]
+        if rec.get("nsidex"):
+            ex = _node_set(model, rec["nsidex"])
+            v[ex] = [rec.get("vxe", 0.0), rec.get("vye", 0.0), rec.get("vze", 0.0)]
+    elif name == "INITIAL_VELOCITY_NODE":
+        idx = model.node_index(rec.rows["nid"])
+        v[idx] = np.stack([rec.rows["vx"], rec.rows["vy"], rec.rows["vz"]], axis=1)
+    elif name == "INITIAL_VELOCITY_GENERATION":
+        styp = int(rec.get("styp", 2))
+        if styp == 3:
+            nodes = _node_set(model, rec["id"])
+        else:
+            pids = [rec["id"]] if styp == 2 else model.set_members("PART", rec["id"])
+            nodes = _part_nodes(model, pids)
+        axis = np.array([rec.get("nx", 0.0), rec.get("ny", 0.0), rec.get("nz", 0.0)], float)
+        omega = float(rec.get("omega", 0.0))
+        vt = np.array([rec.get("vx", 0.0), rec.get("vy", 0.0), rec.get("vz", 0.0)], float)
+        v[nodes] = vt
+        if omega and np.linalg.norm(axis) > 0:
+            w = omega * axis / np.linalg.norm(axis)
+            c = np.array([rec.get("xc", 0.0), rec.get("yc", 0.0), rec.get("zc", 0.0)], float)
+            v[nodes] += np.cross(w, model.nodes.xyz[nodes] - c)
 
 
 def _part_nodes(model: Model, pids) -> np.ndarray:
@@ -553,7 +580,7 @@ def _massless_cards(model: Model, rigid: np.ndarray) -> list[Problem]:
     inverted solid); checked before the elements are built, so the run is
     refused naming the card, not a node left without mass."""
     out: list[Problem] = []
-    src = str(model.source or "")
+    str(model.source or "")
     m = model.masses
     for i in np.flatnonzero(m.mass < 0)[:10]:
         eid, nid = int(m.ids[i]), int(model.nodes.ids[m.node[i]]) if m.node[i] >= 0 else -1
@@ -673,7 +700,6 @@ def build(model: Model) -> Setup:
 def _build(model: Model) -> Setup:
     from .rigid_parts import part_bodies, rigid_part_ids
     from .sections import build_sections
-
     from .support import unsupported_cards
 
     warnings: list[Problem] = []
@@ -795,7 +821,6 @@ def _build(model: Model) -> Setup:
                 continue
             axis = np.eye(3)["XYZ".index(name[-1])]
             loads.append((axis, _curve(model, int(rec["lcid"])), float(rec.get("sf", 1.0))))
-    from .loads import build_nodal_loads
 
     nodal_loads = build_nodal_loads(model, rot_inertia > 0, problems)
     sections = build_sections(model, beams.ids if beams is not None else np.zeros(0, np.int64), problems, groups)

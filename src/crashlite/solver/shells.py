@@ -182,7 +182,7 @@ class _Curves:
     def arrays(self):
         sizes = np.array([len(a) for a in self.xs], np.int64)
         stop = np.cumsum(sizes)
-        cat = (lambda xs: np.concatenate(xs) if xs else np.zeros(0))
+        cat = (lambda xs: np.concatenate(xs) if xs else np.zeros(0))  # noqa: E731
         return stop - sizes, stop, cat(self.xs), cat(self.ys)
 
 
@@ -212,8 +212,9 @@ def _material(model: Model, mat, curves: _Curves, problems: list):
         return None
     e, nu, ro = _num(mat, "e"), _num(mat, "pr"), _num(mat, "ro")
     if e <= 0 or ro <= 0 or not 0.0 <= nu < 0.5:
-        problems.append(_problem(mat, "e", f"material {mat.get('mid')}: RO > 0, E > 0 and 0 <= PR < 0.5 are "
-                                           "needed for shells"))
+        bad = "ro" if ro <= 0 else "e" if e <= 0 else "pr"
+        problems.append(_problem(mat, bad, f"material {mat.get('mid')}: RO > 0, E > 0 and 0 <= PR < 0.5 are "
+                                           f"needed for shells ({bad.upper()} = {_num(mat, bad):g})"))
         return None
     row = np.zeros(ps.N_PROPS)
     mc = np.full(ps.N_CURVES, -1, np.int64)

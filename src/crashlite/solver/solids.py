@@ -22,8 +22,15 @@ from ..keyword.schema import RawKeyword
 from ..model.model import Model
 from .groups import ElementGroup
 from .kernels import solid_materials as sm
-from .kernels.solid import (N_CHUNKS, N_WORK, corner_incidence, gather_corners, solid_forces, solid_timestep,
-                            solid_volumes)
+from .kernels.solid import (
+    N_CHUNKS,
+    N_WORK,
+    corner_incidence,
+    gather_corners,
+    solid_forces,
+    solid_timestep,
+    solid_volumes,
+)
 
 _AS_ONE_POINT = (0, 2, -1, -2)
 
@@ -166,15 +173,16 @@ class _Curves:
     def arrays(self):
         sizes = np.array([len(a) for a in self.xs], np.int64)
         stop = np.cumsum(sizes)
-        cat = (lambda xs: np.concatenate(xs) if xs else np.zeros(0))
+        cat = (lambda xs: np.concatenate(xs) if xs else np.zeros(0))  # noqa: E731
         return stop - sizes, stop, cat(self.xs), cat(self.ys)
 
 
 def _elastic_constants(mat, row, problems) -> bool:
     e, nu, ro = float(mat.get("e", 0.0)), float(mat.get("pr", 0.0)), float(mat.get("ro", 0.0))
     if e <= 0 or ro <= 0 or not -1.0 < nu < 0.5:
-        problems.append(_problem(mat, "e", f"material {mat.get('mid')}: RO > 0, E > 0 and -1 < PR < 0.5 "
-                                            "are needed for solids"))
+        bad, value = ("ro", ro) if ro <= 0 else ("e", e) if e <= 0 else ("pr", nu)
+        problems.append(_problem(mat, bad, f"material {mat.get('mid')}: RO > 0, E > 0 and -1 < PR < 0.5 "
+                                            f"are needed for solids ({bad.upper()} = {value:g})"))
         return False
     k, g = e / (3.0 * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu))
     row[sm.P_RO], row[sm.P_E], row[sm.P_PR], row[sm.P_K], row[sm.P_G] = ro, e, nu, k, g
