@@ -80,7 +80,7 @@ class Calibration:
 def misfit(reference, case, until: float) -> float:
     """RMS difference of the CFC 60 impactor forces over [0, until], both
     cut there before filtering, relative to the reference's mean force."""
-    from .verify import rated_force
+    from .cases import rated_force
 
     t, f_ref = rated_force(reference, until)
     tc, f = rated_force(case, until)
@@ -92,10 +92,10 @@ def calibrate_curves(reference, spec: ODBSpec, impactor: Impactor, end_time: flo
                      max_runs: int = 80, progress: bool = False) -> Calibration:
     """Adjust ``spec``'s curves so that the simplified barrier under
     ``impactor`` at the reference case's overlap matches ``reference`` (a
-    ``verify.Case`` of the detailed barrier) over its crush phase."""
+    ``cases.Case`` of the detailed barrier) over its crush phase."""
     from scipy.optimize import minimize
 
-    from .verify import crushed_solid, run_case
+    from .cases import crushed_solid, run_case
 
     until = crushed_solid(reference, spec)
     # the simplified run need not go past the matched phase

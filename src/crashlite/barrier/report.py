@@ -27,7 +27,7 @@ def characterisation_plot(chars) -> bytes:
 
 
 def _force_plot(d, s, t_c: float, overlap: float) -> bytes:
-    from .verify import rated_force
+    from .cases import rated_force
 
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(6.0, 3.4))

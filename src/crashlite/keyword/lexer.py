@@ -14,9 +14,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .cards import I10, LONG, STD
+from .cards import I10, LONG, STD, FieldError, to_number
 from .errors import Collector
 from .fastparse import split_lines
+from .layout import INT
 
 
 @dataclass
@@ -72,6 +73,60 @@ class Block:
     def raw_lines(self) -> list[str]:
         """Every line after the keyword line, comments included."""
         return [self.src.text(i) for i in range(self.kw_index + 1, self.stop)]
+
+
+# Card 2 of *INCLUDE_TRANSFORM, and which reference kinds each offset moves.
+_OFFSET_FIELDS = ("IDNOFF", "IDEOFF", "IDPOFF", "IDMOFF", "IDSOFF", "IDFOFF", "IDDOFF")
+_KINDS = {
+    "IDNOFF": ("node",),
+    "IDEOFF": ("elem",),
+    "IDPOFF": ("part", "sec"),
+    "IDMOFF": ("mat", "eos", "hg"),
+    "IDSOFF": ("set_node", "set_part", "set_shell", "set_solid", "set_beam", "set_discrete",
+               "set_segment", "set_any"),
+    "IDFOFF": ("curve",),
+    "IDDOFF": ("vector", "coord", "sdo"),
+    "IDROFF": ("rigidwall", "contact", "sect"),
+}
+
+
+def include_context(blk: Block, problems: Collector) -> IncludeContext | None:
+    """Offsets and TRANID of an *INCLUDE_TRANSFORM block (cards 2-5)."""
+    lines = [(blk.text(j), blk.line_no(j)) for j in range(len(blk.data))]
+    if not lines:
+        problems.error(blk.file, blk.line, blk.keyword, "FILENAME", "file name card missing")
+        return None
+
+    def fields(k, names, kind="f"):
+        if k >= len(lines):
+            return {n: 0 for n in names}
+        text, ln = lines[k]
+        toks = text.split(",") if "," in text else [text[i:i + 10] for i in range(0, 10 * len(names), 10)]
+        out = {}
+        for n, t in zip(names, toks + [""] * len(names)):
+            t = t.strip()
+            try:
+                out[n] = to_number(t, kind) if t else 0
+            except FieldError as e:
+                problems.error(blk.file, ln, blk.keyword, n, str(e))
+                out[n] = 0
+        return out
+
+    c2 = fields(1, _OFFSET_FIELDS, INT)
+    c3 = fields(2, ("IDROFF",), INT)
+    c4 = fields(3, ("FCTMAS", "FCTTIM", "FCTLEN"))
+    c5 = fields(4, ("TRANID",), INT)
+    for name in ("FCTMAS", "FCTTIM", "FCTLEN"):
+        if c4[name] not in (0.0, 1.0):
+            problems.error(blk.file, lines[3][1], blk.keyword, name,
+                           "unit conversion factors of *INCLUDE_TRANSFORM are not supported; "
+                           "convert the included file's units first")
+    offsets = {}
+    for key, val in {**c2, **c3}.items():
+        for kind in _KINDS[key]:
+            offsets[kind] = int(val)
+    return IncludeContext(offsets, int(c5["TRANID"]), blk.file, blk.line)
+
 
 
 def read_source(path: Path) -> SourceFile:
@@ -264,8 +319,6 @@ class Lexer:
                 self._walk_named(blk, j, fname, relative_paths, scope, contexts, stack, mode)
             return
         if name == "INCLUDE_TRANSFORM":
-            from .transform import include_context
-
             ctx = include_context(blk, self.problems)
             if ctx is None or not lines:
                 return

@@ -6,7 +6,7 @@ a name, a kind (int, float, string), a width in characters, a default and,
 for ID fields, the kind of entity referenced (used for *INCLUDE_TRANSFORM
 offsets and for dangling-reference checks).
 
-Cards are declared with a compact text form, one token per field::
+Cards are declared (see ``layout``) with a compact text form, one token per field::
 
     "eid:i8@elem pid:i8@part n1:i8@node ... "   # name:KIND[WIDTH][=DEFAULT][@REF]
 
@@ -21,131 +21,28 @@ before the next keyword is a blank card, so its fields take their defaults
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
-from typing import Callable, Iterable
 
-INT, FLOAT, STR = "i", "f", "s"
+import numpy as np
 
-# Entity kinds an ID field can reference. Offsets of *INCLUDE_TRANSFORM are
-# applied per kind (IDNOFF, IDEOFF, IDPOFF, IDMOFF, IDSOFF, IDFOFF, IDDOFF).
-REF_KINDS = (
-    "node", "elem", "part", "sec", "mat", "eos", "hg", "curve", "vector",
-    "coord", "set_node", "set_part", "set_shell", "set_solid", "set_beam",
-    "set_discrete", "set_segment", "set_any", "rigidwall", "contact", "sect", "sdo",
+# The building blocks live in ``layout`` (the catalogue imports them from
+# there); they stay importable from here.
+from .layout import (  # noqa: F401
+    _REGISTRY,
+    FLOAT,
+    INT,
+    REF_KINDS,
+    STR,
+    Card,
+    Field,
+    Layout,
+    Spec,
+    card,
+    fixed,
+    parse_fields,
+    register,
 )
-
-
-@dataclass(frozen=True)
-class Field:
-    name: str
-    kind: str  # INT, FLOAT or STR
-    width: int = 10
-    default: int | float | str | None = None
-    ref: str | None = None
-    zero_default: bool = False  # 0 reads as the default ("EQ.0: default" in the manual)
-
-
-@dataclass(frozen=True)
-class Card:
-    """One line of input.
-
-    ``when(values, options)`` decides whether the card is present at all
-    (e.g. the angle cards of a composite shell section); ``optional`` cards
-    may simply be missing at the end of a keyword.
-    """
-
-    fields: tuple[Field, ...]
-    optional: bool = False
-    when: Callable[[dict, frozenset], bool] | None = None
-
-    @property
-    def names(self) -> tuple[str, ...]:
-        return tuple(f.name for f in self.fields)
-
-
-@dataclass(frozen=True)
-class Layout:
-    """The cards of one keyword instance, given its options.
-
-    ``head`` cards occur once, in order. ``row`` cards form a group repeated
-    until the next keyword (nodes, elements, curve points, set members).
-    """
-
-    head: tuple[Card, ...] = ()
-    row: tuple[Card, ...] = ()
-    title_card: bool = False  # a free 80-character title line before the head
-
-    @property
-    def row_fields(self) -> tuple[Field, ...]:
-        return tuple(f for c in self.row for f in c.fields)
-
-
-@dataclass(frozen=True)
-class Spec:
-    """A keyword family: canonical name, aliases, options it understands and
-    a function from the options present to the layout."""
-
-    name: str
-    layout: Callable[[frozenset], Layout]
-    aliases: tuple[str, ...] = ()
-    options: tuple[str, ...] = ()
-    group: str = "keywords"  # where the model keeps it (see model.Model)
-    id_field: str | None = None  # field that identifies an instance
-    bulk: bool = False  # rows are mesh data taken by the fast parser
-    title_option: bool = True  # "_TITLE" adds a title card
-    doc: str = ""
-    # options implied by the first data line (a card format the keyword
-    # name does not show, e.g. the two-card *ELEMENT_SOLID)
-    sniff: Callable[[str, frozenset], frozenset] | None = None
-
-
-_REGISTRY: dict[str, Spec] = {}
-
-
-def parse_fields(text: str) -> tuple[Field, ...]:
-    """Fields from the compact text form (see module docstring)."""
-    out = []
-    for tok in text.split():
-        ref = None
-        if "@" in tok:
-            tok, ref = tok.split("@")
-            if ref not in REF_KINDS:
-                raise ValueError(f"unknown reference kind {ref!r}")
-        default: int | float | str | None = None
-        zero = "~" in tok
-        if zero or "=" in tok:
-            tok, dtext = tok.split("~" if zero else "=", 1)
-        else:
-            dtext = None
-        name, kw = tok.split(":")
-        kind = kw[0]
-        width = int(kw[1:]) if len(kw) > 1 else 10
-        if dtext is not None:
-            default = int(dtext) if kind == INT else float(dtext) if kind == FLOAT else dtext
-        if zero and (kind == STR or not default):
-            raise ValueError(f"field {name}: '~' needs a non-zero numeric default")
-        out.append(Field(name, kind, width, default, ref, zero))
-    if sum(f.width for f in out) > 80:
-        raise ValueError(f"card wider than 80 columns: {text}")
-    return tuple(out)
-
-
-def card(text: str, optional: bool = False, when=None) -> Card:
-    return Card(parse_fields(text), optional, when)
-
-
-def fixed(*cards: Card, row: Iterable[Card] = (), title_card: bool = False):
-    """A layout function that ignores options."""
-    lay = Layout(tuple(cards), tuple(row), title_card)
-    return lambda options: lay
-
-
-def register(spec: Spec) -> Spec:
-    for name in (spec.name, *spec.aliases):
-        if name in _REGISTRY:
-            raise ValueError(f"keyword {name} registered twice")
-        _REGISTRY[name] = spec
-    return spec
 
 
 def lookup(keyword: str) -> tuple[Spec | None, frozenset]:
@@ -240,8 +137,6 @@ class Record:
     def __eq__(self, other):
         if not isinstance(other, Record):
             return NotImplemented
-        from .equality import records_equal
-
         return records_equal(self, other)
 
 
@@ -259,3 +154,41 @@ class RawKeyword:
         """Upper-case name without '*' and without a format suffix."""
         words = self.keyword_line.split()
         return words[0].lstrip("*").rstrip("+-%").upper() if words else ""
+
+
+# --- value-by-value equality of records (NaN equals NaN) -------------------
+def _value_equal(a, b) -> bool:
+    if isinstance(a, float) and isinstance(b, float):
+        return a == b or (math.isnan(a) and math.isnan(b))
+    if isinstance(a, str) or isinstance(b, str):
+        return (a or "") == (b or "") if (a is None or b is None) else a == b
+    return a == b
+
+
+def _column_equal(a, b) -> bool:
+    a, b = np.asarray(a), np.asarray(b)
+    if a.shape != b.shape:
+        return False
+    if a.dtype.kind == "f" or b.dtype.kind == "f":
+        return np.array_equal(a.astype(float), b.astype(float), equal_nan=True)
+    if a.dtype == object or b.dtype == object:
+        return all(_value_equal(x, y) for x, y in zip(a, b))
+    return np.array_equal(a, b)
+
+
+def records_equal(a, b) -> bool:
+    if (a.keyword, a.options) != (b.keyword, b.options):
+        return False
+    if (a.title or "") != (b.title or ""):
+        return False
+    if a.values.keys() != b.values.keys():
+        return False
+    if not all(_value_equal(a.values[k], b.values[k]) for k in a.values):
+        return False
+    if (a.rows is None) != (b.rows is None):
+        return False
+    if a.rows is not None:
+        if a.rows.keys() != b.rows.keys():
+            return False
+        return all(_column_equal(a.rows[k], b.rows[k]) for k in a.rows)
+    return True

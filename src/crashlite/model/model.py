@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..keyword.schema import RawKeyword, Record
+from ..keyword.schema import RawKeyword, Record, records_equal
 from .mesh import Beams, Discretes, Inertias, Masses, Nodes, Shells, Solids, index_map
 
 MESH_TABLES = ("nodes", "shells", "solids", "beams", "discretes", "masses", "inertias")
@@ -109,8 +109,6 @@ class Model:
         return guess_units(self)
 
     def __eq__(self, other) -> bool:
-        from ..keyword.equality import models_equal
-
         return models_equal(self, other)
 
     def counts(self) -> dict[str, int]:
@@ -119,3 +117,41 @@ class Model:
         out["sets"] = len(self.sets)
         out["keywords"] = len(self.keywords)
         return out
+
+
+# --- value-by-value equality of models (NaN equals NaN) --------------------
+def _raw_key(raw):
+    """A verbatim keyword's content, independent of how its format was marked."""
+    rest = raw.keyword_line.split(None, 1)[1:] or [""]
+    return raw.keyword, rest[0].rstrip(), raw.mode, [ln.rstrip() for ln in raw.lines]
+
+
+def model_differences(a, b) -> list[str]:
+    """What differs between two models (empty: equal)."""
+    out = []
+    for t in MESH_TABLES:
+        if not getattr(a, t).equals(getattr(b, t)):
+            out.append(f"{t} differ")
+    for g in (*ENTITY_GROUPS, "sets"):
+        da, db = getattr(a, g), getattr(b, g)
+        if da.keys() != db.keys():
+            out.append(f"{g}: IDs differ ({sorted(set(da) ^ set(db))[:10]})")
+            continue
+        for k in da:
+            if not records_equal(da[k], db[k]):
+                out.append(f"{g}[{k}] differs")
+    ka, kb = a.keywords, b.keywords
+    if len(ka) != len(kb):
+        out.append(f"keywords: {len(ka)} vs {len(kb)}")
+    else:
+        for x, y in zip(ka, kb):
+            if isinstance(x, RawKeyword) and isinstance(y, RawKeyword):
+                if _raw_key(x) != _raw_key(y):
+                    out.append(f"verbatim *{x.keyword} differs")
+            elif type(x) is not type(y) or not records_equal(x, y):
+                out.append(f"*{getattr(x, 'name', x.keyword)} differs from *{getattr(y, 'name', y.keyword)}")
+    return out
+
+
+def models_equal(a, b) -> bool:
+    return not model_differences(a, b)

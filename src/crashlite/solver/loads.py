@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.model import Model
+from .records import _curve, _problem
 
 
 @dataclass
@@ -49,7 +50,6 @@ class NodalLoads:
 def build_nodal_loads(model: Model, rot_nodes: np.ndarray, problems: list) -> NodalLoads | None:
     """The nodal loads of a deck (None without any). ``rot_nodes`` (n,)
     bool: nodes with rotational degrees of freedom (moments need them)."""
-    from .setup import _curve, _problem
     node, comp, scale, curve, curves, slot = [], [], [], [], [], {}
     for rec in model.find("LOAD_NODE"):
         point = rec.name == "LOAD_NODE_POINT"

@@ -118,7 +118,6 @@ class Results:
                             info_added_mass=np.array(list(added.values()), float),
                             info_title=np.array(str(self.info.get("title", ""))),
                             info_stopped=np.array(str(self.info.get("stopped") or "")), **elements, **arrays)
-        from ..results.history import categories
         from ..results.lsdyna_ascii import write_all
 
         write_all(directory, categories(self), title if title is not None else self.info.get("title", ""))
@@ -131,7 +130,7 @@ class Results:
                 "cycles": int(self.cycles), **{k: float(getattr(self, k)) for k in self.TIMES}}
 
     @classmethod
-    def load(cls, path) -> "Results":
+    def load(cls, path) -> Results:
         """A results.npz (or the folder holding it); histories the file
         lacks (written by an older crashlite) come back empty."""
         with np.load(Path(path) / "results.npz" if Path(path).is_dir() else path) as z:
@@ -150,6 +149,78 @@ class Results:
                    **{k: float(data.pop(k)) for k in cls.TIMES if k in data}}
         known = {f.name for f in fields(cls)}
         return cls(**{k: v for k, v in data.items() if k in known}, **scalars, info=info)
+
+
+def _xyz(out: dict, array: np.ndarray, fmt: str):
+    for k, axis in enumerate("xyz"):
+        out[fmt.format(axis)] = array[:, :, k]
+
+
+def categories(res) -> dict:
+    """A crashlite Results as LS-DYNA history categories (Binout names).
+    Optional histories the run did not record are left out."""
+    t = res.time
+    n = len(t)
+    rec = res.recorded
+    cycle = {"cycle": res.cycle_number} if rec("cycle_number") else {}
+
+    added = (res.info or {}).get("added_mass") or {}
+    glstat = {"time": t, **cycle, "time_step": res.time_step if rec("time_step") else np.full(n, res.dt),
+              "kinetic_energy": res.kinetic, "internal_energy": res.internal,
+              "stonewall_energy": res.wall, "spring_and_damper_energy": res.internal,
+              "external_work": res.external, "total_energy": res.total, "energy_ratio": res.energy_ratio}
+    if rec("hourglass"):
+        glstat["hourglass_energy"] = res.hourglass
+    if rec("sliding"):
+        glstat["sliding_interface_energy"] = res.sliding
+    if added:
+        glstat["added_mass"] = np.full(n, float(sum(added.values())))
+
+    nod = {"time": t, **cycle, "ids": np.asarray(res.history_nodes)}
+    _xyz(nod, res.node_displacement, "{}_displacement")
+    _xyz(nod, res.node_velocity, "{}_velocity")
+    if rec("node_acceleration"):
+        _xyz(nod, res.node_acceleration, "{}_acceleration")
+    if rec("node_coordinates"):
+        _xyz(nod, res.node_coordinates, "{}_coordinate")
+
+    pids = np.asarray(res.part_ids)
+    matsum = {"time": t, "ids": pids, "internal_energy": res.part_internal}
+    if rec("part_kinetic"):
+        matsum["kinetic_energy"] = res.part_kinetic
+    if rec("part_hourglass"):
+        matsum["hourglass_energy"] = res.part_hourglass
+    if rec("part_momentum"):
+        _xyz(matsum, res.part_momentum, "{}_momentum")
+    if rec("part_rigid_velocity"):  # momentum / mass of every part, as LS-DYNA writes
+        _xyz(matsum, np.nan_to_num(res.part_rigid_velocity, nan=0.0), "{}_rbvelocity")
+    if added:
+        matsum["mass"] = np.tile([float(added.get(int(p), 0.0)) for p in pids], (n, 1)).reshape(n, len(pids))
+
+    deforc = {"time": t, "ids": np.asarray(res.discrete_ids), "resultant_force": res.discrete_force,
+              "displacement": res.discrete_elong}
+    if rec("discrete_force_vector"):
+        _xyz(deforc, res.discrete_force_vector, "{}_force")
+
+    rw = {("forces", "time"): t, ("forces", "ids"): np.asarray(res.wall_ids)}
+    rw[("forces", "normal_force")] = (res.wall_normal_force if rec("wall_normal_force")
+                                      else np.linalg.norm(res.wall_force, axis=2))
+    for k, axis in enumerate("xyz"):
+        rw[("forces", f"{axis}_force")] = res.wall_force[:, :, k]
+
+    spc = {"time": t, "ids": np.asarray(res.spc_nodes), "force_ids": np.asarray(res.spc_nodes)}
+    _xyz(spc, res.spc_force, "{}_force")
+    for k, axis in enumerate("xyz"):
+        spc[f"{axis}_resultant"] = res.spc_force[:, :, k].sum(axis=1)
+
+    sec = {"time": t, "ids": np.asarray(res.section_ids)}
+    _xyz(sec, res.section_force, "{}_force")
+    sec["total_force"] = np.linalg.norm(res.section_force, axis=2)
+    if rec("section_moment"):
+        _xyz(sec, res.section_moment, "{}_moment")
+        sec["total_moment"] = np.linalg.norm(res.section_moment, axis=2)
+    return {"glstat": glstat, "matsum": matsum, "nodout": nod, "rwforc": rw, "deforc": deforc,
+            "secforc": sec, "spcforc": spc}
 
 
 def element_counts(model) -> dict[str, int]:

@@ -16,6 +16,8 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+# StudyError lives in ``errors`` (``designs`` raises it too); importable here
+from .errors import StudyError
 from .responses import ResponseSpec, parse_response
 
 PROPERTIES = ("thickness", "yield")
@@ -23,10 +25,6 @@ DOE_METHODS = ("lhs", "sobol", "halton", "random")
 OPT_METHODS = ("tpe", "nsga2", "random", "metamodel")
 SENSITIVITY_METHODS = ("sobol", "morris")
 METAMODELS = ("auto", "quadratic", "linear", "rbf")
-
-
-class StudyError(ValueError):
-    """A study file that cannot be run, with the file and key named."""
 
 
 @dataclass

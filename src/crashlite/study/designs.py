@@ -56,12 +56,12 @@ class DeckTemplate:
 
     # --- building ------------------------------------------------------------
     @classmethod
-    def build(cls, cfg) -> "DeckTemplate":
+    def build(cls, cfg) -> DeckTemplate:
         """Resolve the study's variables and check its responses on the deck
         (StudyError naming the study file and key)."""
         from .. import read_deck
         from ..keyword.errors import DeckError
-        from .config import StudyError
+        from .errors import StudyError
         from .responses import check_response
 
         try:

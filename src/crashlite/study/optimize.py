@@ -9,6 +9,7 @@ import numpy as np
 from .config import StudyConfig
 from .metamodel import fit
 from .sampling import to_bounds, unit_points
+from .storage import Design
 
 
 def fit_responses(cfg: StudyConfig, designs, names=None) -> dict:
@@ -68,8 +69,6 @@ def metamodel_step(cfg: StudyConfig, designs, k: int, points: int) -> list:
         pts = to_bounds(unit_points("lhs", max(points, need - len(ok)), d, opt.seed + 1000 + k), cfg.variables)
         return [(f"mm-{k:02d}-{j:02d}", dict(zip(names, map(float, p)))) for j, p in enumerate(pts)]
     models = fit_responses(cfg, ok, [cfg.objectives[0].response] + [c.response for c in cfg.constraints])
-    from .runner import best_design
-
     best, _ = best_design(cfg, ok)
     centre = np.array([best.values[n] for n in names]) if best is not None else 0.5 * (lo + hi)
     half = 0.5 * (hi - lo) * opt.shrink ** k
@@ -83,3 +82,29 @@ def metamodel_step(cfg: StudyConfig, designs, k: int, points: int) -> list:
         for j, p in enumerate(pts, start=1):
             plan.append((f"mm-{k:02d}-{j:02d}", dict(zip(names, map(float, p)))))
     return plan
+
+
+def best_design(cfg: StudyConfig, designs: list[Design]):
+    """(best feasible design of the first objective, number of feasible
+    Pareto-optimal designs)."""
+    ok = [d for d in designs if d.status == "complete" and d.feasible is not False]
+    if not cfg.objectives or not ok:
+        return None, 0
+    o = cfg.objectives[0]
+    sign = 1.0 if o.goal == "minimize" else -1.0
+    best = min(ok, key=lambda d: sign * d.responses[o.response])
+    return best, len(pareto(cfg, ok))
+
+
+def pareto(cfg: StudyConfig, designs: list[Design]) -> list[Design]:
+    """The non-dominated designs among ``designs`` (objectives only)."""
+    if not cfg.objectives:
+        return []
+    signs = np.array([1.0 if o.goal == "minimize" else -1.0 for o in cfg.objectives])
+    f = np.array([[d.responses[o.response] for o in cfg.objectives] for d in designs]) * signs
+    keep = []
+    for i in range(len(designs)):
+        dominated = np.any(np.all(f <= f[i], axis=1) & np.any(f < f[i], axis=1))
+        if not dominated:
+            keep.append(designs[i])
+    return keep

@@ -26,6 +26,10 @@ import numpy as np
 
 from .config import StudyConfig
 from .evaluate import Task, evaluate
+
+# the best and the Pareto-optimal designs: in ``optimize`` (which steers by
+# them); importable here
+from .optimize import best_design, pareto  # noqa: F401
 from .storage import Design, StudyStore, constraints_of
 
 
@@ -75,32 +79,6 @@ class Progress:
                 best = f" | {self.pareto} Pareto-optimal"
         return (f"[{phase} {i}/{n}] {what} | study: {self.done} done, {self.running} in flight, "
                 f"{self.failed} failed{best}")
-
-
-def best_design(cfg: StudyConfig, designs: list[Design]):
-    """(best feasible design of the first objective, number of feasible
-    Pareto-optimal designs)."""
-    ok = [d for d in designs if d.status == "complete" and d.feasible is not False]
-    if not cfg.objectives or not ok:
-        return None, 0
-    o = cfg.objectives[0]
-    sign = 1.0 if o.goal == "minimize" else -1.0
-    best = min(ok, key=lambda d: sign * d.responses[o.response])
-    return best, len(pareto(cfg, ok))
-
-
-def pareto(cfg: StudyConfig, designs: list[Design]) -> list[Design]:
-    """The non-dominated designs among ``designs`` (objectives only)."""
-    if not cfg.objectives:
-        return []
-    signs = np.array([1.0 if o.goal == "minimize" else -1.0 for o in cfg.objectives])
-    f = np.array([[d.responses[o.response] for o in cfg.objectives] for d in designs]) * signs
-    keep = []
-    for i in range(len(designs)):
-        dominated = np.any(np.all(f <= f[i], axis=1) & np.any(f < f[i], axis=1))
-        if not dominated:
-            keep.append(designs[i])
-    return keep
 
 
 class _Source:
@@ -360,7 +338,7 @@ def _drive(cfg, store: StudyStore, executor, src: _Source, progress: Progress, s
                 src.told(d)
             store.heartbeat()
     except BaseException as e:
-        for h, (trial, key) in inflight.items():
+        for _h, (trial, _key) in inflight.items():
             store.interrupt(trial, "its session stopped" if not isinstance(e, _ClusterLost) else "the cluster failed")
         executor.cancel(list(inflight))
         if isinstance(e, _ClusterLost):

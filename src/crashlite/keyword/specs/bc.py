@@ -1,6 +1,6 @@
 """Boundary conditions, initial velocities, body loads and rigid walls."""
 
-from ..schema import Card, Layout, Spec, card, register
+from ..layout import Card, Layout, Spec, card, register
 
 _IDCARD = card("id:i heading:s70")
 

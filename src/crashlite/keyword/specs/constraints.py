@@ -1,6 +1,6 @@
 """Nodal rigid bodies, extra nodes, merged rigid bodies and spot welds."""
 
-from ..schema import Layout, Spec, card, register
+from ..layout import Layout, Spec, card, register
 
 _INERTIA = (
     card("xc:f=0 yc:f=0 zc:f=0 tm:f=0 ircs:i=0 nodeid:i=0@node"),

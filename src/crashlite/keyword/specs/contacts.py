@@ -1,6 +1,6 @@
 """Contacts: automatic (single surface, nodes/surface to surface) and tied."""
 
-from ..schema import Layout, Spec, card, register
+from ..layout import Layout, Spec, card, register
 
 _ID = card("cid:i@contact heading:s70")
 _C1 = card("ssid:i=0 msid:i=0 sstyp:i=0 mstyp:i=0 sboxid:i=0 mboxid:i=0 spr:i=0 mpr:i=0")

@@ -1,6 +1,6 @@
 """*CONTROL_* settings and *DATABASE_* outputs."""
 
-from ..schema import Layout, Spec, card, fixed, register
+from ..layout import Layout, Spec, card, fixed, register
 
 
 def _control(name, *cards_, doc=""):

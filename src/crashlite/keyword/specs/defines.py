@@ -1,6 +1,6 @@
 """*DEFINE_CURVE, vectors, coordinate systems, transformations, *TITLE."""
 
-from ..schema import Spec, card, fixed, register
+from ..layout import Spec, card, fixed, register
 
 register(Spec("DEFINE_CURVE", fixed(
     card("lcid:i@curve sidr:i=0 sfa:f~1 sfo:f~1 offa:f=0 offo:f=0 dattyp:i=0 lcint:i=0"),

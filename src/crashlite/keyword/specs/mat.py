@@ -2,7 +2,7 @@
 
 import math
 
-from ..schema import Card, Layout, Spec, card, fixed, register
+from ..layout import Card, Layout, Spec, card, fixed, register
 
 
 def _mat(name, alias, *cards_, doc=""):

@@ -1,6 +1,6 @@
 """Nodes and elements: bulk rows read by the fast parser."""
 
-from ..schema import Layout, Spec, card, fixed, register
+from ..layout import Layout, Spec, card, fixed, register
 
 _NODES8 = " ".join(f"n{i}:i8=0@node" for i in range(1, 9))
 

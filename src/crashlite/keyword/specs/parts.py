@@ -1,6 +1,6 @@
 """*PART and *PART_INERTIA."""
 
-from ..schema import Layout, Spec, card, register
+from ..layout import Layout, Spec, card, register
 
 _HEADING = card("heading:s80")
 _PART = card("pid:i@part secid:i@sec mid:i@mat eosid:i=0@eos hgid:i=0@hg grav:i=0 "

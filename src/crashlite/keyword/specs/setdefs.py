@@ -1,6 +1,6 @@
 """*SET_NODE, _PART, _SHELL, _SOLID, _BEAM, _DISCRETE (LIST, GENERATE, ADD) and _SEGMENT."""
 
-from ..schema import Layout, Spec, card, register
+from ..layout import Layout, Spec, card, register
 
 _MEMBER = {"NODE": "node", "PART": "part", "SHELL": "elem", "SOLID": "elem", "BEAM": "elem",
            "DISCRETE": "elem"}
