@@ -191,3 +191,13 @@ def test_a_crash_speed_is_not_refused(tmp_path):
                                                               "*CONTROL_TERMINATION"))
     s = build(read_deck(str(deck)))
     assert s.v0[:, 0] == pytest.approx(17800.0)
+
+
+def test_a_shell_with_two_nodes_at_one_point_is_named(tmp_path):
+    """Nodes 2 and 3 of a quadrilateral at one point (a collapsed edge, not
+    a triangle N3 = N4): the run went on with its energy ratio at 1.2."""
+    deck = tmp_path / "shell.k"
+    deck.write_text(SHELL.format(t="1.0,1.0,1.0,1.0").replace("3,10,10,0", "3,10,0,0"))
+    (p,) = _refused(str(deck))
+    assert (p.keyword, p.field) == ("ELEMENT_SHELL", "N2")
+    assert "nodes 2 and 3" in p.message and "triangle" in p.message

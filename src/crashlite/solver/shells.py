@@ -441,6 +441,17 @@ def build_shell_set(model: Model, rigid_pids, problems: list, warnings: list | N
     area0 = element_areas(x, conn, tri)
     for i in np.flatnonzero(area0 <= 0)[:10]:
         problems.append(Problem(src, 0, "ELEMENT_SHELL", None, f"shell {int(ids[i])} has zero area"))
+    # a quadrilateral with two different nodes at one point: a collapsed edge the element's
+    # one-point rule cannot carry (a triangle is written N3 = N4)
+    edge = np.linalg.norm(x[conn] - x[np.roll(conn, -1, axis=1)], axis=2)
+    size = np.sqrt(np.maximum(area0, 0.0))
+    collapsed = (tri == 0) & np.any(edge <= 1e-9 * np.maximum(size, 1e-300)[:, None], axis=1) & (area0 > 0)
+    for i in np.flatnonzero(collapsed)[:10]:
+        a = int(np.argmin(edge[i]))
+        n1, n2 = model.nodes.ids[conn[i, a]], model.nodes.ids[conn[i, (a + 1) % 4]]
+        problems.append(Problem(src, 0, "ELEMENT_SHELL", f"N{a + 1}",
+                                f"shell {int(ids[i])}: nodes {int(n1)} and {int(n2)} lie at one point (a collapsed "
+                                "edge): merge them, or write the element as a triangle (N3 = N4)"))
     props_a = np.array(props)
     rho = props_a[mat_of, ps.P_RO] + np.where(thick0 > 0, marea / np.where(thick0 > 0, thick0, 1.0), 0.0)
     cs, ce, cx, cy = curves.arrays()
