@@ -7,9 +7,9 @@ from hypothesis.extra.numpy import arrays
 
 from crashlite import read_deck, write_deck
 from crashlite.keyword.equality import model_differences
+from crashlite.keyword.schema import Record
 from crashlite.model.mesh import Discretes, Masses, Nodes, Shells, Solids
 from crashlite.model.model import Model
-from crashlite.keyword.schema import Record
 
 _F = st.floats(allow_nan=False, allow_infinity=False, width=64)
 

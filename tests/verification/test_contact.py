@@ -8,14 +8,13 @@ from types import SimpleNamespace
 import numba
 import numpy as np
 import pytest
+from _contact_decks import STEEL, Deck, momentum, run
 
 from crashlite import read_deck
 from crashlite.solver.contact import build_surface
 from crashlite.solver.kernels.contact import CAP, find_candidates
 from crashlite.solver.results import Results
 from crashlite.solver.setup import SetupError, build
-
-from _contact_decks import STEEL, Deck, momentum, run
 
 RHO, E, NU = STEEL
 K_BULK = E / (3 * (1 - 2 * NU))

@@ -6,8 +6,16 @@ import numpy as np
 import pytest
 from scipy import signal
 
-from crashlite.verify.filters import (CFC_CLASSES, cfc_coefficients, cfc_filter, corner_frequency,
-                                      default_pad, filter_signal, gain, resample)
+from crashlite.verify.filters import (
+    CFC_CLASSES,
+    cfc_coefficients,
+    cfc_filter,
+    corner_frequency,
+    default_pad,
+    filter_signal,
+    gain,
+    resample,
+)
 
 FS = 10_000.0  # Hz, the sampling rate of crash test channels
 DT = 1.0 / FS

@@ -12,11 +12,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from _plates import Plates
 
 from crashlite import read_deck
 from crashlite.solver import SetupError, run
-
-from _plates import Plates
 
 V0 = 1.0e4  # mm/s
 

@@ -9,11 +9,10 @@ from types import SimpleNamespace
 import numba
 import numpy as np
 import pytest
+from _shell_driver import deck_text, grid
 
 from crashlite import read_deck
 from crashlite.solver.shells import build_shells
-
-from _shell_driver import deck_text, grid
 
 E, NU, RHO = 210000.0, 0.3, 7.85e-9
 ELASTIC = f"*MAT_ELASTIC\n1,{RHO},{E},{NU}"
@@ -118,7 +117,7 @@ def test_bending_patch_uniform_curvature_and_moments(tmp_path):
     b2 = np.array([-3.0, -3.0, 3.0, 3.0]) / (2 * area)
     np.testing.assert_allclose(me[:, 1], -area * b1 * mx, rtol=1e-10)
     np.testing.assert_allclose(me[:, 0], area * b2 * my, rtol=1e-10)
-    scale_m, scale_f = np.abs(m).max(), np.abs(f).max() + 1e-300
+    scale_m, _scale_f = np.abs(m).max(), np.abs(f).max() + 1e-300
     for node in (5, 6, 9, 10):  # interior (0-based)
         assert np.abs(m[node]).max() < 1e-9 * scale_m
     assert np.abs(f).max() < 1e-9 * scale_m  # no membrane or shear forces anywhere

@@ -9,7 +9,6 @@ import math
 
 import numpy as np
 import pytest
-
 from _shell_driver import deck_text, grid, run_deck
 
 E, RHO = 210000.0, 7.85e-9  # MPa, t/mm³

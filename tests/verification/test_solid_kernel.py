@@ -10,10 +10,9 @@ from types import SimpleNamespace
 import numba
 import numpy as np
 import pytest
+from _solid_driver import Driver, brick_mesh, deck_text, group_from_deck
 
 from crashlite.solver.solids import lumped_mass
-
-from _solid_driver import Driver, brick_mesh, deck_text, group_from_deck
 
 E, NU, RHO = 210000.0, 0.3, 7.85e-9  # MPa, -, t/mm³
 LAM, MU = E * NU / ((1 + NU) * (1 - 2 * NU)), E / (2 * (1 + NU))
@@ -232,7 +231,7 @@ def test_mat024_uniaxial_stress_follows_its_curve(tmp_path):
     mat = f"*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,{RHO},{E},{NU},0.0,0.0,0.0\n0.0,0.0,2"
     g, rows = _uniaxial_stress(tmp_path, mat, math.exp(0.2) - 1.0, 1e-3, extra=curve)
     checked = 0
-    for ex, ey, sig, face, (err, scale) in rows:
+    for ex, _ey, sig, face, (err, scale) in rows:
         p = ex - sig[0] / E
         if p < 0.01:
             continue

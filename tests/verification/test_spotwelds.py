@@ -4,8 +4,8 @@ kept while intact."""
 
 import numpy as np
 import pytest
-
 from _plates import Plates, ramp_curve
+
 from crashlite import read_deck
 from crashlite.solver import setup
 from crashlite.solver.loop import integrate

@@ -5,8 +5,8 @@ import math
 
 import numpy as np
 import pytest
+from _plates import RHO, E, Plates, ramp_curve
 
-from _plates import E, RHO, Plates, ramp_curve
 from crashlite import read_deck
 from crashlite.solver import setup
 from crashlite.solver.loop import integrate

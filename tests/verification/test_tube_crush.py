@@ -39,7 +39,6 @@ import math
 
 import numpy as np
 import pytest
-
 from _shell_driver import deck_text, run_deck
 
 C, T, LENGTH, H_EL = 40.0, 1.5, 100.0, 4.0  # mm

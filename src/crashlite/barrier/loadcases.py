@@ -14,7 +14,6 @@ from pathlib import Path
 from ..units import kmh
 from .simplified import Placement
 
-
 DTMIN = 1e-3  # of the first step: a solid whose step falls below it is eroded (ERODE = 1); honeycomb
 # steps fall 50x from the soft uncompacted cells to the compacted ones, so only degenerate cells go
 

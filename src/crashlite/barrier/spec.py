@@ -122,7 +122,7 @@ class ODBSpec:
     bumper: Block = field(default_factory=_bumper)
     cladding: Cladding = field(default_factory=Cladding)
 
-    def with_strength_curves(self) -> "ODBSpec":
+    def with_strength_curves(self) -> ODBSpec:
         """The spec with plateaus from the crush strengths × face areas
         (R94: 222 kN and 565 kN) instead of the paper's curves."""
         m, b = self.main, self.bumper

@@ -8,7 +8,7 @@ from ..model.mesh import Beams, Discretes, Inertias, Masses, Nodes, Shells, Soli
 from ..model.model import Model
 from .errors import Collector
 from .fastparse import first_duplicate
-from .schema import Record, RawKeyword
+from .schema import RawKeyword, Record
 
 
 def _rows(rec: Record, *names) -> list[np.ndarray]:

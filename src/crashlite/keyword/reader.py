@@ -48,7 +48,7 @@ def read_records(path, problems: Collector | None = None, strict: bool = False):
     try:
         found = path.is_file()
     except (OSError, ValueError) as e:  # a name too long, a NUL byte in it
-        raise DeckError([_problem(path, f"deck file name cannot be used: {getattr(e, 'strerror', None) or e}")])
+        raise DeckError([_problem(path, f"deck file name cannot be used: {getattr(e, 'strerror', None) or e}")])  # noqa: B904
     if not found:
         raise DeckError([_problem(path, "deck path is a folder, not a file" if path.is_dir()
                                   else "deck file not found")])

@@ -28,8 +28,9 @@ all work is array arithmetic.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import NamedTuple, Sequence
+from typing import NamedTuple
 
 import numpy as np
 
@@ -78,7 +79,7 @@ class MassProperties:
             v[:, 2] = -v[:, 2]
         return w, v
 
-    def __add__(self, other: "MassProperties") -> "MassProperties":
+    def __add__(self, other: MassProperties) -> MassProperties:
         """Both bodies as one: masses add, CoGs average by mass and each
         inertia moves to the common CoG by the parallel-axis theorem
         I + m(|d|²·1 − d⊗d). A body of mass 0 is neutral."""

@@ -22,12 +22,12 @@ class Table:
     def columns(self) -> dict[str, np.ndarray]:
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
-    def take(self, sel) -> "Table":
+    def take(self, sel) -> Table:
         """Rows selected by a boolean mask or an index array."""
         return type(self)(**{k: v[sel] for k, v in self.columns().items()})
 
     @classmethod
-    def concat(cls, tables: list["Table"]) -> "Table":
+    def concat(cls, tables: list[Table]) -> Table:
         if not tables:
             return cls.empty()
         if len(tables) == 1:
@@ -36,10 +36,10 @@ class Table:
                       for f in fields(cls)})
 
     @classmethod
-    def empty(cls) -> "Table":
+    def empty(cls) -> Table:
         return cls.zeros(0)
 
-    def equals(self, other: "Table") -> bool:
+    def equals(self, other: Table) -> bool:
         """Value-by-value equality (NaN equals NaN)."""
         if type(self) is not type(other):
             return False
@@ -71,7 +71,7 @@ class Nodes(Table):
     rc: np.ndarray  # (n,) int8 rotational constraint code
 
     @classmethod
-    def zeros(cls, n: int) -> "Nodes":
+    def zeros(cls, n: int) -> Nodes:
         return cls(_i(n), _f(n, 3, fill=0.0), _i(n, dtype=np.int8), _i(n, dtype=np.int8))
 
 
@@ -86,7 +86,7 @@ class Shells(Table):
     offset: np.ndarray  # (n,) float64 mid-surface offset [length]; NaN: none
 
     @classmethod
-    def zeros(cls, n: int) -> "Shells":
+    def zeros(cls, n: int) -> Shells:
         return cls(_i(n), _i(n), _i(n, 4, fill=-1, dtype=np.int32), _f(n, 4), _f(n), _i(n), _f(n))
 
 
@@ -97,7 +97,7 @@ class Solids(Table):
     nodes: np.ndarray  # (n, 8) int32 node indices (wedges/tets repeat nodes)
 
     @classmethod
-    def zeros(cls, n: int) -> "Solids":
+    def zeros(cls, n: int) -> Solids:
         return cls(_i(n), _i(n), _i(n, 8, fill=-1, dtype=np.int32))
 
 
@@ -113,7 +113,7 @@ class Beams(Table):
     orientation: np.ndarray  # (n, 3) float64 _ORIENTATION VX VY VZ; NaN: none
 
     @classmethod
-    def zeros(cls, n: int) -> "Beams":
+    def zeros(cls, n: int) -> Beams:
         rel = _i(n, 5)
         rel[:, 4] = 2
         return cls(_i(n), _i(n), _i(n, 3, fill=-1, dtype=np.int32), rel, _f(n, 5), _i(n, 2),
@@ -131,7 +131,7 @@ class Discretes(Table):
     offset: np.ndarray  # (n,) float64 initial offset [length or rad]
 
     @classmethod
-    def zeros(cls, n: int) -> "Discretes":
+    def zeros(cls, n: int) -> Discretes:
         return cls(_i(n), _i(n), _i(n, 2, fill=-1, dtype=np.int32), _i(n), _f(n, fill=1.0),
                    _i(n), _f(n, fill=0.0))
 
@@ -144,7 +144,7 @@ class Masses(Table):
     pid: np.ndarray  # (n,) int64 part ID for output grouping (0: none)
 
     @classmethod
-    def zeros(cls, n: int) -> "Masses":
+    def zeros(cls, n: int) -> Masses:
         return cls(_i(n), _i(n, fill=-1, dtype=np.int32), _f(n, fill=0.0), _i(n))
 
 
@@ -158,7 +158,7 @@ class Inertias(Table):
     offset: np.ndarray  # (n, 3) float64 _OFFSET x y z [length]; NaN: none
 
     @classmethod
-    def zeros(cls, n: int) -> "Inertias":
+    def zeros(cls, n: int) -> Inertias:
         return cls(_i(n), _i(n, fill=-1, dtype=np.int32), _i(n), _f(n, 6, fill=0.0),
                    _f(n, fill=0.0), _f(n, 3))
 

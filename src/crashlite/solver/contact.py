@@ -103,7 +103,7 @@ class Surface:
     partner: np.ndarray  # (k,) int64 row in model.solids of the solid across an inner face (-1: none)
 
     @staticmethod
-    def empty() -> "Surface":
+    def empty() -> Surface:
         return Surface(np.zeros((0, 4), np.int64), np.zeros(0), np.zeros(0), np.zeros(0, np.int8), np.zeros(0),
                        np.zeros(0), np.zeros(0, np.int64), np.zeros(0, np.int8), np.zeros(0, np.int64))
 

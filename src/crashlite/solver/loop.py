@@ -7,9 +7,9 @@ The loop owns no I/O: states are recorded by a callback every
 from __future__ import annotations
 
 import time as _time
+from collections.abc import Callable
 from dataclasses import dataclass, fields
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
 

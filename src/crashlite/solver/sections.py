@@ -14,7 +14,7 @@ one end in NSID).
 
 The force is the sum of those corner forces, the moment their moment about
 the centroid of the section's nodes plus the corner moments of shells and
-beams (secforc's resultant force and moment).""" 
+beams (secforc's resultant force and moment)."""
 
 from __future__ import annotations
 
@@ -116,7 +116,7 @@ def build_sections(model: Model, beam_ids: np.ndarray, problems: list, groups=()
             nodes = set(model.node_index(_ids(model, "NODE", int(rec.get("nsid") or 0))).tolist())
             dsel = np.flatnonzero(np.isin(d.ids, _ids(model, "DISCRETE", int(rec.get("dsid") or 0))))
             bsel = [bpos[int(e)] for e in _ids(model, "BEAM", int(rec.get("bsid") or 0)) if int(e) in bpos]
-            on = lambda n: n in nodes  # noqa: E731
+            on = lambda n: n in nodes  # noqa: B023, E731
             on_all = np.zeros(len(x), bool)
             on_all[list(nodes)] = True
             corners = _continuum_cuts(model, rec, groups, on_all)
@@ -133,7 +133,7 @@ def build_sections(model: Model, beam_ids: np.ndarray, problems: list, groups=()
             dsel = np.flatnonzero(np.isin(d.pid, pids))
             bsel = [bpos[int(e)] for e, p in zip(model.beams.ids, model.beams.pid)
                     if int(e) in bpos and p in pids]
-            on = lambda n: bool(side[n])  # noqa: E731
+            on = lambda n: bool(side[n])  # noqa: B023, E731
             corners = _continuum_cuts(model, rec, groups, side, pids, _region(rec, point, normal))
         de, dend = [], []
         for e in dsel:

@@ -298,7 +298,7 @@ def build_spotwelds(model: Model, problems: list) -> SpotWelds | None:
     for rec in model.find("CONSTRAINED_SPOTWELD"):
         r = rec.rows if rec.rows else None
         entries = ([{k: r[k][i] for k in r} for i in range(len(r["n1"]))] if r else [rec])
-        for i, e in enumerate(entries):
+        for _i, e in enumerate(entries):
             get = (lambda k, d=None, e=e: e.get(k, d)) if isinstance(e, dict) else e.get
             n1, n2 = int(get("n1") or 0), int(get("n2") or 0)
             idx = model.node_index([n1, n2])

@@ -66,7 +66,7 @@ class SuperelementGroup(ElementGroup):
             return np.inf
         if self._dt is None:
             self._dt = np.full(len(self.ids), np.inf)
-            for e, (n, c, k) in enumerate(zip(self.dof_nodes, self.dof_comps, self.k)):
+            for e, (n, _c, k) in enumerate(zip(self.dof_nodes, self.dof_comps, self.k)):
                 m = 0.5 * st.mass[n]  # shared with the elements beside it
                 free = m > 0  # massless DOFs (rigid-body nodes) move with something heavier
                 s = 1.0 / np.sqrt(m[free])
@@ -95,7 +95,7 @@ def build_superelements(model: Model, problems: list) -> SuperelementGroup | Non
         src, line = rec.where("filename")
 
         def bad(field, msg):
-            problems.append(Problem(src or model.source or "", line, "ELEMENT_DIRECT_MATRIX_INPUT", field, msg))
+            problems.append(Problem(src or model.source or "", line, "ELEMENT_DIRECT_MATRIX_INPUT", field, msg))  # noqa: B023
 
         path = matrix_file(rec, Path(model.source or ".").parent)
         if path is None:

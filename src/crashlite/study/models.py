@@ -72,7 +72,7 @@ def front_structure(path, variant: str = "full", **options) -> Path:
     trig = 2 * 0.983 * c ** (2 / 3) * t0 ** (1 / 3)
     amp = 0.3 * t0
     nodes = []
-    for j, x in enumerate(xs):
+    for _j, x in enumerate(xs):
         f = amp * math.sin(math.pi * (trig - x) / trig) if x < trig else 0.0
         for y, z in ring:
             dy = dz = 0.0

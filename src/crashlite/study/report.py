@@ -123,7 +123,7 @@ def _design_row(d: Design) -> dict:
 
 def _sensitivity(cfg, designs, models, notes) -> dict:
     from .sampling import to_bounds  # noqa: F401 - keep import light
-    from .sensitivity import morris_indices, morris_points, sobol_from_values, sobol_indices, saltelli_points
+    from .sensitivity import morris_indices, morris_points, saltelli_points, sobol_from_values, sobol_indices
 
     out = {}
     s = cfg.sensitivity

@@ -202,7 +202,7 @@ class StudyStore:
         from optuna.trial import TrialState
 
         stale = []
-        for t in self.study.get_trials(deepcopy=False, states=(TrialState.WAITING,)):
+        for _t in self.study.get_trials(deepcopy=False, states=(TrialState.WAITING,)):
             trial = self.study.ask()  # pops the waiting trial
             self.storage.set_trial_user_attr(trial._trial_id, "status", "interrupted")
             self.study.tell(trial, state=TrialState.FAIL)

@@ -12,8 +12,6 @@ seed CRASHLITE_FUZZ_SEED (default 34); a longer run for benchmarks:
 import os
 import random
 
-import pytest
-
 from crashlite.keyword import fuzz
 
 CASES = int(os.environ.get("CRASHLITE_FUZZ_CASES", "400"))

@@ -11,8 +11,15 @@ import warnings
 import numpy as np
 import pytest
 
-from crashlite.model.mass import (MassProperties, Moments, beam_moments, combine, point_moments,
-                                  shell_moments, solid_moments)
+from crashlite.model.mass import (
+    MassProperties,
+    Moments,
+    beam_moments,
+    combine,
+    point_moments,
+    shell_moments,
+    solid_moments,
+)
 
 RTOL = 1e-9
 RHO = 7.85e-9  # steel, t/mm³
@@ -128,7 +135,7 @@ def test_plate_with_linear_nodal_thickness():
     k = (t1 - t0) / a
     xyz, conn = grid_quads([0.0, 30.0, a], [0.0, b])
     tn = t0 + k * xyz[conn, 0]  # (n, 4) nodal thicknesses
-    iu = lambda p: ((t0 + k * a) ** (p + 1) - t0 ** (p + 1)) / (k * (p + 1))  # ∫ t^p dx
+    iu = lambda p: ((t0 + k * a) ** (p + 1) - t0 ** (p + 1)) / (k * (p + 1))  # ∫ t^p dx  # noqa: E731
     ix = t0 * a**2 / 2 + k * a**3 / 3  # ∫ t x dx
     ixx = t0 * a**3 / 3 + k * a**4 / 4  # ∫ t x² dx
     m = RHO * b * iu(1)

@@ -159,10 +159,10 @@ def test_exact_plane_stress_against_3d_return_with_the_thickness_strain(case):
     rng = np.random.default_rng(4)
     if case == "mat024_curve":
         pt = Point(ps.PIECEWISE, _row(), [(CURVE_EP, CURVE_SY)], (0, -1))
-        sy_fun = (lambda e: np.interp(e, CURVE_EP, CURVE_SY) if e <= CURVE_EP[-1]
+        sy_fun = (lambda e: np.interp(e, CURVE_EP, CURVE_SY) if e <= CURVE_EP[-1]  # noqa: E731
                   else CURVE_SY[-1] + (e - CURVE_EP[-1]) * 250.0)
         slopes = np.diff(CURVE_SY) / np.diff(CURVE_EP)
-        h_iso = (lambda e: slopes[min(max(np.searchsorted(CURVE_EP, e, side="right") - 1, 0), len(slopes) - 1)])
+        h_iso = (lambda e: slopes[min(max(np.searchsorted(CURVE_EP, e, side="right") - 1, 0), len(slopes) - 1)])  # noqa: E731
         h_kin = 0.0
     else:
         et, beta = 5000.0, 0.3
@@ -220,7 +220,7 @@ def test_lcsr_curve_scales_the_yield_stress():
 
 def test_failure_strain_zeroes_the_stress():
     pt = Point(ps.PIECEWISE, _row(ps.PIECEWISE, 250.0, 1000.0, fail=0.05))
-    for k in range(200):
+    for k in range(200):  # noqa: B007 (k is read after the loop)
         pt.uniaxial(1e-3)
         if pt.failed[0]:
             break

@@ -7,8 +7,13 @@ import pytest
 from test_surrogate import _surrogate, _tmp, _tube
 
 from crashlite import read_deck
-from crashlite.vehicle.connection import (beam_end_stiffness, compare_connection, connection_stiffness, moved_to,
-                                          spring_stiffness)
+from crashlite.vehicle.connection import (
+    beam_end_stiffness,
+    compare_connection,
+    connection_stiffness,
+    moved_to,
+    spring_stiffness,
+)
 from crashlite.vehicle.cut import cut_behind
 from crashlite.vehicle.stiffness import structure_stiffness, transverse_stiffness
 

@@ -4,8 +4,18 @@ import numpy as np
 import pytest
 
 from crashlite.results.lsdyna_ascii import secforc
-from crashlite.vehicle.loadpaths import (axial_force, combined_shares, cumulative_impulse, deck_sections, from_history,
-                                         from_run, load_paths, plot_forces, plot_impulses, plot_shares)
+from crashlite.vehicle.loadpaths import (
+    axial_force,
+    combined_shares,
+    cumulative_impulse,
+    deck_sections,
+    from_history,
+    from_run,
+    load_paths,
+    plot_forces,
+    plot_impulses,
+    plot_shares,
+)
 
 T = 0.08  # s, pulse duration
 AMPS = {"tunnel": 120e3, "door sill left": 90e3, "door sill right": 80e3, "floor left": 10e3}  # N
@@ -55,7 +65,7 @@ def test_half_sine_and_triangle_pulses_of_different_durations():
 def test_no_compressive_impulse_is_an_error():
     t = np.linspace(0, 1, 11)
     with pytest.raises(ValueError, match="no assembly carries"):
-        load_paths(t, -np.ones((11, 2)), ["a", "b"]).share
+        load_paths(t, -np.ones((11, 2)), ["a", "b"]).share  # noqa: B018
 
 
 def test_axial_force_is_compression_positive_whichever_way_the_normal_points():

@@ -3,7 +3,7 @@ closed forms of a free uniform tube."""
 
 import numpy as np
 import pytest
-from _structures import E, RHO, shell_model, tube_mesh
+from _structures import RHO, E, shell_model, tube_mesh
 
 from crashlite.vehicle.cut import cut_behind
 from crashlite.vehicle.modes import free_modes, held_modes

@@ -3,7 +3,7 @@ pushed at its interface and held by its own mass."""
 
 import numpy as np
 import pytest
-from _structures import E, RHO, shell_model, tube_mesh
+from _structures import RHO, E, shell_model, tube_mesh
 
 from crashlite.model.mesh import Masses
 from crashlite.vehicle.cut import cut_behind

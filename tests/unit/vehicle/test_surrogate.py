@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from _structures import E, NU, RHO, shell_model, tube_mesh
+from _structures import NU, RHO, E, shell_model, tube_mesh
 
 from crashlite import read_deck
 from crashlite.model.mesh import Masses

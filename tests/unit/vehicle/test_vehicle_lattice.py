@@ -31,7 +31,7 @@ def test_pieces_that_touch_share_nodes():
     g = _grid(10.0)
     tube = Tube(0, 0.0, 100.0, ((0.0, 0.0), (40.0, 0.0), (40.0, 100.0), (0.0, 100.0)))
     plate = Plate(2, 100.0, (0.0, 40.0), (100.0, 100.0))  # z = 100, x 0..100, y 40..100: on the tube's top edge
-    (pa, qa), (pb, qb) = tube.mesh(g), plate.mesh(g)
+    (pa, qa), (pb, _qb) = tube.mesh(g), plate.mesh(g)
     nodes, idx = merge(np.concatenate([pa, pb]))
     shared = len(pa) + len(pb) - len(nodes)
     assert shared == len(g.coords[0])  # the line y = 40, z = 100 along x

@@ -3,7 +3,7 @@ mismatches, known deviations and the errors of bad requests."""
 
 import numpy as np
 import pytest
-from _histories import T, V0, history
+from _histories import V0, T, history
 
 from crashlite import read_deck
 from crashlite.results import History

@@ -186,7 +186,7 @@ def update_point(mtype, props, m, mc, cs, ce, cx, cy, sig, back, e, k, ep, d0, d
         dg = 0.5 * hi
     at_dg = False  # r1, r2, aa1, aa2 and q are those of the final Δγ: no last evaluation needed
     r1 = r2 = aa1 = aa2 = q = 0.0
-    for it in range(200):
+    for _it in range(200):
         r1, r2, aa1, aa2, q = _shrunk(dg, k1, k2, a1, a2, sh)
         y, h = _yield(props, m, mc, cs, ce, cx, cy, ep + 2.0 / 3.0 * dg * q)
         f = q - rf * y

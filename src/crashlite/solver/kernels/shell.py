@@ -77,10 +77,39 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .plane_stress import (N_ROWS, P_E, P_G, P_RO, P_WAVE, R_D, R_DEZ, R_FAILED, R_OK, R_WK, W, update_block,
-                           update_point, work_density)
-from .shell_block import (BW, G_AREA, G_AREA1, G_DT, G_F, G_HG, G_HGS, G_LIVE, G_RATE, G_RES, N_G, block_forces,
-                          block_rates, char_length, gather_nodes)
+from .plane_stress import (
+    N_ROWS,
+    P_E,
+    P_G,
+    P_RO,
+    P_WAVE,
+    R_D,
+    R_DEZ,
+    R_FAILED,
+    R_OK,
+    R_WK,
+    W,
+    update_block,
+    update_point,
+    work_density,
+)
+from .shell_block import (
+    BW,
+    G_AREA,
+    G_AREA1,
+    G_DT,
+    G_F,
+    G_HG,
+    G_HGS,
+    G_LIVE,
+    G_RATE,
+    G_RES,
+    N_G,
+    block_forces,
+    block_rates,
+    char_length,
+    gather_nodes,
+)
 
 
 def _rules():
