@@ -201,3 +201,26 @@ def test_a_shell_with_two_nodes_at_one_point_is_named(tmp_path):
     (p,) = _refused(str(deck))
     assert (p.keyword, p.field) == ("ELEMENT_SHELL", "N2")
     assert "nodes 2 and 3" in p.message and "triangle" in p.message
+
+
+def test_a_zero_length_spring_without_orientation_is_named(tmp_path):
+    """A spring between two nodes at one point, no VID: its direction is
+    undefined (the run took one step four times the end time, energy
+    ratio 2.3, exit 0)."""
+    deck = tmp_path / "zero.k"
+    deck.write_text("\n".join(["*KEYWORD", "*NODE", "1,0,0,0", "2,0,0,0", "*ELEMENT_DISCRETE", "7,1,1,2",
+                                "*PART", "s", "1,1,1", "*SECTION_DISCRETE", "1,0", "*MAT_SPRING_ELASTIC", "1,100",
+                                "*ELEMENT_MASS", "1,1,0.001", "2,2,0.001", "*CONTROL_TERMINATION", "1e-3", "*END"]))
+    (p,) = _refused(str(deck))
+    assert (p.keyword, p.field) == ("ELEMENT_DISCRETE", "VID")
+    assert "discrete element 7" in p.message and "nodes 1 and 2" in p.message
+
+
+def test_a_zero_length_spring_with_an_orientation_runs(tmp_path):
+    deck = tmp_path / "zero.k"
+    deck.write_text("\n".join(["*KEYWORD", "*NODE", "1,0,0,0", "2,0,0,0", "*ELEMENT_DISCRETE", "7,1,1,2,3",
+                                "*PART", "s", "1,1,1", "*SECTION_DISCRETE", "1,0", "*MAT_SPRING_ELASTIC", "1,100",
+                                "*DEFINE_SD_ORIENTATION", "3,0,1.0,0,0", "*ELEMENT_MASS", "1,1,0.001", "2,2,0.001",
+                                "*CONTROL_TERMINATION", "1e-3", "*END"]))
+    s = build(read_deck(str(deck)))
+    assert s.discrete.length0[0] == 0.0

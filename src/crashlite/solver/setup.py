@@ -226,6 +226,12 @@ def _discrete(model: Model, problems: list) -> Discrete:
     rel = other - x[n1]
     fixed_dir = np.any(direction != 0, axis=1)
     length0 = np.where(fixed_dir, np.einsum("ij,ij->i", rel, direction), np.linalg.norm(rel, axis=1))
+    # two nodes at one point and no orientation: the element has no direction to act along
+    for e in np.flatnonzero((n2 >= 0) & ~fixed_dir & (np.linalg.norm(rel, axis=1) == 0))[:10]:
+        problems.append(Problem(model.source or "", 0, "ELEMENT_DISCRETE", "VID",
+                                f"discrete element {int(d.ids[e])}: nodes {int(model.nodes.ids[n1[e]])} and "
+                                f"{int(model.nodes.ids[n2[e]])} lie at one point and no orientation (VID, "
+                                "*DEFINE_SD_ORIENTATION) gives its direction"))
     return Discrete(d.ids, n1, n2, kind, k, d.scale.astype(float), d.offset.astype(float), length0,
                     direction, ground, starts, stops, np.concatenate(cx), np.concatenate(cy), ctf,
                     ustart, ustop, yield_t, yield_c)
