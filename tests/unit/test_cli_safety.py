@@ -146,10 +146,8 @@ def test_an_interrupted_run_exits_130_says_so_and_keeps_its_results(tmp_path, ca
     assert json.loads((out / MANIFEST).read_text())["complete"]
 
 
-def test_a_second_ctrl_c_while_saving_leaves_every_file_written(tmp_path, capsys, monkeypatch):
-    """The first Ctrl-C stops the loop; a second one, while glstat is being
-    written, used to raise half-way and leave the other files unwritten."""
-    _interrupt_at_record(monkeypatch, 40)
+def _ctrl_c_while_writing_glstat(monkeypatch):
+    """A Ctrl-C (SIGINT to this process) each time glstat is being written."""
     from crashlite.results.lsdyna_ascii import glstat
 
     write = glstat.write
@@ -159,6 +157,13 @@ def test_a_second_ctrl_c_while_saving_leaves_every_file_written(tmp_path, capsys
         return write(*a, **k)
 
     monkeypatch.setattr(glstat, "write", write_and_ctrl_c)
+
+
+def test_a_second_ctrl_c_while_saving_leaves_every_file_written(tmp_path, capsys, monkeypatch):
+    """The first Ctrl-C stops the loop; a second one, while glstat is being
+    written, used to raise half-way and leave the other files unwritten."""
+    _interrupt_at_record(monkeypatch, 40)
+    _ctrl_c_while_writing_glstat(monkeypatch)
     out = tmp_path / "out"
     assert main(["run", str(_deck(tmp_path)), "-o", str(out), "--quiet"]) == INTERRUPTED
     assert capsys.readouterr().out.startswith("interrupted at t = ")
@@ -168,15 +173,7 @@ def test_a_second_ctrl_c_while_saving_leaves_every_file_written(tmp_path, capsys
 
 
 def test_ctrl_c_while_saving_a_finished_run_still_writes_every_file(tmp_path, capsys, monkeypatch):
-    from crashlite.results.lsdyna_ascii import glstat
-
-    write = glstat.write
-
-    def write_and_ctrl_c(*a, **k):
-        os.kill(os.getpid(), signal.SIGINT)
-        return write(*a, **k)
-
-    monkeypatch.setattr(glstat, "write", write_and_ctrl_c)
+    _ctrl_c_while_writing_glstat(monkeypatch)
     out = tmp_path / "out"
     assert main(["run", str(_deck(tmp_path)), "-o", str(out), "--quiet"]) == INTERRUPTED
     assert "while saving" in capsys.readouterr().out

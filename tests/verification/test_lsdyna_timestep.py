@@ -127,6 +127,19 @@ def test_spring_step_is_the_two_mass_oscillators(tmp_path):
     assert r.time_step[1] == pytest.approx(0.9 * 2.0 * math.sqrt(m1 * m2 / (k * (m1 + m2))), rel=1e-12)
 
 
+BEAM_A, BEAM_I = 100.0, 100.0 * 100.0 / 12.0  # a solid 10 mm x 10 mm square
+
+
+def _one_beam(tmp_path, length, end):
+    """Run one free ELFORM 2 beam of ``length`` (the square section) to ``end``."""
+    lines = ["*KEYWORD", "*NODE", "1,0,0,0", f"2,{length},0,0", "*ELEMENT_BEAM", "1,1,1,2", "*PART", "b", "1,1,1",
+             "*SECTION_BEAM", "1,2", f"{BEAM_A},{BEAM_I},{BEAM_I},{2 * BEAM_I}", "*MAT_ELASTIC", f"1,{RHO},{E},{NU}",
+             "*CONTROL_TERMINATION", f"{end}", "*END"]
+    path = tmp_path / "beam.k"
+    path.write_text("\n".join(lines) + "\n")
+    return run(read_deck(path), output_dt=end / 10)
+
+
 def _bs_step(length, area, inertia):
     """LS-DYNA's Belytschko–Schwer beam step: the bar wave L/c unless the
     bending rule 0.5·L / (c·sqrt(3I·(3/(12I + AL²) + 1/(AL²)))) is shorter
@@ -142,14 +155,8 @@ def test_beam_step_is_belytschko_schwers_where_it_is_the_bar_wave(tmp_path, leng
     the run steps at 0.9 × LS-DYNA's Belytschko–Schwer rule for a beam 2.5
     times as long as it is deep or longer (the bar wave L/c governs both
     rules); a stubbier one steps shorter (next test)."""
-    a, i = 100.0, 100.0 * 100.0 / 12.0
-    lines = ["*KEYWORD", "*NODE", "1,0,0,0", f"2,{length},0,0", "*ELEMENT_BEAM", "1,1,1,2", "*PART", "b", "1,1,1",
-             "*SECTION_BEAM", "1,2", f"{a},{i},{i},{2 * i}", "*MAT_ELASTIC", f"1,{RHO},{E},{NU}",
-             "*CONTROL_TERMINATION", "1e-5", "*END"]
-    path = tmp_path / "beam.k"
-    path.write_text("\n".join(lines) + "\n")
-    r = run(read_deck(path), output_dt=1e-6)
-    expected = 0.9 * _bs_step(length, a, i)
+    r = _one_beam(tmp_path, length, 1e-5)
+    expected = 0.9 * _bs_step(length, BEAM_A, BEAM_I)
     assert r.time_step[1] == pytest.approx(expected, rel=1e-9)
 
 
@@ -159,12 +166,6 @@ def test_stubby_beam_steps_shorter_than_belytschko_schwer(tmp_path, length):
     rule of the rotation (rotary inertia m·L²/24 per end, ω² from the end
     stiffness 6EI/L) takes 0.5–1 of LS-DYNA's bending rule: more cycles,
     never a longer step than LS-DYNA's."""
-    a, i = 100.0, 100.0 * 100.0 / 12.0
-    lines = ["*KEYWORD", "*NODE", "1,0,0,0", f"2,{length},0,0", "*ELEMENT_BEAM", "1,1,1,2", "*PART", "b", "1,1,1",
-             "*SECTION_BEAM", "1,2", f"{a},{i},{i},{2 * i}", "*MAT_ELASTIC", f"1,{RHO},{E},{NU}",
-             "*CONTROL_TERMINATION", "1e-6", "*END"]
-    path = tmp_path / "stub.k"
-    path.write_text("\n".join(lines) + "\n")
-    r = run(read_deck(path), output_dt=1e-7)
-    ratio = r.time_step[1] / (0.9 * _bs_step(length, a, i))
+    r = _one_beam(tmp_path, length, 1e-6)
+    ratio = r.time_step[1] / (0.9 * _bs_step(length, BEAM_A, BEAM_I))
     assert 0.5 < ratio < 1.0

@@ -1,5 +1,6 @@
 """Reading a deck's records for the solver's setup stages: a problem that
-names a record's card, and a load curve with its scale factors and offsets.
+names a record's card, a load curve with its scale factors and offsets, and
+the node indices of a node set.
 
 Shared by ``setup`` and ``loads`` (``setup`` builds the nodal loads with
 ``loads``, so these live below both).
@@ -23,3 +24,7 @@ def _curve(model: Model, lcid: int):
     a = np.asarray(c.rows["a1"], float) * float(c.get("sfa", 1.0) or 1.0) + float(c.get("offa", 0.0))
     o = np.asarray(c.rows["o1"], float) * float(c.get("sfo", 1.0) or 1.0) + float(c.get("offo", 0.0))
     return a, o
+
+
+def _node_set(model: Model, sid: int) -> np.ndarray:
+    return model.node_index(model.set_members("NODE", sid))

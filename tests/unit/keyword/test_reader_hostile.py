@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from crashlite import DeckError, read_deck
+from crashlite.keyword.fuzz import SPRING
 from crashlite.model.mesh import index_map
 
 
@@ -19,36 +20,18 @@ def _text(path):
     return "\n".join(str(p) for p in _problems(path))
 
 
-_SPRING = """\
-*KEYWORD
-*NODE
-       1             0.0             0.0             0.0
-       2             1.0             0.0             0.0
-*ELEMENT_DISCRETE
-       1       1       1       2
-*PART
-spring
-         1         1         1
-*SECTION_DISCRETE
-         1         0
-*MAT_SPRING_ELASTIC
-         1    1000.0
-*END
-"""
-
-
 # ---------------------------------------------------------------- crashes found by the fuzzer
 
 def test_unreadable_definition_id_is_reported_not_a_traceback(deck):
     # the PART's PID unreadable: it used to enter model.parts under None and
     # crash the reference check (TypeError in references.py)
-    p = deck("m.k", _SPRING.replace("         1         1         1\n", "       abc         1         1\n"))
+    p = deck("m.k", SPRING.replace("         1         1         1\n", "       abc         1         1\n"))
     probs = _problems(p)
     assert any(x.keyword == "PART" and x.field == "PID" and "'abc'" in x.message for x in probs)
 
 
 def test_blank_definition_id_is_an_error_naming_the_field(deck):
-    p = deck("m.k", _SPRING.replace("*MAT_SPRING_ELASTIC\n         1", "*MAT_SPRING_ELASTIC\n          "))
+    p = deck("m.k", SPRING.replace("*MAT_SPRING_ELASTIC\n         1", "*MAT_SPRING_ELASTIC\n          "))
     probs = _problems(p)
     assert any(x.keyword == "MAT_SPRING_ELASTIC" and x.field == "MID" and "blank" in x.message
                and x.line == 13 for x in probs)
@@ -64,7 +47,7 @@ def test_index_map_of_an_empty_query():
 
 
 def test_mass_block_without_rows_reads(deck):
-    p = deck("m.k", _SPRING.replace("*PART", "*ELEMENT_MASS\n*PART"))
+    p = deck("m.k", SPRING.replace("*PART", "*ELEMENT_MASS\n*PART"))
     m = read_deck(p)
     assert len(m.masses) == 0
 
@@ -159,14 +142,14 @@ def test_integer_past_64_bits_in_a_long_format_shell_row(deck):
 @pytest.mark.parametrize("big", ["18446744073709551700", "9223372036854775808", "-9223372036854775809",
                                  "1e19", "99999999999999999999e0"])
 def test_integer_past_64_bits_in_a_free_format_spring(deck, big):
-    p = deck("m.k", _SPRING.replace("       1       1       1       2\n", f"1,1,1,{big}\n"))
+    p = deck("m.k", SPRING.replace("       1       1       1       2\n", f"1,1,1,{big}\n"))
     probs = _problems(p)
     assert any(x.line == 6 and x.field == "N2" and "64-bit" in x.message for x in probs), probs
 
 
 def test_largest_64_bit_id_reads(deck):
     big = 2**63 - 1
-    p = deck("m.k", _SPRING.replace("       2             1.0", f"{big},1.0,0.0,0.0\n$", 1)
+    p = deck("m.k", SPRING.replace("       2             1.0", f"{big},1.0,0.0,0.0\n$", 1)
              .replace("       1       1       1       2\n", f"1,1,1,{big}\n"))
     m = read_deck(p)
     assert int(m.nodes.ids[1]) == big
@@ -175,7 +158,7 @@ def test_largest_64_bit_id_reads(deck):
 @pytest.mark.parametrize("tc, rc, field, shown", [
     ("300", "0", "TC", "300"), ("-12", "0", "TC", "-12"), ("8", "0", "TC", "8"), ("0", "9", "RC", "9")])
 def test_constraint_codes_out_of_range(deck, tc, rc, field, shown):
-    p = deck("m.k", _SPRING.replace("       2             1.0             0.0             0.0",
+    p = deck("m.k", SPRING.replace("       2             1.0             0.0             0.0",
                                     f"       2             1.0             0.0             0.0{tc:>8}{rc:>8}"))
     probs = _problems(p)
     assert any(x.keyword == "NODE" and x.field == field and f"node 2: {field} = {shown} is not a constraint code"
@@ -183,7 +166,7 @@ def test_constraint_codes_out_of_range(deck, tc, rc, field, shown):
 
 
 def test_constraint_codes_in_range_read(deck):
-    p = deck("m.k", _SPRING.replace("       2             1.0             0.0             0.0",
+    p = deck("m.k", SPRING.replace("       2             1.0             0.0             0.0",
                                     "       2             1.0             0.0             0.0       7       5"))
     m = read_deck(p)
     assert m.nodes.tc.tolist() == [0, 7] and m.nodes.rc.tolist() == [0, 5]
@@ -191,13 +174,13 @@ def test_constraint_codes_in_range_read(deck):
 
 @pytest.mark.parametrize("nid", ["0", "-4"])
 def test_node_id_zero_or_negative(deck, nid):
-    p = deck("m.k", _SPRING.replace("       1             0.0", f"{nid:>8}             0.0"))
+    p = deck("m.k", SPRING.replace("       1             0.0", f"{nid:>8}             0.0"))
     probs = _problems(p)
     assert any(x.keyword == "NODE" and x.field == "NID" and f"node ID {nid}" in x.message for x in probs), probs
 
 
 def test_element_id_zero(deck):
-    p = deck("m.k", _SPRING.replace("       1       1       1       2\n", "       0       1       1       2\n"))
+    p = deck("m.k", SPRING.replace("       1       1       1       2\n", "       0       1       1       2\n"))
     probs = _problems(p)
     assert any(x.keyword == "ELEMENT_DISCRETE" and x.field == "EID" and "discrete ID 0" in x.message
                for x in probs), probs
@@ -205,7 +188,7 @@ def test_element_id_zero(deck):
 
 @pytest.mark.parametrize("value", [b"\xa0.85e-09", b"1\xa0000.0", b"1000.0\xa0", b"1_000.0"])
 def test_no_break_space_or_underscore_in_a_number(tmp_path, value):
-    text = _SPRING.encode().replace(b"         1    1000.0", b"         1" + value.rjust(10))
+    text = SPRING.encode().replace(b"         1    1000.0", b"         1" + value.rjust(10))
     (tmp_path / "m.k").write_bytes(text)
     probs = _problems(tmp_path / "m.k")
     assert any(x.keyword == "MAT_SPRING_ELASTIC" and x.field == "K" and x.line == 13 for x in probs), probs
@@ -214,7 +197,7 @@ def test_no_break_space_or_underscore_in_a_number(tmp_path, value):
 
 
 def test_no_break_space_in_a_node_row_and_a_parameter(tmp_path):
-    text = _SPRING.encode().replace(b"             1.0             0.0             0.0",
+    text = SPRING.encode().replace(b"             1.0             0.0             0.0",
                                     b"          \xa0.85e-09             0.0             0.0")
     text = text.replace(b"*KEYWORD\n", b"*KEYWORD\n*PARAMETER\nR a        \xa01.0\n")
     (tmp_path / "m.k").write_bytes(text)
@@ -238,14 +221,14 @@ def test_non_deck_main_file_is_refused(tmp_path, content, says):
 
 
 def test_nul_byte_in_a_deck_names_its_line(tmp_path):
-    (tmp_path / "m.k").write_bytes(_SPRING.encode().replace(b"spring", b"spr\x00ing"))
+    (tmp_path / "m.k").write_bytes(SPRING.encode().replace(b"spring", b"spr\x00ing"))
     probs = _problems(tmp_path / "m.k")
     assert len(probs) == 1 and probs[0].line == 8 and "NUL" in probs[0].message
 
 
 @pytest.mark.parametrize("card", ["*INCLUDE\n", "*INCLUDE\n      \n", "*INCLUDE_TRANSFORM\n"])
 def test_blank_include_is_an_error(deck, card):
-    p = deck("m.k", _SPRING.replace("*END\n", card + "*END\n"))
+    p = deck("m.k", SPRING.replace("*END\n", card + "*END\n"))
     probs = _problems(p)
     assert any(x.keyword.startswith("INCLUDE") and x.field == "FILENAME" and x.line == 14 for x in probs), probs
 
@@ -256,7 +239,7 @@ def test_blank_include_is_an_error(deck, card):
 ])
 def test_include_of_a_non_deck_file_is_an_error(tmp_path, content, says):
     (tmp_path / "other.dat").write_bytes(content)
-    (tmp_path / "m.k").write_bytes(_SPRING.replace("*END\n", "*INCLUDE\nother.dat\n*END\n").encode())
+    (tmp_path / "m.k").write_bytes(SPRING.replace("*END\n", "*INCLUDE\nother.dat\n*END\n").encode())
     probs = _problems(tmp_path / "m.k")
     assert len(probs) == 1 and probs[0].file.endswith("other.dat") and says in probs[0].message
     assert "m.k:15" in probs[0].message  # where it was included
@@ -264,13 +247,13 @@ def test_include_of_a_non_deck_file_is_an_error(tmp_path, content, says):
 
 def test_include_of_an_empty_file_warns(tmp_path):
     (tmp_path / "empty.k").write_bytes(b"$ nothing yet\n")
-    (tmp_path / "m.k").write_bytes(_SPRING.replace("*END\n", "*INCLUDE\nempty.k\n*END\n").encode())
+    (tmp_path / "m.k").write_bytes(SPRING.replace("*END\n", "*INCLUDE\nempty.k\n*END\n").encode())
     m = read_deck(tmp_path / "m.k")
     assert any(w.file.endswith("empty.k") and "no keyword" in w.message for w in m.warnings)
 
 
 def test_text_before_the_first_keyword_warns(tmp_path):
-    (tmp_path / "m.k").write_bytes(b"a stray line\n" + _SPRING.encode())
+    (tmp_path / "m.k").write_bytes(b"a stray line\n" + SPRING.encode())
     m = read_deck(tmp_path / "m.k")
     assert any(w.line == 1 and "before the first keyword" in w.message for w in m.warnings)
 
@@ -328,7 +311,7 @@ def test_900_deep_include_chain(tmp_path):
 def test_include_chain_of_moderate_depth_reads(tmp_path):
     for k in range(30):
         (tmp_path / f"d{k}.k").write_text(f"*KEYWORD\n*INCLUDE\nd{k + 1}.k\n*END\n")
-    (tmp_path / "d30.k").write_text(_SPRING)
+    (tmp_path / "d30.k").write_text(SPRING)
     (tmp_path / "m.k").write_text("*KEYWORD\n*INCLUDE\nd0.k\n*END\n")
     assert len(read_deck(tmp_path / "m.k").discretes) == 1
 
@@ -341,7 +324,7 @@ def test_fixed_format_expression_with_a_comma(deck):
 
 
 def test_include_name_too_long(deck):
-    p = deck("m.k", _SPRING.replace("*END\n", "*INCLUDE\n" + "1" * 400 + "\n*END\n"))
+    p = deck("m.k", SPRING.replace("*END\n", "*INCLUDE\n" + "1" * 400 + "\n*END\n"))
     probs = _problems(p)
     assert len(probs) == 1 and probs[0].field == "FILENAME" and "not found" in probs[0].message
 
