@@ -29,12 +29,15 @@ CASES = [pytest.param(c, id=c.name, marks=pytest.mark.skipif(not available(c), r
 def test_the_deck_reads_and_sets_up_unchanged(tmp_path, case):
     model = read_deck(main_deck(case, tmp_path))
     build(model)  # no refusal (a SetupError would fail the test)
-    assert not [w for w in model.warnings if "SENSOR" not in w.keyword]
+    # warned and passed over: sensors nothing uses, output requests crashlite does not write
+    assert not [w for w in model.warnings if "SENSOR" not in w.keyword and not w.keyword.startswith("DATABASE_")]
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("case", CASES)
 def test_lsdyna_answers(tmp_path, case):
+    if not case.reference:
+        pytest.skip("LS-DYNA's answers of this case are in a binout: reading it needs lasso-python")
     res = run(main_deck(case, tmp_path))
     got = measured(case, res)
     for q, bound in case.bounds.items():

@@ -384,8 +384,9 @@ def test_part_internal_energy_matsum(tmp_path):
      "*SET_DISCRETE_LIST", "9", "2"],
 ])
 def test_section_force_through_the_cut_spring(tmp_path, section):
-    """A section between nodes 2 and 3 cuts the second spring: the force on
-    the far side is minus its axial force along +x, plane or set alike."""
+    """A section between nodes 2 and 3 cuts the second spring: secforc is
+    its axial force along +x (tension positive, as LS-DYNA), plane or set
+    alike."""
     from crashlite.results import load
 
     extra = ["*PART", "second", "2,2,2", "*SECTION_DISCRETE", "2,0", "*MAT_SPRING_ELASTIC", f"2,{2 * K}",
@@ -393,7 +394,7 @@ def test_section_force_through_the_cut_spring(tmp_path, section):
     m = _deck(tmp_path, ["1,1,1,2", "2,2,2,3"], "\n".join(extra), end=0.05)
     r = run(m, out=tmp_path / "out", output_dt=1e-3)
     assert r.section_ids.tolist() == [7]
-    np.testing.assert_allclose(r.section_force[:, 0, 0], -r.discrete_force[:, 1], rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(r.section_force[:, 0, 0], r.discrete_force[:, 1], rtol=1e-12, atol=1e-9)
     np.testing.assert_allclose(r.section_force[:, 0, 1:], 0.0, atol=1e-9)
     h = load(tmp_path / "out")
     np.testing.assert_array_equal(h.read("secforc", "x_force"), r.section_force[:, :, 0])

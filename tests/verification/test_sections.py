@@ -10,8 +10,9 @@ from crashlite.solver import run
 def test_section_moment_of_two_offset_springs(tmp_path):
     """Two springs of different stiffness at y = ±50 mm pull a block
     (nodal rigid body) along x; the plane section through them reports
-    their summed force and the moment Mz = -Σ (y - ȳ)·Fx about the
-    centroid of the cut ends, balanced by the turning of the body."""
+    their summed force (tension positive, as LS-DYNA's secforc) and the
+    moment Mz = -Σ (y - ȳ)·Fx about the centroid of the cut ends, balanced
+    by the turning of the body."""
     text = "\n".join([
         "*KEYWORD", "*NODE", "1,0,50,0,7,7", "2,0,-50,0,7,7", "3,100,50,0", "4,100,-50,0",
         "*ELEMENT_MASS", "10,3,0.05", "11,4,0.05",
@@ -26,11 +27,12 @@ def test_section_moment_of_two_offset_springs(tmp_path):
     p.write_text(text)
     r = run(read_deck(p), output_dt=1e-3)
     f1, f2 = r.discrete_force[:, 0], r.discrete_force[:, 1]
-    # the section side is x > 50: the far ends (nodes 3, 4) receive -F along the axis
+    # the section side is x > 50: the springs' internal force at the far ends
+    # (nodes 3, 4) is +F along the axis (they pull the nodes back with -F)
     fx = r.section_force[:, 0, 0]
-    np.testing.assert_allclose(fx, -(f1 + f2) * 1.0, rtol=2e-2, atol=1e-6 * np.abs(f2).max())
+    np.testing.assert_allclose(fx, (f1 + f2) * 1.0, rtol=2e-2, atol=1e-6 * np.abs(f2).max())
     mz = r.section_moment[:, 0, 2]
-    fx_each = np.stack([-f1, -f2], axis=1)  # approximately along x (the body turns little)
+    fx_each = np.stack([f1, f2], axis=1)  # approximately along x (the body turns little)
     expected = -(50.0 * fx_each[:, 0] - 50.0 * fx_each[:, 1])
     assert np.abs(expected).max() > 100.0
     np.testing.assert_allclose(mz, expected, rtol=3e-2, atol=1e-3 * np.abs(expected).max())
@@ -102,16 +104,17 @@ def test_section_through_a_solid_bar_under_a_static_pull(tmp_path):
     reaction = r.spc_force[:, :, 0].sum(axis=1)  # the clamp pulls back: -F
     f_plane, f_set = r.section_force[:, 0], r.section_force[:, 1]
     assert reaction[hold].mean() < -1000.0
-    assert f_plane[hold, 0].mean() == pytest.approx(reaction[hold].mean(), rel=0.01)
+    assert f_plane[hold, 0].mean() == pytest.approx(-reaction[hold].mean(), rel=0.01)  # tension: +F
     np.testing.assert_allclose(f_plane, f_set, rtol=1e-12, atol=1e-9 * np.abs(f_plane).max())
     assert np.abs(f_plane[hold, 1:]).max() < 1e-6 * np.abs(f_plane[hold, 0]).max()
 
 
 def test_section_force_of_a_solid_bar_is_the_inertia_beyond_the_cut(tmp_path):
     """A free solid bar whose first half starts at 1 m/s: the force
-    through the middle section is, at every output, the mass times the
-    acceleration of the nodes beyond the cut (to round-off), and not
-    small."""
+    through the middle section is, at every output, minus the mass times
+    the acceleration of the nodes beyond the cut (the cut elements push
+    them with m·a; secforc reports the elements' internal force, -m·a),
+    to round-off, and not small."""
     from _solid_driver import brick_mesh
 
     x, conn = brick_mesh(20, 2, 2, 5.0, 5.0, 5.0)
@@ -127,16 +130,17 @@ def test_section_force_of_a_solid_bar_is_the_inertia_beyond_the_cut(tmp_path):
     inertia = np.einsum("k,tkj->tj", m, r.node_acceleration)
     f = r.section_force[:, 0]
     assert np.abs(f[:, 0]).max() > 100.0
-    np.testing.assert_allclose(f[1:], inertia[1:], rtol=0, atol=1e-9 * np.abs(f).max())
+    np.testing.assert_allclose(f[1:], -inertia[1:], rtol=0, atol=1e-9 * np.abs(f).max())
 
 
 def test_section_through_a_shell_cantilever_force_and_moment(tmp_path):
     """A 100 x 10 x 4 mm shell cantilever (ν = 0) pushed quasi-statically at
     the tip by 1 mm: the section at x = 55 (plane, normal +x) carries the
-    static tip force 3EI·δ/L³ as its shear force (mean over the hold; the
-    higher modes still ringing in the shear: within 3 %) and the bending
-    moment M_y = −F·(L − x_c) about its centroid (x_c = 60, the nodes
-    beyond the plane) within 2 %; a set section (the node line x = 60 and
+    static tip force 3EI·δ/L³ as its shear force, −F along z (the
+    elements' internal force at the nodes beyond the plane; mean over the
+    hold; the higher modes still ringing in the shear: within 3 %) and the
+    bending moment M_y = F·(L − x_c) about its centroid (x_c = 60, the
+    nodes beyond the plane) within 2 %; a set section (the node line x = 60 and
     the shell layer 50..60) gives the same to round-off."""
     import math
 
@@ -165,10 +169,10 @@ def test_section_through_a_shell_cantilever_force_and_moment(tmp_path):
     assert reaction[hold].mean() > 10.0
     force = 3 * ei * 1.0 / L**3
     assert reaction[hold].mean() == pytest.approx(force, rel=0.02)
-    assert f[hold, 2].mean() == pytest.approx(force, rel=0.03)
+    assert f[hold, 2].mean() == pytest.approx(-force, rel=0.03)
     assert np.abs(f[hold, :2].mean(axis=0)).max() < 0.01 * force
     my = r.section_moment[:, 0, 1]
-    assert my[hold].mean() == pytest.approx(-force * (L - 60.0), rel=0.02)
+    assert my[hold].mean() == pytest.approx(force * (L - 60.0), rel=0.02)
     np.testing.assert_allclose(r.section_force[:, 1], f, rtol=0, atol=1e-9 * np.abs(f).max())
     np.testing.assert_allclose(r.section_moment[:, 1], r.section_moment[:, 0], rtol=0,
                                atol=1e-9 * np.abs(my).max())

@@ -1,6 +1,9 @@
 """Section forces (*DATABASE_CROSS_SECTION_PLANE / _SET) through discrete
-elements, beams, shells and solids: the force the cut elements exert on
-their corners on the section.
+elements, beams, shells and solids, as LS-DYNA's secforc reports it: the
+internal force of the cut elements at their corners on the section (the
+force those nodes exert on the elements), so that a member in tension along
+the section normal reports a positive normal force and one in compression a
+negative one.
 
 PLANE: an element of the parts of PSID (all parts when 0) is cut when it
 has nodes on both sides of the plane through (XCT, YCT, ZCT) with the
@@ -14,7 +17,10 @@ one end in NSID).
 
 The force is the sum of those corner forces, the moment their moment about
 the centroid of the section's nodes plus the corner moments of shells and
-beams (secforc's resultant force and moment)."""
+beams (secforc's resultant force and moment). The sign is LS-DYNA's R10.1
+secforc of a compressed solid (TU Graz's single-element deck, its binout in
+tests/parity): -95.47 kN on the loaded face where the element pushes its
+nodes with +95.5 kN."""
 
 from __future__ import annotations
 
@@ -155,10 +161,11 @@ def build_sections(model: Model, beam_ids: np.ndarray, problems: list, groups=()
 
 
 def section_forces(sections: list[Section], groups, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Force and moment (n_sections, 3) through each section: the sum of the
-    cut elements' corner forces ON the section-side nodes, and their moment
-    (plus the corner moments of rotational elements) about the centroid of
-    those nodes (each counted once), as LS-DYNA's secforc reports them."""
+    """Force and moment (n_sections, 3) through each section: minus the sum
+    of the cut elements' corner forces on the section-side nodes (the
+    elements' internal force there), and its moment (plus the corner moments
+    of rotational elements, negated alike) about the centroid of those nodes
+    (each counted once), as LS-DYNA's secforc reports them."""
     by_kind = {g.kind: g for g in groups}
     force = np.zeros((len(sections), 3))
     moment = np.zeros((len(sections), 3))
@@ -185,4 +192,4 @@ def section_forces(sections: list[Section], groups, x: np.ndarray) -> tuple[np.n
         moment[k] = np.cross(p - centroid, f).sum(axis=0)
         for m in moments:
             moment[k] += m.sum(axis=0)
-    return force, moment
+    return -force, -moment

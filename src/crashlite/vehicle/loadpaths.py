@@ -11,12 +11,13 @@ states), gives the load path of the assembly; the share of assembly i is
 (the paper's figures 10–12). The impulse starts at 0, so its maximum is
 never negative: an assembly that only pulls gets share 0.
 
-Sign convention. crashlite and LS-DYNA report the force the cut elements
-exert on their corners on the side the section normal points to. A member
-in compression pushes those corners away from the cut, so F·n > 0 in
-compression whichever way the normal points. The axial force used here is
+Sign convention. crashlite and LS-DYNA (secforc) report the internal force
+of the cut elements at their corners on the side the section normal points
+to: F·n > 0 in tension, F·n < 0 in compression, whichever way the normal
+points (LS-DYNA R10.1 on a compressed solid: tests/parity). The axial force
+used here is
 
-    F_ax = (F·a) · sign(n·a)
+    F_ax = -(F·a) · sign(n·a)
 
 with ``a`` the unit vehicle axis (default +x, the driving direction) and
 ``n`` the section normal (taken from the deck when given, else assumed
@@ -107,7 +108,7 @@ def axial_force(force_xyz, axis=(1.0, 0.0, 0.0), normals=None) -> np.ndarray:
     (n, 3) section normals or None (taken along ``axis``)."""
     f = np.asarray(force_xyz, float)
     a = _unit(axis, "axis")
-    fa = f @ a
+    fa = -(f @ a)  # secforc: tension along the normal positive
     if normals is None:
         return fa
     n = np.asarray(normals, float).reshape(-1, 3)

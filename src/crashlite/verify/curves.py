@@ -51,6 +51,15 @@ def _peak(t: np.ndarray, y: np.ndarray) -> tuple[float, float]:
     return float(y[k]), float(t[k])
 
 
+def _peak_percent(ref: float, value: float) -> float | None:
+    """Deviation of a peak in magnitude, 100·(|value| − |ref|)/|ref|, where
+    both peaks have one sign (a compressive secforc peak 10 % larger reads
+    +10 %, not −10 %); signed as ``relative_percent`` where they differ."""
+    if ref * value > 0:
+        return relative_percent(abs(ref), abs(value))
+    return relative_percent(ref, value)
+
+
 def _integral(t: np.ndarray, y: np.ndarray, a: float, b: float) -> float:
     """∫ y dt over [a, b] with linear interpolation (trapezoids)."""
     inside = (t > a) & (t < b)
@@ -64,7 +73,8 @@ def deviation(t_ref, y_ref, t_cmp, y_cmp, at: float | None = None) -> dict:
     common time range [t0, t1]: peaks (signed value of largest magnitude and
     its time), values at ``at`` (default t1), integrals over [t0, t1]
     (e.g. the impulse of a force), each with the relative deviation
-    100·(cmp − ref)/|ref| in % (None where ref is 0), and the largest
+    100·(cmp − ref)/|ref| in % (None where ref is 0; peaks of one sign
+    compare magnitudes), and the largest
     absolute difference on the reference's samples."""
     t_ref, y_ref = np.asarray(t_ref, float), np.asarray(y_ref, float)
     t_cmp, y_cmp = np.asarray(t_cmp, float), np.asarray(y_cmp, float)
@@ -92,7 +102,7 @@ def deviation(t_ref, y_ref, t_cmp, y_cmp, at: float | None = None) -> dict:
     ir, ic = _integral(t_ref, y_ref, a, b), _integral(t_cmp, y_cmp, a, b)
     diff = float(np.max(np.abs(np.interp(tr, t_cmp, y_cmp) - yr)))
     return {"t0": a, "t1": b, "peak_ref": pr, "peak_cmp": pc, "time_of_peak_ref": tpr, "time_of_peak_cmp": tpc,
-            "peak_deviation_percent": relative_percent(pr, pc), "at_time": at, "value_ref": vr, "value_cmp": vc,
+            "peak_deviation_percent": _peak_percent(pr, pc), "at_time": at, "value_ref": vr, "value_cmp": vc,
             "value_deviation_percent": relative_percent(vr, vc), "integral_ref": ir, "integral_cmp": ic,
             "integral_deviation_percent": relative_percent(ir, ic), "max_abs_difference": diff}
 

@@ -100,6 +100,17 @@ def test_keywords_are_case_insensitive(deck):
     assert len(m.shells) == 2 and m.parts[1]["heading"] == "Plate"
 
 
+def test_part_title_is_a_part_whose_heading_is_the_title(deck, tmp_path):
+    """*PART_TITLE (LS-PrePost and ANSA write it; LS-DYNA runs it) reads as
+    *PART: the heading card is the title, no further card; written back, it
+    reads the same."""
+    m = read_deck(deck("pt.k", PLATE.replace("*PART\n", "*PART_TITLE\n")))
+    assert m.parts[1]["heading"] == "plate" and m.parts[1]["secid"] == 1 and m.parts[1]["mid"] == 1
+    assert not m.warnings and len(m.shells) == 2
+    write_deck(m, tmp_path / "out.k")
+    assert model_differences(m, read_deck(tmp_path / "out.k")) == []
+
+
 @pytest.mark.parametrize("fmt", ["fixed", "long", "i10", "free"])
 def test_written_deck_reads_back_equal(deck, tmp_path, fmt):
     m = read_deck(deck("plate.k", PLATE))

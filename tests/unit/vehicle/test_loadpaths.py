@@ -69,9 +69,11 @@ def test_no_compressive_impulse_is_an_error():
 
 
 def test_axial_force_is_compression_positive_whichever_way_the_normal_points():
-    f = np.array([[[3.0, 1.0, 0.0], [-2.0, 0.0, 5.0]]])  # one state, two sections
+    # secforc is tension positive along the normal: with forward normals a
+    # compressed assembly shows F·x < 0
+    f = np.array([[[-3.0, 1.0, 0.0], [2.0, 0.0, -5.0]]])  # one state, two sections
     np.testing.assert_allclose(axial_force(f), [[3.0, -2.0]])
-    # a normal pointing rearwards: the section side is the rear, compression shows as F·x < 0
+    # a normal pointing rearwards: the section side is the rear, compression shows as F·x > 0
     np.testing.assert_allclose(axial_force(f, normals=[[1, 0, 0], [-1, 0, 0]]), [[3.0, 2.0]])
     np.testing.assert_allclose(axial_force(f, axis=(0, 0, 2.0)), [[0.0, 5.0]])
     with pytest.raises(ValueError, match="perpendicular"):
@@ -96,7 +98,7 @@ def test_from_an_lsdyna_ascii_secforc_with_the_deck_sections(tmp_path):
     t, f1 = _pulses(801)
     ids = [v.sections[n] for n in AMPS]
     f = np.zeros((len(t), len(ids), 3))
-    f[:, :, 0] = f1  # compression: +x with the car's forward normals
+    f[:, :, 0] = -f1  # compression: -x with the car's forward normals (tension positive)
     f[:, :, 2] = 7e3  # a vertical component does not count
     _write_secforc(tmp_path / "run", t, f, ids)
     lp = from_run(tmp_path / "run", v.model, sections={n: v.sections[n] for n in AMPS}, load_case="US NCAP")

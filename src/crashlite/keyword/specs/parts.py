@@ -17,7 +17,9 @@ def _part_layout(options: frozenset) -> Layout:
     return Layout(head=head)
 
 
-register(Spec("PART", _part_layout, options=("INERTIA",), group="parts", id_field="pid",
+# *PART_TITLE (written by some pre-processors) is *PART: its heading card is
+# already the title, so the option adds no card.
+register(Spec("PART", _part_layout, options=("INERTIA", "TITLE"), group="parts", id_field="pid",
               title_option=False,
               doc="Part: section, material, hourglass; _INERTIA gives the rigid-body "
                   "mass, CoG, inertia tensor and initial velocities."))
