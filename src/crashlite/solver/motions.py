@@ -17,6 +17,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .kernels.motion import prescribe_nodes
+
 
 class Motions:
     def __init__(self, motions, bodies, x0: np.ndarray):
@@ -37,23 +39,9 @@ class Motions:
             if mo.body_pid:
                 work += self._body(mo, st, t, dt_v, dt, place)
                 continue
-            v = st.v
-            nodes = mo.nodes
-            vn = v[nodes] @ mo.direction
-            fn = st.f[nodes] @ mo.direction
-            vn_old = vn - dt_v * fn * st.inv_mass[nodes]  # before the kick of the forces
-            if mo.vad == 0:
-                target = mo.scale * np.interp(t + 0.5 * dt, *mo.curve)
-            elif mo.vad == 1:
-                # replace the acceleration of the forces by the prescribed one
-                target = vn_old + dt_v * mo.scale * np.interp(t, *mo.curve)
-            else:
-                u = (st.x[nodes] - self.x0[nodes]) @ mo.direction
-                target = (mo.scale * np.interp(t + dt, *mo.curve) - u) / dt
-            target = np.broadcast_to(target, vn.shape)
-            v[nodes] += np.outer(target - vn, mo.direction)
-            impulse = st.mass[nodes] * (target - vn_old) - dt_v * fn
-            work += float(np.sum(impulse * 0.5 * (vn_old + target)))
+            ct, cy = mo.curve
+            work += prescribe_nodes(st.v, st.f, st.x, self.x0, st.mass, st.inv_mass, mo.nodes, mo.direction,
+                                    int(mo.vad), ct, cy, float(mo.scale), float(t), float(dt_v), float(dt))
         return work
 
     def _body(self, mo, st, t, dt_v, dt, place) -> float:
