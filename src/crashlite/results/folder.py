@@ -7,8 +7,8 @@ among the names a run writes, or a foreign file of such a name (one no
 earlier run listed in its manifest) refuse the run, naming them (foreign
 files are overwritten with ``force``; the deck never). A folder reused by
 an earlier run is emptied of that run's own files first, so no stale
-history file or VTK state stays beside the new ones. Other files in the
-folder are left alone.
+history file, VTK state or d3plot file stays beside the new ones. Other
+files in the folder are left alone.
 """
 
 from __future__ import annotations
@@ -20,9 +20,10 @@ from pathlib import Path
 from .lsdyna_ascii import FILES
 
 MANIFEST = "crashlite-run.json"
-FILE_NAMES = ("results.npz", *FILES, "initial_penetrations.csv")  # written in the folder itself
+FILE_NAMES = ("results.npz", *FILES, "initial_penetrations.csv", "d3plot")  # written in the folder itself
 STATES = "states"  # the VTK states' sub-folder
 _STATE_FILE = re.compile(r"^(state_\d{4,}\.vtk|states\.pvd)$")
+_D3PLOT_FILE = re.compile(r"^d3plot\d+$")  # the d3plot's further files (d3plot01, ...: its states)
 
 
 class OutputFolderError(FileExistsError):
@@ -53,6 +54,7 @@ class OutputFolder:
             if data.get("state_pattern"):  # a run that did not finish: its states are unlisted
                 states = self.path / STATES
                 files |= {f"{STATES}/{q.name}" for q in (states.iterdir() if states.is_dir() else ())}
+                files |= set(self._d3plot_files())
         except (OSError, ValueError, KeyError, TypeError) as e:
             raise OutputFolderError(f"{m}: not a crashlite run manifest ({e}); remove it or choose another "
                                     "folder") from None
@@ -61,18 +63,24 @@ class OutputFolder:
     @staticmethod
     def _ours_by_name(rel: str) -> bool:
         parts = rel.split("/")
-        return (len(parts) == 1 and parts[0] in FILE_NAMES) or \
+        return (len(parts) == 1 and (parts[0] in FILE_NAMES or bool(_D3PLOT_FILE.match(parts[0])))) or \
             (len(parts) == 2 and parts[0] == STATES and bool(_STATE_FILE.match(parts[1])))
 
     def candidates(self) -> list[str]:
         """Relative paths of the files here that a run may write (present now)."""
-        out = [n for n in FILE_NAMES if (self.path / n).exists()]
+        out = [n for n in FILE_NAMES if (self.path / n).exists()] + self._d3plot_files()
         states = self.path / STATES
         if states.is_dir():
             out += [f"{STATES}/{p.name}" for p in sorted(states.iterdir()) if _STATE_FILE.match(p.name)]
         elif states.exists():
             out.append(STATES)  # a file named "states": the VTK folder cannot be made
         return out
+
+    def _d3plot_files(self) -> list[str]:
+        """The d3plot's further files here (d3plot01, ...)."""
+        if not self.path.is_dir():
+            return []
+        return sorted(p.name for p in self.path.iterdir() if _D3PLOT_FILE.match(p.name))
 
     # --- before the run --------------------------------------------------------
     def check(self, deck_files=()) -> None:
@@ -140,8 +148,9 @@ class OutputFolder:
     def _write(self, files: list[str], pending: bool) -> None:
         data = {"written_by": "crashlite run", "decks": [str(d) for d in self.decks[:1]],
                 "complete": not pending, "files": files}
-        if pending:  # state files are numbered by the run: any of the pattern belongs to it
+        if pending:  # state files are numbered by the run: any of the patterns belongs to it
             data["state_pattern"] = f"{STATES}/state_NNNN.vtk"
+            data["d3plot_pattern"] = "d3plotNN"
         tmp = self.path / (MANIFEST + ".tmp")
         tmp.write_text(json.dumps(data, indent=1) + "\n")
         tmp.replace(self.path / MANIFEST)

@@ -197,9 +197,10 @@ class CompileClock:
 
 def integrate(s: Setup, output_dt: float | None = None,
               progress: Callable[[float, int, float, float], None] | None = None,
-              ) -> Results:
+              fields: list | None = None) -> Results:
     """Run the time loop on a Setup; states every ``output_dt`` (default:
-    1/200 of the end time) and at the end.
+    1/200 of the end time) and at the end. ``fields``: a list that receives
+    the nodal and element fields of each field state (results.d3plot.state).
 
     Times of the Results: ``loop_time`` and ``cpu_time`` are the wall and
     CPU (all threads) seconds of the time loop less the Numba compilation
@@ -207,10 +208,10 @@ def integrate(s: Setup, output_dt: float | None = None,
     of ``wall_time`` (mass scaling, first forces, compilation);
     ``compile_time`` the compilation and cache loads."""
     with CompileClock() as clock:
-        return _integrate(s, output_dt, progress, clock)
+        return _integrate(s, output_dt, progress, clock, fields)
 
 
-def _integrate(s: Setup, output_dt, progress, clock: CompileClock) -> Results:
+def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list | None = None) -> Results:
     t_start = _time.perf_counter()
     added_mass = scale_masses(s, s.discrete_pid if len(s.discrete_pid) == len(s.discrete.ids) else None)
     st = _state(s)
@@ -321,10 +322,16 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock) -> Results:
     rec.reactions_and_sections()
     rec(t, v, np.zeros_like(v), kinetic(v, st.w), 0.0, ew_total)
     walls.snapshot(v)
+    if fields is not None:  # the d3plot's fields at each state (the velocity after it: once kicked)
+        from ..results.d3plot import complete, state
+
+        fields.append(state(groups, x, v))
     kick(0.5 * dt)
     w_ext = motions.apply(st, 0.0, 0.5 * dt, dt, place)
     dw = 0.0
     ew_total += walls.apply(st, t, dt, place)
+    if fields is not None:
+        complete(fields[-1], v, 0.5 * dt, 0.0)
     next_out = output_dt
     states_t, states_x = [0.0], [x.copy()]  # field states at the d3plot interval
     next_state = s.state_dt if s.state_dt > 0 else np.inf
@@ -360,10 +367,13 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock) -> Results:
                 raise FloatingPointError(f"time step {dt_new:.4g} at t = {t:.6g} (cycle {cycle}) fell below "
                                          f"DTMIN x first step = {s.dt_min * dt_first:.4g}: the run is stopped")
             output = t >= next_out * (1 - 1e-9) or t >= s.end_time
-            if t >= next_state * (1 - 1e-9) or (t >= s.end_time and np.isfinite(next_state)):
+            field_state = t >= next_state * (1 - 1e-9) or (t >= s.end_time and np.isfinite(next_state))
+            if field_state:
                 states_t.append(t)
                 states_x.append(x.copy())
                 next_state += s.state_dt
+                if fields is not None:
+                    fields.append(state(groups, x, v))
             if output:  # the state at t needs the velocity on both sides of it
                 v_prev[:] = v
                 w_prev[:] = st.w
@@ -376,6 +386,8 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock) -> Results:
             dw = motions.apply(st, t, dt_v, dt_new, place)
             w_ext += dw
             ew_total += walls.apply(st, t, dt_new, place)
+            if field_state and fields is not None:
+                complete(fields[-1], v, dt_v, 0.5 * dt_v)
             dt = dt_new
             if output:
                 if not np.all(np.isfinite(v)):
@@ -499,8 +511,13 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
         s = build(model)
     t_build = _time.perf_counter() - t0
     progress = None if quiet else _progress_bar(s.end_time)
+    d3plot = fields = None
+    if out is not None and s.state_dt > 0:
+        from ..results import d3plot
+
+        fields = [] if d3plot.lasso() is not None else None
     try:
-        res = integrate(s, output_dt, progress)
+        res = integrate(s, output_dt, progress, fields)
     finally:
         if progress is not None:
             progress.close()
@@ -529,6 +546,12 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
                 eps = element_field(model, {"shells": res.shell_ids, "solids": res.solid_ids},
                                     {"shells": res.shell_plastic_strain, "solids": res.solid_plastic_strain})
                 write_states(Path(out) / "states", model, res.states_time, res.states_x, {"plastic_strain": eps})
+                if fields is None:
+                    res.info["warnings"].append(d3plot.MISSING)
+                else:
+                    d3plot.write(Path(out) / "d3plot", model, res.states_time, res.states_x, fields,
+                                 {"time": res.time, "kinetic": res.kinetic, "internal": res.internal,
+                                  "total": res.total})
         if held.hit and not res.info["stopped"]:
             res.info["stopped"] = (f"interrupted at t = {res.time[-1]:.6g} (cycle {res.cycles}), while saving "
                                    "the results (every file written)")
