@@ -52,7 +52,35 @@ def _added_mass(res, model) -> str:
     return f"; mass scaling (DT2MS) added {total:.4g}{share} ({parts})"
 
 
+def _run_external(args) -> int:
+    """``crashlite run DECK --solver lsdyna|openradioss``: the deck unchanged
+    in that solver, in the output folder; its results read back."""
+    from .external import ExternalSolverError
+    from .external import run as run_external
+    from .results import load
+
+    echo = None if args.quiet else (lambda line: print(line, flush=True))
+    try:
+        ext = run_external(args.deck, args.output, args.solver, force=args.force, echo=echo)
+    except ExternalSolverError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    try:
+        history = load(ext.folder)
+    except FileNotFoundError as e:
+        print(f"error: {ext.solver} terminated normally but left no results crashlite reads: {e}", file=sys.stderr)
+        return 2
+    head = (f"{ext.solver}: normal termination ({ext.termination}), {ext.wall_time:.1f} s wall" if ext.ran else
+            f"{ext.solver}: {args.output} already holds a normally terminated run of this deck ({ext.termination}); "
+            "not run again (--force runs it)")
+    print(f"{head}; results in {args.output} ({', '.join(history.categories()) or 'no time histories'}), read by "
+          "crashlite.results.load")
+    return 0
+
+
 def _run(args) -> int:
+    if args.solver != "crashlite":
+        return _run_external(args)
     from . import read_deck
     from .results.folder import OutputFolder
     from .solver import run
@@ -112,15 +140,22 @@ def build_parser() -> argparse.ArgumentParser:
     conv.add_argument("--strict", action="store_true")
     conv.set_defaults(func=_convert)
     run = sub.add_parser("run", help="run a deck with the explicit solver (masses, springs, dampers, "
-                                     "beams, rigid bodies, rigid walls at this stage)")
+                                     "beams, rigid bodies, rigid walls at this stage), or unchanged in an "
+                                     "installed LS-DYNA or OpenRadioss (--solver)")
     run.add_argument("deck", type=Path)
     run.add_argument("-o", "--output", type=_path_arg, required=True,
                      help="results folder; one reused by an earlier run is emptied of that run's files (listed in "
                           "its crashlite-run.json) first; files of the names a run writes that no run wrote "
                           "refuse the run, and the deck is never overwritten")
     run.add_argument("--force", action="store_true", help="overwrite files in the results folder that have the "
-                                                          "names a run writes but no crashlite run wrote")
-    run.add_argument("--quiet", action="store_true", help="no progress bar")
+                                                          "names a run writes but no crashlite run wrote; with "
+                                                          "--solver, also run again a deck already run there")
+    run.add_argument("--solver", choices=("crashlite", "lsdyna", "openradioss"), default="crashlite",
+                     help="crashlite's solver, or the deck unchanged in an installed LS-DYNA or OpenRadioss in the "
+                          "results folder (executable and options: CRASHLITE_LSDYNA, CRASHLITE_LSDYNA_NCPU, "
+                          "CRASHLITE_LSDYNA_MEMORY, CRASHLITE_MPI or ~/.config/crashlite/solvers.toml; see "
+                          "docs/external.md)")
+    run.add_argument("--quiet", action="store_true", help="no progress bar (with --solver: no solver output)")
     run.set_defaults(func=_run)
     from .cli_barrier import add_commands as barrier_commands
 

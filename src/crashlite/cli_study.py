@@ -11,10 +11,14 @@ from pathlib import Path
 def _run(args) -> int:
     from .study import load_study, run_study
     from .study.executor import ExecutorError, make_executor
-    from .study.runner import Progress
+    from .study.runner import Progress, solver_options
 
     cfg = load_study(args.study)
-    executor = make_executor(cfg.execution, scheduler=args.scheduler, workers=args.workers, serial=args.serial)
+    solver_options(cfg)  # an external solver not configured: said before any worker starts
+    if args.cluster is not None and ":" not in args.cluster:
+        raise ValueError(f"--cluster {args.cluster!r}: give MODULE:CALLABLE (a function returning a Dask cluster)")
+    executor = make_executor(cfg.execution, scheduler=args.scheduler, workers=args.workers, serial=args.serial,
+                             cluster=args.cluster)
     progress = Progress(cfg, quiet=args.quiet)
     try:
         with executor:
@@ -86,6 +90,9 @@ def add_commands(sub) -> None:
     r.add_argument("study", type=Path, help="study file (TOML)")
     r.add_argument("--scheduler", default=None, help="address of a running Dask scheduler (tcp://host:8786); "
                                                      "default: a LocalCluster on this machine")
+    r.add_argument("--cluster", default=None, metavar="MODULE:CALLABLE",
+                   help="a function returning a Dask cluster to run on (e.g. a dask-jobqueue SLURMCluster); "
+                        "overrides the study file's [execution] scheduler and cluster")
     r.add_argument("--workers", type=_workers, default=None,
                    help="LocalCluster worker processes (default: one per core)")
     r.add_argument("--serial", action="store_true", help="run the designs one by one in this process (no Dask)")

@@ -25,6 +25,7 @@ DOE_METHODS = ("lhs", "sobol", "halton", "random")
 OPT_METHODS = ("tpe", "nsga2", "random", "metamodel")
 SENSITIVITY_METHODS = ("sobol", "morris")
 METAMODELS = ("auto", "quadratic", "linear", "rbf")
+SOLVERS = ("crashlite", "lsdyna", "openradioss")  # [execution] solver: crashlite's own, or crashlite.external
 
 
 @dataclass
@@ -121,6 +122,8 @@ class ExecutionSettings:
     allowed_failures: int = 3  # worker deaths a design survives (retries)
     memory_limit: str = "auto"
     keep: str = "all"  # results of every design ("all"), or only decks and responses ("decks")
+    solver: str = "crashlite"  # or an external solver: "lsdyna", "openradioss" (crashlite.external)
+    cluster: str | None = None  # "module:callable" returning a Dask cluster (dask-jobqueue's SLURMCluster, ...)
 
 
 @dataclass
@@ -484,16 +487,27 @@ def _optimization(r: _Reader, data: dict, objectives) -> OptimizationSettings | 
 def _execution(r: _Reader, data: dict) -> ExecutionSettings:
     t = r.table(data, "execution", "top level") or {}
     w = "[execution]"
-    r.known(t, ("workers", "threads_per_run", "scheduler", "allowed_failures", "memory_limit", "keep"), w)
+    r.known(t, ("workers", "threads_per_run", "scheduler", "allowed_failures", "memory_limit", "keep", "solver",
+                "cluster"), w)
     workers = r.number(t, "workers", w, 0, integer=True)
     if workers < 0:
         r.fail(f"{w} workers", f"must be 1 or more (0 or absent: one per core), got {workers}")
     failures = r.number(t, "allowed_failures", w, 3, integer=True)
     if failures < 0:
         r.fail(f"{w} allowed_failures", f"must not be negative, got {failures}")
+    cluster = r.string(t, "cluster", w)
+    if cluster is not None:
+        module, _, name = cluster.partition(":")
+        if not module.strip() or not name.strip():
+            r.fail(f"{w} cluster", f"must be \"module:callable\" (a function returning a Dask cluster, e.g. "
+                                   f"\"mycluster:slurm\"), got {cluster!r}")
+        if t.get("scheduler") is not None:
+            r.fail(w, "give scheduler or cluster, not both")
     return ExecutionSettings(workers=workers,
                              threads_per_run=r.number(t, "threads_per_run", w, 1, positive=True, integer=True),
                              scheduler=r.string(t, "scheduler", w),
                              allowed_failures=failures,
                              memory_limit=str(t.get("memory_limit", "auto")),
-                             keep=r.string(t, "keep", w, "all", ("all", "decks")))
+                             keep=r.string(t, "keep", w, "all", ("all", "decks")),
+                             solver=r.string(t, "solver", w, "crashlite", SOLVERS),
+                             cluster=cluster)

@@ -62,7 +62,7 @@ class DeckTemplate:
         from .. import read_deck
         from ..keyword.errors import DeckError
         from .errors import StudyError
-        from .responses import check_response
+        from .responses import check_external_response, check_response
 
         try:
             model = read_deck(cfg.deck)
@@ -121,9 +121,12 @@ class DeckTemplate:
                 var.baseline = _part_value(model, pids[0], var.property)
                 t.part_variables.append(PartVariable(var.name, pids, var.property))
         names = cfg.variable_names
+        solver = getattr(getattr(cfg, "execution", None), "solver", "crashlite")
         for name, spec in cfg.responses.items():
             try:
                 check_response(spec, model, names, list(cfg.responses))
+                if solver != "crashlite":
+                    check_external_response(spec, model, solver)
             except ValueError as e:
                 raise StudyError(f"{cfg.path}: [responses.{name}] {e}") from None
         return t

@@ -1,5 +1,6 @@
 """One design, start to end, as a worker runs it: write its deck, run it
-with crashlite's solver, take the responses.
+with crashlite's solver (or an external one, ``Task.options["solver"]``),
+take the responses.
 
 ``evaluate(task)`` never raises for a design's own problem (a deck that
 does not read, a run that diverges, a response the run lacks): it returns
@@ -51,6 +52,22 @@ def _attempt(directory: Path) -> int:
     return len(marks.read_text().splitlines())
 
 
+def _run_external(deck: Path, folder: Path, solver, model):
+    """Run the design deck in an external solver (``crashlite.external``)
+    and read its results as a crashlite ``Results`` (time histories)."""
+    from ..external import run as run_external
+    from ..results import load
+    from ..results.from_history import results_from_history
+
+    ext = run_external(deck, folder, config=solver, force=True)
+    try:
+        history = load(folder)
+    except FileNotFoundError as e:
+        raise FileNotFoundError(f"{solver.name} terminated normally but left no results crashlite reads: {e}") \
+            from None
+    return results_from_history(history, model), float(ext.wall_time)
+
+
 def evaluate(task: Task) -> dict:
     """Run one design; returns {key, status, responses, message, ...}."""
     t0 = time.perf_counter()
@@ -71,9 +88,16 @@ def evaluate(task: Task) -> dict:
         model = read_deck(deck)
         task.template.check(model, task.values)
         stage = "running"
-        res = run(model, out=directory / "results", quiet=True)
+        solver = task.options.get("solver")  # external.SolverSettings, or None: crashlite's solver
+        if solver is None:
+            res = run(model, out=directory / "results", quiet=True)
+            run_time = float(res.wall_time)
+        else:
+            res, run_time = _run_external(deck, directory / "results", solver, model)
+            out["solver"] = solver.solver
+            stage = "taking the responses"
         out.update(cycles=int(res.cycles), end_time=float(res.time[-1]) if len(res.time) else 0.0,
-                   run_time=float(res.wall_time))
+                   run_time=run_time)
         stage = "taking the responses"
         out["responses"] = evaluate_responses(task.responses, res, model, task.values)
         out["status"] = "complete"

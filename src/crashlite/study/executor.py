@@ -1,5 +1,8 @@
 """Where designs run: a Dask LocalCluster (default), an existing Dask
-scheduler, or in this process (``serial``, for debugging and small tests).
+scheduler, a Dask cluster object (a batch system's through dask-jobqueue:
+``SLURMCluster``, ``PBSCluster``, ``LSFCluster``; passed from Python or
+named ``"module:callable"`` in the study file), or in this process
+(``serial``, for debugging and small tests).
 
 Workers are processes, each running one design at a time single-threaded
 (``NUMBA_NUM_THREADS=threads_per_run``). A worker that dies mid-run (killed,
@@ -73,12 +76,20 @@ class DaskExecutor:
     name = "dask"
 
     def __init__(self, workers: int = 0, threads: int = 1, address: str | None = None,
-                 allowed_failures: int = 3, memory_limit: str = "auto", dashboard: bool = False):
+                 allowed_failures: int = 3, memory_limit: str = "auto", dashboard: bool = False,
+                 cluster=None):
         if workers < 0:  # a LocalCluster of -4 workers waits for them forever
             raise ValueError(f"workers must be 1 or more (0: one per core), got {workers}")
+        if cluster is not None and address:
+            raise ValueError("give a scheduler address or a cluster, not both")
+        if cluster is not None and not isinstance(cluster, str) and not hasattr(cluster, "scheduler_address"):
+            raise TypeError(f"cluster: {type(cluster).__name__} has no scheduler_address (a Dask cluster such as "
+                            "dask-jobqueue's SLURMCluster, or \"module:callable\" returning one)")
         self.workers = workers or (os.cpu_count() or 1)
         self.threads = threads
         self.address = address
+        self.cluster_spec = cluster  # an object with scheduler_address, or "module:callable"
+        self.owned_cluster = None  # a cluster made here from "module:callable": closed at the end
         self.allowed_failures = allowed_failures
         self.memory_limit = memory_limit
         self.dashboard = dashboard
@@ -99,7 +110,10 @@ class DaskExecutor:
         env = {"NUMBA_NUM_THREADS": str(self.threads), "OMP_NUM_THREADS": str(self.threads),
                "MKL_NUM_THREADS": str(self.threads), "OPENBLAS_NUM_THREADS": str(self.threads)}
         try:
-            if self.address:
+            if self.cluster_spec is not None:
+                self.address = _scheduler_address(self._cluster())
+                self.client = Client(self.address, timeout="30s")
+            elif self.address:
                 self.client = Client(self.address, timeout="30s")
             else:
                 self.cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1, processes=True,
@@ -109,7 +123,8 @@ class DaskExecutor:
                 self.client = Client(self.cluster)
         except Exception as e:
             self.__exit__(None, None, None)
-            where = self.address or "a LocalCluster"
+            where = self.address or (f"the cluster {self._cluster_name()}" if self.cluster_spec is not None
+                                     else "a LocalCluster")
             raise ExecutorError(f"cannot start Dask on {where}: {type(e).__name__}: {e}") from e
         return self
 
@@ -124,7 +139,12 @@ class DaskExecutor:
                 self.cluster.close(timeout=20)
         except Exception:  # noqa: BLE001
             pass
-        self.client = self.cluster = None
+        try:
+            if self.owned_cluster is not None:
+                self.owned_cluster.close()
+        except Exception:  # noqa: BLE001
+            pass
+        self.client = self.cluster = self.owned_cluster = None
         cfg = getattr(self, "_config", None)
         if cfg is not None:
             cfg.__exit__(None, None, None)
@@ -168,7 +188,29 @@ class DaskExecutor:
         except Exception:  # noqa: BLE001
             pass
 
+    def _cluster(self):
+        """The cluster object (made from "module:callable" the first time)."""
+        spec = self.cluster_spec
+        if not isinstance(spec, str):
+            return spec
+        if self.owned_cluster is None:
+            import importlib
+
+            module, _, name = spec.partition(":")
+            try:
+                make = getattr(importlib.import_module(module.strip()), name.strip())
+            except (ImportError, AttributeError) as e:
+                raise ExecutorError(f"cluster = {spec!r}: {type(e).__name__}: {e}") from None
+            self.owned_cluster = make() if callable(make) else make
+        return self.owned_cluster
+
+    def _cluster_name(self) -> str:
+        spec = self.cluster_spec
+        return repr(spec) if isinstance(spec, str) else type(spec).__name__
+
     def describe(self) -> str:
+        if self.cluster_spec is not None:
+            return f"Dask cluster {self._cluster_name()} (scheduler {self.address})"
         if self.address:
             return f"Dask scheduler {self.address}"
         return f"Dask LocalCluster, {self.workers} worker process{'es' if self.workers > 1 else ''}, " \
@@ -179,10 +221,23 @@ class DaskExecutor:
         return self.client.run(os.getpid)
 
 
-def make_executor(execution, scheduler: str | None = None, workers: int | None = None, serial: bool = False):
-    """The executor a study runs on (CLI options override the file's)."""
+def _scheduler_address(cluster) -> str:
+    address = cluster if isinstance(cluster, str) else getattr(cluster, "scheduler_address", None)
+    if not isinstance(address, str) or not address:
+        raise ExecutorError(f"the cluster {type(cluster).__name__} gives no scheduler_address")
+    return address
+
+
+def make_executor(execution, scheduler: str | None = None, workers: int | None = None, serial: bool = False,
+                  cluster=None):
+    """The executor a study runs on (CLI options override the file's;
+    ``cluster``, a Dask cluster object or "module:callable", overrides the
+    file's scheduler and cluster)."""
     if serial:
         return SerialExecutor(execution.threads_per_run)
+    if cluster is None and scheduler is None:
+        cluster = getattr(execution, "cluster", None)
     return DaskExecutor(workers=workers or execution.workers, threads=execution.threads_per_run,
-                        address=scheduler or execution.scheduler, allowed_failures=execution.allowed_failures,
-                        memory_limit=execution.memory_limit)
+                        address=None if cluster is not None else (scheduler or execution.scheduler),
+                        allowed_failures=execution.allowed_failures, memory_limit=execution.memory_limit,
+                        cluster=cluster)

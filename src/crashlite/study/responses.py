@@ -226,6 +226,41 @@ def check_response(spec: ResponseSpec, model, variables: list[str], responses: l
                 raise ValueError(f"expression names {n!r}: neither a response nor a variable")
 
 
+# the *DATABASE_ keyword an external solver needs to write what a response reads
+EXTERNAL_OUTPUT = {"energy": "GLSTAT", "part_energy": "MATSUM", "wall_force": "RWFORC", "section_force": "SECFORC",
+                   "discrete_force": "DEFORC", "node_displacement": "NODOUT", "node_velocity": "NODOUT",
+                   "deceleration": "NODOUT", "pulse": "NODOUT", "intrusion": "NODOUT"}
+
+
+def check_external_response(spec: ResponseSpec, model, solver: str) -> None:
+    """ValueError where a run of the deck in an external solver (LS-DYNA,
+    OpenRadioss: its time histories are read, ``results.from_history``)
+    cannot give the response."""
+    from ..external import NAMES
+
+    name = NAMES.get(solver, solver)
+    t, o = spec.type, spec.options
+    if t == "contact_force":
+        raise ValueError(f"contact_force is read from crashlite's own runs only: the contact forces (rcforc) of "
+                         f"an {name} run are not read; use wall_force or section_force, or solver = \"crashlite\"")
+    final = (t == "node_displacement" and o.get("stat", "final") == "final") or \
+        (t == "intrusion" and o.get("over", "final") == "final")
+    if final:
+        nodes = [o["node"]] if "node" in o else \
+            (model.set_members("NODE", o["set"]).tolist() if "set" in o else list(o["nodes"]))
+        nodes += [o["reference"]] if "reference" in o else []
+        hist = history_node_ids(model)
+        lack = [n for n in nodes if n not in hist]
+        if lack:
+            raise ValueError(f"the final displacement of node(s) {', '.join(map(str, lack[:10]))}: an {name} run "
+                             "gives it for history nodes only (nodout; its d3plot states are not read): add them "
+                             "to *DATABASE_HISTORY_NODE")
+    kw = EXTERNAL_OUTPUT.get(t)
+    if kw and not model.find(f"DATABASE_{kw}"):
+        raise ValueError(f"{t} reads {kw.lower()}, which {name} writes only when the deck asks for it: add "
+                         f"*DATABASE_{kw}")
+
+
 # --- evaluation ----------------------------------------------------------------
 
 def _reduce(t: np.ndarray, y: np.ndarray, stat: str) -> float:

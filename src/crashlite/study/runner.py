@@ -224,18 +224,40 @@ def _sampler(cfg: StudyConfig):
                                       n_startup_trials=min(10, max(2, opt.trials // 4)))
 
 
-def _task(cfg: StudyConfig, key: str, values: dict) -> Task:
+def _task(cfg: StudyConfig, key: str, values: dict, options: dict | None = None) -> Task:
     return Task(key=key, values=values, directory=str(cfg.directory / "designs" / key), template=cfg.template,
-                responses=cfg.responses, threads=cfg.execution.threads_per_run, keep=cfg.execution.keep)
+                responses=cfg.responses, threads=cfg.execution.threads_per_run, keep=cfg.execution.keep,
+                options=dict(options or {}))
+
+
+def solver_options(cfg: StudyConfig) -> dict:
+    """The designs' run options: {"solver": external.SolverSettings} for
+    ``[execution] solver = "lsdyna"`` (resolved here, where the study is
+    started, and sent with every design), {} for crashlite's solver."""
+    if cfg.execution.solver == "crashlite":
+        return {}
+    from ..external import ExternalSolverError, settings
+    from .errors import StudyError
+
+    try:
+        return {"solver": settings(cfg.execution.solver)}
+    except ExternalSolverError as e:
+        raise StudyError(f"{cfg.path}: [execution] solver = {cfg.execution.solver!r}: {e}") from None
 
 
 def run_study(cfg: StudyConfig, executor=None, progress: Progress | None = None, force: bool = False,
-              fn=evaluate) -> RunSummary:
+              fn=evaluate, cluster=None) -> RunSummary:
     """Run (or resume) every phase of a study; returns what this session
     did. ``executor`` defaults to a Dask LocalCluster of the study file's
-    [execution]; ``fn`` is the per-design function the workers run."""
+    [execution]; ``cluster`` (instead of ``executor``): a Dask cluster
+    object to run on, e.g. dask-jobqueue's ``SLURMCluster(...)`` (anything
+    with a ``scheduler_address``; the caller scales and closes it); ``fn``
+    is the per-design function the workers run."""
     from .executor import make_executor
 
+    if executor is not None and cluster is not None:
+        raise ValueError("give executor or cluster, not both")
+    options = solver_options(cfg)  # before anything is stored: a solver not configured stops here
     t0 = time.perf_counter()
     progress = progress or Progress(cfg)
     cfg.directory.mkdir(parents=True, exist_ok=True)
@@ -251,16 +273,18 @@ def run_study(cfg: StudyConfig, executor=None, progress: Progress | None = None,
         designs = store.designs()
         progress.load(designs)
         sources = _plan(cfg, store, designs)
-        executor = executor or make_executor(cfg.execution)
+        executor = executor or make_executor(cfg.execution, cluster=cluster)
         owned = not executor.started  # start (and close) it here unless the caller did
         if owned:
             executor.__enter__()
         try:
             summary.executor = executor.describe()
+            ext = options.get("solver")
             progress.say(f"study {cfg.name!r}: {len(designs)} design(s) stored in {cfg.storage}; "
-                         f"running on {summary.executor}")
+                         f"running on {summary.executor}"
+                         + (f"; designs run in {ext.name} ({ext.executable})" if ext is not None else ""))
             for src in sources:
-                _drive(cfg, store, executor, src, progress, summary, fn)
+                _drive(cfg, store, executor, src, progress, summary, fn, options)
         finally:
             if owned:
                 executor.__exit__(None, None, None)
@@ -294,7 +318,8 @@ def _plan(cfg: StudyConfig, store: StudyStore, designs: list[Design]) -> list[_S
     return out
 
 
-def _drive(cfg, store: StudyStore, executor, src: _Source, progress: Progress, summary: RunSummary, fn) -> None:
+def _drive(cfg, store: StudyStore, executor, src: _Source, progress: Progress, summary: RunSummary, fn,
+           options: dict | None = None) -> None:
     if isinstance(src, _MetamodelOpt):
         src.points = max(1, cfg.optimization.points or executor.capacity)
     inflight: dict = {}  # handle -> (trial, key)
@@ -310,7 +335,7 @@ def _drive(cfg, store: StudyStore, executor, src: _Source, progress: Progress, s
                 if item is None:
                     break
                 trial, values, key = item
-                inflight[executor.submit(fn, _task(cfg, key, values))] = (trial, key)
+                inflight[executor.submit(fn, _task(cfg, key, values, options))] = (trial, key)
                 progress.running = len(inflight)
             if not inflight:  # nothing running and nothing more to start
                 break
