@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numba
 
-from crashlite.vehicle.study_report import verification_lines
+from crashlite.vehicle.verify.study_report import verification_lines
 from crashlite.vehicle.workflow import paper_study
 
 

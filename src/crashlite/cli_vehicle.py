@@ -65,7 +65,7 @@ def _reduce(args) -> int:
 
 
 def _verify(args) -> int:
-    from .vehicle.verification import split_text, verify_vehicle
+    from .vehicle.verify.verification import split_text, verify_vehicle
 
     if (args.twin is None) != (args.twin_deck is None):
         raise SystemExit("crashlite vehicle verify: --twin and --twin-deck go together")
@@ -81,7 +81,7 @@ def _verify(args) -> int:
           f"{_pc(fw.get('max_deviation_percent'))} mean {_pc(fw.get('mean_deviation_percent'))}{split_text(fw)}, "
           f"time reduction {_pc(f['time_reduction_percent'])}; wrote {files['html']} and {files['summary']}")
     if f.get("elastic_twin"):
-        from .vehicle.study_report import twin_text
+        from .vehicle.verify.study_report import twin_text
 
         print(twin_text(f["elastic_twin"]).lstrip("; "))
     for n in v.notes:
@@ -92,9 +92,9 @@ def _verify(args) -> int:
 def _twin(args) -> int:
     from . import read_deck
     from .keyword.writer import write_deck
-    from .vehicle.cut import cut_behind
+    from .vehicle.connection.twin import elastic_twin
     from .vehicle.reduce import section_assemblies
-    from .vehicle.twin import elastic_twin
+    from .vehicle.steps.cut import cut_behind
 
     model = read_deck(args.deck)
     if args.interface is not None:
@@ -120,7 +120,7 @@ def _interface(args) -> int:
 
     from . import read_deck
     from .report.build import jsonable
-    from .vehicle.interface import propose_interface
+    from .vehicle.connection.interface import propose_interface
 
     p = propose_interface(read_deck(args.deck), args.results, strain=args.strain / 100.0,
                           allowed=args.allowed / 100.0, energy=args.energy / 100.0, step=args.step, also=args.at)
@@ -155,7 +155,7 @@ def _study(args) -> int:
     print(f"time-loop reduction: US NCAP vehicle {_pc(t['us_ncap']['vehicle_reduction_percent'])}; ODB "
           + ", ".join(f"{k.replace('_reduction_percent', '')} {_pc(v)}" for k, v in t["odb"].items()
                       if k.endswith("_percent")))
-    from .vehicle.study_report import verification_lines
+    from .vehicle.verify.study_report import verification_lines
 
     for line in verification_lines(st.summary):
         print(line)
@@ -169,14 +169,14 @@ def _pc(v) -> str:
 
 def _seconds(deck) -> float:
     """Time units per second of a deck's unit system (from its densities)."""
-    from .vehicle.loadcases import vehicle_info
+    from .vehicle.car.loadcases import vehicle_info
 
     return vehicle_info(deck).units.time
 
 
 def add_commands(sub) -> None:
     """Register ``vehicle`` and its subcommands on the top-level parser."""
-    from .vehicle.verification import CELL_FRAME
+    from .vehicle.verify.verification import CELL_FRAME
 
     fmt = argparse.ArgumentDefaultsHelpFormatter
     veh = sub.add_parser("vehicle", help="the generic compact car and its frontal load cases")

@@ -179,7 +179,7 @@ def vehicle(out: Path, mesh_size: float = 60.0, end_time: float = 0.07) -> int:
           f"{fw.get('max_deviation_percent', float('nan')):.1f} %, mean "
           f"{fw.get('mean_deviation_percent', float('nan')):.1f} %")
     if f.get("elastic_twin"):
-        from .vehicle.study_report import twin_text
+        from .vehicle.verify.study_report import twin_text
 
         print("  split by the full car's elastic twin (its structure behind the interface elastic): "
               + twin_text(f["elastic_twin"]).lstrip("; "))
@@ -187,7 +187,7 @@ def vehicle(out: Path, mesh_size: float = 60.0, end_time: float = 0.07) -> int:
     print(f"  time loop {t['full']['wall_time']:.1f} s -> {t['simplified']['wall_time']:.1f} s "
           f"(reduction {t['reduction_percent']:.0f} %); reports: {st.out / 'reduction.html'}, "
           f"{st.out / 'verify' / 'index.html'}")
-    from .vehicle.verdict import verdict, verdict_lines
+    from .vehicle.verify.verdict import verdict, verdict_lines
 
     print("\n  the simplified vehicle against its bounds (US NCAP):")
     for line in verdict_lines(verdict(f)):

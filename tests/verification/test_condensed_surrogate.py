@@ -1,5 +1,5 @@
 """The structure behind a cut condensed onto the cut nodes (a linear
-superelement, ``vehicle.condense`` / ``vehicle.condensed``) against the
+superelement, ``vehicle.connection.condense`` / ``vehicle.connection.condensed``) against the
 full model it replaces, in the time loop."""
 
 import sys
@@ -10,11 +10,11 @@ import pytest
 
 from crashlite import read_deck, write_deck
 from crashlite.solver import run
-from crashlite.vehicle.condense import relieved_condensation
-from crashlite.vehicle.condensed import build_condensed_surrogate
-from crashlite.vehicle.cut import cut_behind
-from crashlite.vehicle.massprops import replaced_mass
-from crashlite.vehicle.records import id_list, record
+from crashlite.vehicle.car.records import id_list, record
+from crashlite.vehicle.connection.condense import relieved_condensation
+from crashlite.vehicle.connection.condensed import build_condensed_surrogate
+from crashlite.vehicle.steps.cut import cut_behind
+from crashlite.vehicle.steps.massprops import replaced_mass
 
 sys.path.insert(0, str(Path(__file__).parents[1] / "unit" / "vehicle"))
 from _structures import shell_model, tube_mesh  # noqa: E402

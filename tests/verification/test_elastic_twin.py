@@ -12,9 +12,9 @@ import pytest
 
 from crashlite import write_deck
 from crashlite.solver import run
-from crashlite.vehicle.cut import cut_behind
-from crashlite.vehicle.records import record
-from crashlite.vehicle.twin import elastic_twin
+from crashlite.vehicle.car.records import record
+from crashlite.vehicle.connection.twin import elastic_twin
+from crashlite.vehicle.steps.cut import cut_behind
 
 sys.path.insert(0, str(Path(__file__).parents[1] / "unit" / "vehicle"))
 from _structures import RHO, shell_model, tube_mesh  # noqa: E402

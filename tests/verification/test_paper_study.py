@@ -68,7 +68,7 @@ def test_summary_pairs_the_runs_and_reports_their_time_reductions(study):
     assert odb["names"] == ["full + detailed barrier", "simplified + simplified barrier"]
     assert odb["time"]["full"]["cycles"] == s["runs"]["odb full car, detailed barrier"]["cycles"]
     assert s["verification"]["US NCAP"]["time"]["simplified"]["cycles"] == s["runs"]["usncap simplified"]["cycles"]
-    from crashlite.vehicle.study_report import verification_lines
+    from crashlite.vehicle.verify.study_report import verification_lines
 
     lines = verification_lines(s)
     assert [ln.split(":")[0] for ln in lines] == ["US NCAP", "Euro NCAP ODB"]

@@ -10,7 +10,7 @@ import pytest
 
 from crashlite import read_deck
 from crashlite.solver import run
-from crashlite.vehicle.interface import shell_plastic_strain
+from crashlite.vehicle.connection.interface import shell_plastic_strain
 
 E, SY, ET, L = 200000.0, 200.0, 2000.0, 100.0
 H = E * ET / (E - ET)  # plastic hardening modulus
@@ -93,7 +93,7 @@ def test_passenger_cell_summary_takes_the_cell_assemblies_only(tmp_path):
     """The strip's yielding part as an assembly of the cell ("floor left"),
     its strong part as one outside it: the cell summary rates the first
     only, by the strains of the run."""
-    from crashlite.vehicle.interface import assembly_parts, cell_plastic_strain, part_plastic_strain
+    from crashlite.vehicle.connection.interface import assembly_parts, cell_plastic_strain, part_plastic_strain
 
     deck = _strip(tmp_path, False)
     text = open(deck).read().replace("*END", "*SET_PART_LIST_TITLE\nassembly floor left\n11\n1\n"

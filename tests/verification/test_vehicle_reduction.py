@@ -9,8 +9,8 @@ import pytest
 
 from crashlite import read_deck
 from crashlite.units import kmh
-from crashlite.vehicle.interface import cell_plastic_strain
-from crashlite.vehicle.verification import history_node
+from crashlite.vehicle.connection.interface import cell_plastic_strain
+from crashlite.vehicle.verify.verification import history_node
 from crashlite.vehicle.workflow import us_ncap_study
 from crashlite.verify.filters import filter_signal
 

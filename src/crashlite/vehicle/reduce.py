@@ -36,16 +36,16 @@ from pathlib import Path
 import numpy as np
 
 from ..model.model import Model
-from . import loadpaths as lp
-from .cut import Cut, cut_behind
-from .massprops import ReplacedMass, replaced_mass
-from .connection import compare_connection, connection_stiffness
-from .modes import free_modes, held_modes
-from .relief import relieved_stiffness
-from .stiffness import StiffnessResult, longitudinal_stiffness
-from .condense import relieved_condensation
-from .condensed import build_condensed_surrogate
-from .surrogate import Surrogate, build_surrogate
+from .connection.condense import relieved_condensation
+from .connection.condensed import build_condensed_surrogate
+from .connection.connection import compare_connection, connection_stiffness
+from .connection.modes import free_modes, held_modes
+from .steps import loadpaths as lp
+from .steps.cut import Cut, cut_behind
+from .steps.massprops import ReplacedMass, replaced_mass
+from .steps.relief import relieved_stiffness
+from .steps.stiffness import StiffnessResult, longitudinal_stiffness
+from .steps.surrogate import Surrogate, build_surrogate
 
 
 @dataclass
@@ -116,7 +116,7 @@ class Reduction:
         written = {"deck": self.surrogate.write(deck_path, fmt=fmt)}
         (out / "reduction.json").write_text(json.dumps(jsonable(self.summary()), indent=1, allow_nan=False) + "\n")
         written["summary"] = out / "reduction.json"
-        from .reduce_report import reduction_page
+        from .verify.reduce_report import reduction_page
 
         (out / "reduction.html").write_text(reduction_page(self))
         written["html"] = out / "reduction.html"

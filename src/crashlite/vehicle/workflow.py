@@ -13,7 +13,7 @@ one, writing every deck, results folder and report under one folder:
     out/verify/index.html, summary.json         the verification
     out/twin.k, out/usncap_twin.k, out/twin/    with ``twin``: the elastic twin and its run
 
-With ``twin`` the full model's elastic twin (``vehicle.twin``: the
+With ``twin`` the full model's elastic twin (``vehicle.connection.twin``: the
 structure behind the interface elastic) runs in the same load case, and
 the verification splits its deviations into the elastic premise's and the
 surrogate's (``elastic_twin`` in summary.json).
@@ -40,13 +40,13 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
                   speed_kmh: float = 56.0, quiet: bool = True, say=print, twin: bool = False,
                   **reduce_options) -> Study:
     """Full run, reduction, simplified run and verification (module docstring)."""
-    from ..solver import run
     from ..report.build import jsonable
-    from .generic import generic_vehicle
-    from .interface import propose_interface
-    from .loadcases import usncap_deck
+    from ..solver import run
+    from .car.generic import generic_vehicle
+    from .car.loadcases import usncap_deck
+    from .connection.interface import propose_interface
     from .reduce import reduce_vehicle
-    from .verification import verify_vehicle
+    from .verify.verification import verify_vehicle
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -110,7 +110,7 @@ def _twin_run(cut, car_path: Path, results: Path, load_case, quiet: bool, say) -
     ``twin``, ``twin_deck`` arguments of ``verify_vehicle``."""
     from ..keyword.writer import write_deck
     from ..solver import run
-    from .twin import elastic_twin
+    from .connection.twin import elastic_twin
 
     tw = elastic_twin(cut)
     deck = load_case(write_deck(tw.model, car_path)[0])
@@ -171,10 +171,10 @@ def paper_study(out, mesh_size: float = 38.0, barrier_size: float = 50.0, usncap
     """
     from ..solver import run
     from ..verify.timing import reduction as time_reduction
-    from .generic import generic_vehicle
-    from .loadcases import odb_deck, usncap_deck
+    from .car.generic import generic_vehicle
+    from .car.loadcases import odb_deck, usncap_deck
     from .reduce import reduce_vehicle
-    from .verification import verify_vehicle
+    from .verify.verification import verify_vehicle
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
@@ -254,7 +254,7 @@ def paper_study(out, mesh_size: float = 38.0, barrier_size: float = 50.0, usncap
     from ..report.build import jsonable
 
     (out / "summary.json").write_text(json.dumps(jsonable(summary), indent=1, allow_nan=False) + "\n")
-    from .study_report import study_page
+    from .verify.study_report import study_page
 
     links = {"reduction (steps 1-4)": "reduction.html",
              **{f"verification {k}": f"verify/{_slug(k.lower())}/index.html" for k in ver}}

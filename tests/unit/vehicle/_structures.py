@@ -4,7 +4,7 @@ import numpy as np
 
 from crashlite.model.mesh import Nodes, Shells
 from crashlite.model.model import Model
-from crashlite.vehicle.records import record
+from crashlite.vehicle.car.records import record
 
 E, NU, RHO = 210000.0, 0.3, 7.85e-9  # MPa, -, t/mm³
 

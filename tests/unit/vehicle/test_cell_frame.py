@@ -5,9 +5,9 @@ import numpy as np
 import pytest
 
 from crashlite.solver.rigid import rotation
-from crashlite.vehicle.rigidfit import rearward_in_frame as _in_cell
-from crashlite.vehicle.rigidfit import rigid_motion as cell_motion
-from crashlite.vehicle.rigidfit import warping, warping_history
+from crashlite.vehicle.connection.rigidfit import rearward_in_frame as _in_cell
+from crashlite.vehicle.connection.rigidfit import rigid_motion as cell_motion
+from crashlite.vehicle.connection.rigidfit import warping, warping_history
 
 CELL = np.array([[-2200.0, 350.0, 350.0], [-2200.0, -350.0, 350.0], [-1490.0, 700.0, 300.0],
                  [-1490.0, -700.0, 300.0]])  # rear seats and B-pillar sills of the generic car
@@ -50,7 +50,7 @@ def test_the_split_separates_the_interface_motion_from_the_kept_structures_own_d
     split gives own = d (along the interface's turned axis), carried = 12 mm
     + the interface's pitch at the firewall's positions (to the dent's
     d(1 − cos θ)), and the two add up to the intrusion in the cell frame."""
-    from crashlite.vehicle.verification import intrusion_split
+    from crashlite.vehicle.verify.verification import intrusion_split
 
     x0 = np.vstack([CELL, FIREWALL, INTERFACE])
     frame, fw, itf = np.arange(4), np.arange(4, 13), np.arange(13, 22)

@@ -1,14 +1,14 @@
 """The replaced structure condensed onto the cut nodes under inertia relief
-(``vehicle.condense``) and the superelement built from it (``condensed``)."""
+(``vehicle.connection.condense``) and the superelement built from it (``condensed``)."""
 
 import numpy as np
 import pytest
 from _structures import E, shell_model, tube_mesh
 
-from crashlite.vehicle.condense import relieved_condensation, rigid_modes
-from crashlite.vehicle.condensed import superelement_matrix
-from crashlite.vehicle.cut import cut_behind
-from crashlite.vehicle.relief import relieved_stiffness
+from crashlite.vehicle.connection.condense import relieved_condensation, rigid_modes
+from crashlite.vehicle.connection.condensed import superelement_matrix
+from crashlite.vehicle.steps.cut import cut_behind
+from crashlite.vehicle.steps.relief import relieved_stiffness
 
 B, T, X = 50.0, 1.5, 300.0  # tube side (mid-line), wall, interface x [mm]
 
@@ -66,7 +66,7 @@ def test_axial_impedance_is_the_cut_sections_rho_c_area():
     (to round-off: the replaced shells' edges on the cut, not the kept
     ones' that share them), shared among the ring's nodes by their half
     edges."""
-    from crashlite.vehicle.impedance import axial_impedance
+    from crashlite.vehicle.connection.impedance import axial_impedance
 
     xyz, q = tube_mesh(B, 500.0, 4, 100)
     model = shell_model(xyz, q, thickness=T, poisson=0.3)

@@ -1,5 +1,5 @@
 """The surrogate's 6×6 connection of interface and rear body
-(``vehicle.connection``) against closed forms, the static model of the
+(``vehicle.connection.connection``) against closed forms, the static model of the
 written surrogate deck, and the structure it replaces."""
 
 import numpy as np
@@ -7,15 +7,15 @@ import pytest
 from test_surrogate import _surrogate, _tmp, _tube
 
 from crashlite import read_deck
-from crashlite.vehicle.connection import (
+from crashlite.vehicle.connection.connection import (
     beam_end_stiffness,
     compare_connection,
     connection_stiffness,
     moved_to,
     spring_stiffness,
 )
-from crashlite.vehicle.cut import cut_behind
-from crashlite.vehicle.stiffness import structure_stiffness, transverse_stiffness
+from crashlite.vehicle.steps.cut import cut_behind
+from crashlite.vehicle.steps.stiffness import structure_stiffness, transverse_stiffness
 
 
 def test_springs_and_a_cantilever_against_closed_forms():

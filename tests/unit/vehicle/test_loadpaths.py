@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from crashlite.results.lsdyna_ascii import secforc
-from crashlite.vehicle.loadpaths import (
+from crashlite.vehicle.steps.loadpaths import (
     axial_force,
     combined_shares,
     cumulative_impulse,

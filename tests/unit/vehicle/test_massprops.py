@@ -6,9 +6,9 @@ from _structures import RHO, box_mesh, shell_model, tube_mesh
 
 from crashlite.model import mass as mk
 from crashlite.model.mesh import Masses
-from crashlite.vehicle.cut import cut_behind
-from crashlite.vehicle.massprops import element_moments, replaced_mass
-from crashlite.vehicle.records import id_list, record
+from crashlite.vehicle.car.records import id_list, record
+from crashlite.vehicle.steps.cut import cut_behind
+from crashlite.vehicle.steps.massprops import element_moments, replaced_mass
 
 
 def _box_inertia(a, b, c, t, rho):

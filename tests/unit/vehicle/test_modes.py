@@ -1,13 +1,13 @@
-"""Free modes of the replaced structure (``vehicle.modes``) against the
+"""Free modes of the replaced structure (``vehicle.connection.modes``) against the
 closed forms of a free uniform tube."""
 
 import numpy as np
 import pytest
 from _structures import RHO, E, shell_model, tube_mesh
 
-from crashlite.vehicle.cut import cut_behind
-from crashlite.vehicle.modes import free_modes, held_modes
-from crashlite.vehicle.relief import relieved_stiffness
+from crashlite.vehicle.connection.modes import free_modes, held_modes
+from crashlite.vehicle.steps.cut import cut_behind
+from crashlite.vehicle.steps.relief import relieved_stiffness
 
 B, T = 50.0, 1.5
 

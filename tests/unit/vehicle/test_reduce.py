@@ -10,10 +10,10 @@ from _structures import E, shell_model, tube_mesh
 from crashlite import read_deck, write_deck
 from crashlite.model.mesh import Masses
 from crashlite.solver import run
-from crashlite.vehicle.records import id_list, record
+from crashlite.vehicle.car.records import id_list, record
 from crashlite.vehicle.reduce import reduce_vehicle, section_assemblies
-from crashlite.vehicle.verification import verify_vehicle
-from crashlite.vehicle.verification_report import verification_page
+from crashlite.vehicle.verify.verification import verify_vehicle
+from crashlite.vehicle.verify.verification_report import verification_page
 from crashlite.verify.rating import iso_rating
 
 B, L = 50.0, 500.0

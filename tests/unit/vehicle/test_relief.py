@@ -1,4 +1,4 @@
-"""Step 3 under inertia relief (``vehicle.relief``): the replaced structure
+"""Step 3 under inertia relief (``vehicle.steps.relief``): the replaced structure
 pushed at its interface and held by its own mass."""
 
 import numpy as np
@@ -6,9 +6,9 @@ import pytest
 from _structures import RHO, E, shell_model, tube_mesh
 
 from crashlite.model.mesh import Masses
-from crashlite.vehicle.cut import cut_behind
-from crashlite.vehicle.relief import relieved_stiffness, replaced_node_masses
-from crashlite.vehicle.stiffness import longitudinal_stiffness
+from crashlite.vehicle.steps.cut import cut_behind
+from crashlite.vehicle.steps.relief import relieved_stiffness, replaced_node_masses
+from crashlite.vehicle.steps.stiffness import longitudinal_stiffness
 
 B, T, X = 50.0, 1.5, 300.0  # tube side (mid-line), wall, interface x [mm]
 

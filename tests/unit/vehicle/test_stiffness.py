@@ -6,10 +6,10 @@ from _structures import E, grid_quads, plate_mesh, shell_model, tube_mesh
 
 from crashlite.model.mesh import Beams, Discretes, Nodes
 from crashlite.model.model import Model
-from crashlite.vehicle.cut import cut_behind
-from crashlite.vehicle.elements import beam_stiffness, hex_stiffness, shell_stiffness
-from crashlite.vehicle.records import record
-from crashlite.vehicle.stiffness import longitudinal_stiffness, structure_stiffness
+from crashlite.vehicle.car.records import record
+from crashlite.vehicle.steps.cut import cut_behind
+from crashlite.vehicle.steps.elements import beam_stiffness, hex_stiffness, shell_stiffness
+from crashlite.vehicle.steps.stiffness import longitudinal_stiffness, structure_stiffness
 
 B, L, T = 50.0, 500.0, 1.5  # tube side (mid-line), length, wall [mm]
 

@@ -7,12 +7,12 @@ from _structures import NU, RHO, E, shell_model, tube_mesh
 from crashlite import read_deck
 from crashlite.model.mesh import Masses
 from crashlite.solver import run
-from crashlite.vehicle.cut import cut_behind
-from crashlite.vehicle.massprops import replaced_mass
-from crashlite.vehicle.records import id_list, record
-from crashlite.vehicle.stiffness import longitudinal_stiffness, structure_stiffness, transverse_stiffness
-from crashlite.vehicle.surrogate import build_surrogate
-from crashlite.vehicle.truncate import truncate
+from crashlite.vehicle.car.records import id_list, record
+from crashlite.vehicle.steps.cut import cut_behind
+from crashlite.vehicle.steps.massprops import replaced_mass
+from crashlite.vehicle.steps.stiffness import longitudinal_stiffness, structure_stiffness, transverse_stiffness
+from crashlite.vehicle.steps.surrogate import build_surrogate
+from crashlite.vehicle.steps.truncate import truncate
 
 B, L, T = 50.0, 500.0, 1.5  # tube side (mid-line), length, wall [mm]
 M_FRONT, M_REAR = 0.1, 0.1  # point masses at the front and rear ends [t]
@@ -181,7 +181,7 @@ def test_interface_proposal_finds_the_elastic_rear(tmp_path):
     ahead of x = 300 has εp = 0.1 − σy/E and the plastic work σy·εp·V, none
     behind; the proposal is the foremost candidate plane at or behind 300,
     and each candidate's replaced share is that of the elements behind it."""
-    from crashlite.vehicle.interface import propose_interface, shell_measures
+    from crashlite.vehicle.connection.interface import propose_interface, shell_measures
 
     m, _, _ = _tube(per_side=4, n_len=20, masses=False)
     m.materials[1] = record("MAT_PLASTIC_KINEMATIC", mid=1, ro=RHO, e=E, pr=NU, sigy=200.0, etan=0.0, beta=0.0)
@@ -219,7 +219,7 @@ def test_interface_proposal_reports_how_far_the_cut_bends(tmp_path):
     cuts a ring of nodes that bends κ(y² − mean) out of its rigid motion
     (the largest value and the rms over the ring), the planes ahead of it
     cut rings that only translate: no bending."""
-    from crashlite.vehicle.interface import propose_interface
+    from crashlite.vehicle.connection.interface import propose_interface
 
     m, _, _ = _tube(per_side=4, n_len=20, masses=False)
     x0 = m.nodes.xyz
@@ -251,7 +251,7 @@ def test_interface_proposal_takes_both_criteria():
     energy criterion); a ring that strains 2 % with almost no energy moves
     it behind that ring (the strain criterion, 1/12 of the area behind 300);
     relaxed criteria bring it back to 300."""
-    from crashlite.vehicle.interface import propose_interface
+    from crashlite.vehicle.connection.interface import propose_interface
 
     m, _, _ = _tube(per_side=4, n_len=20, masses=False)
     centre = m.nodes.xyz[m.shells.nodes].mean(axis=1)[:, 0]
@@ -294,7 +294,7 @@ def _two_tubes():
 
 
 def test_split_shares_of_disjoint_parts_add_up_to_the_whole():
-    from crashlite.vehicle.massprops import split_replaced
+    from crashlite.vehicle.steps.massprops import split_replaced
 
     m = _two_tubes()
     m.masses.node[:] = np.flatnonzero(np.isclose(m.nodes.xyz[:, 0], L / 4))[:len(m.masses.node)]  # behind the cut
@@ -315,7 +315,7 @@ def test_assembly_bodies_carry_their_own_share_of_the_interface_mass():
     replaced mass near the interface (as the bar lumping shares it), not
     only its cut ring's nodal masses; the total mass stays the full
     model's."""
-    from crashlite.vehicle.massprops import split_replaced
+    from crashlite.vehicle.steps.massprops import split_replaced
 
     m = _two_tubes()
     cut = cut_behind(m, x=L / 2)

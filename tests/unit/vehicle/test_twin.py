@@ -5,9 +5,9 @@ import pytest
 from _structures import RHO, shell_model, tube_mesh
 
 from crashlite import read_deck, write_deck
-from crashlite.vehicle.cut import cut_behind
-from crashlite.vehicle.records import id_list, record
-from crashlite.vehicle.twin import elastic_twin
+from crashlite.vehicle.car.records import id_list, record
+from crashlite.vehicle.connection.twin import elastic_twin
+from crashlite.vehicle.steps.cut import cut_behind
 
 
 @pytest.fixture

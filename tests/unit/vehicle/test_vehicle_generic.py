@@ -9,7 +9,7 @@ from scipy.sparse.csgraph import connected_components
 from crashlite import read_deck
 from crashlite.keyword.equality import model_differences
 from crashlite.vehicle import generic_vehicle
-from crashlite.vehicle.body import INTERFACE_ASSEMBLIES
+from crashlite.vehicle.car.body import INTERFACE_ASSEMBLIES
 
 COARSE = 38.0  # mm: about 20 k shells
 
@@ -126,7 +126,7 @@ def test_door_joints_are_weld_patches_across_the_gap(mesh):
     to the body node straight across the DOOR_GAP: a patch of the same
     height whatever the mesh (one welded pair would put the door's load
     into two elements)."""
-    from crashlite.vehicle import body
+    from crashlite.vehicle.car import body
 
     m = generic_vehicle(mesh).model
     w = m.find("CONSTRAINED_SPOTWELD")[0].rows

@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from crashlite.vehicle import body
-from crashlite.vehicle.lattice import Grid, Plate, Ruled, Tube, lattice_line, merge
+from crashlite.vehicle.car import body
+from crashlite.vehicle.car.lattice import Grid, Plate, Ruled, Tube, lattice_line, merge
 
 
 def _grid(size, *extra):

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from crashlite.vehicle.trim import solve
+from crashlite.vehicle.car.trim import solve
 
 
 def test_reaches_mass_and_cog_close_to_the_nominal_split():

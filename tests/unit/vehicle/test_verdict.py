@@ -2,7 +2,7 @@
 
 import pytest
 
-from crashlite.vehicle.verdict import intrusion_bound, verdict, verdict_lines
+from crashlite.vehicle.verify.verdict import intrusion_bound, verdict, verdict_lines
 
 
 def _figures(**kw):

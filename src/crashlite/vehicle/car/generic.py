@@ -17,7 +17,7 @@ mass and centre of gravity, and adds what the method needs, all by name:
   latches as patches of *CONSTRAINED_SPOTWELD pairs across the door gap.
 
 Units mm–t–s–N–MPa. No controls, walls or initial velocity: the load cases
-(``vehicle.loadcases``) include the car deck and add those.
+(``vehicle.car.loadcases``) include the car deck and add those.
 """
 
 from __future__ import annotations
@@ -27,8 +27,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.mesh import Masses, Nodes, Shells
-from ..model.model import Model
+from ...model.mesh import Masses, Nodes, Shells
+from ...model.model import Model
 from . import body, trim
 from .build import build_mesh
 from .materials import GRADES
@@ -59,7 +59,7 @@ class GenericVehicle:
         return len(self.model.shells)
 
     def write(self, path, fmt: str = "fixed") -> Path:
-        from ..keyword.writer import write_deck
+        from ...keyword.writer import write_deck
 
         return write_deck(self.model, path, fmt=fmt)[0]
 

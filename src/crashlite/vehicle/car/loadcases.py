@@ -29,8 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..keyword.writer import format_record
-from ..units import SYSTEMS, UnitSystem, kmh, system
+from ...keyword.writer import format_record
+from ...units import SYSTEMS, UnitSystem, kmh, system
 from .records import record
 
 
@@ -57,7 +57,7 @@ class VehicleInfo:
 def vehicle_info(path, units: str | None = None) -> VehicleInfo:
     """Read a vehicle deck for a load case; ``units`` overrides the guess
     from its densities."""
-    from .. import read_deck
+    from ... import read_deck
 
     m = read_deck(path)
     if not len(m.nodes):
@@ -184,8 +184,8 @@ def odb_deck(car, out, barrier: str = "simplified", speed_kmh: float = 64.0, ove
     ``erode_dtmin`` x their first step, or turned inside out, are deleted
     (ERODE = 1, DTMIN), as honeycomb barrier models are run: crushed solid
     under a rail's edge they would otherwise stop the run (0: keep them)."""
-    from ..barrier import offset_placement, simplified_barrier
-    from ..barrier.detailed import detailed_barrier
+    from ...barrier import offset_placement, simplified_barrier
+    from ...barrier.detailed import detailed_barrier
 
     car, out = Path(car), Path(out)
     v = vehicle_info(car, units)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..keyword.schema import FLOAT, INT, STR, Record, lookup
+from ...keyword.schema import FLOAT, INT, STR, Record, lookup
 
 
 def _row_default(f):

@@ -34,12 +34,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .cut import Cut
-from .massprops import node_indices
+from ..steps.cut import Cut
+from ..steps.massprops import node_indices
+from ..steps.relief import _support_321, static_masses
+from ..steps.statics import factor as _factor
+from ..steps.stiffness import build_static
 from .modes import _eigen
-from .relief import _support_321, static_masses
-from .statics import factor as _factor
-from .stiffness import build_static
 
 
 def rigid_modes(r: np.ndarray, c: np.ndarray) -> np.ndarray:

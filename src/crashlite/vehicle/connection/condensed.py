@@ -37,14 +37,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model import mass as mk
-from ..model.mesh import Discretes, Masses, Nodes
+from ...model import mass as mk
+from ...model.mesh import Discretes, Masses, Nodes
+from ..car.records import id_list, record
+from ..steps.cut import Cut
+from ..steps.massprops import ReplacedMass
+from ..steps.surrogate import Surrogate, _Ids, _whole_vehicle_sets, kept_front
 from .condense import Condensation, rigid_modes
-from .cut import Cut
 from .impedance import axial_impedance
-from .massprops import ReplacedMass
-from .records import id_list, record
-from .surrogate import Surrogate, _Ids, _whole_vehicle_sets, kept_front
 
 ANCHOR = 300.0  # [length] distance of the rear body's four anchor nodes from its CoG
 DASHPOT_ARM = 100.0  # [length] a cut dashpot's rear end: this far behind its cut node, on the rear body
@@ -74,7 +74,7 @@ class CondensedSurrogate(Surrogate):
     matrix: tuple | None = None  # (dofs (k, 2) [node ID, component], K)
 
     def write(self, path, fmt: str = "fixed") -> Path:
-        from ..keyword.dmig import write_dmig
+        from ...keyword.dmig import write_dmig
 
         path = Path(path)
         name = path.stem + ".dmig"

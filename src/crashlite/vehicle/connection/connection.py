@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .stiffness import vehicle_axes
+from ..steps.stiffness import vehicle_axes
 
 DIRECTIONS = ("axial", "lateral", "vertical", "roll", "pitch", "yaw")
 

@@ -30,8 +30,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from .cut import Cut
-from .stiffness import _elastic, _material, _shell_thickness
+from ..steps.cut import Cut
+from ..steps.stiffness import _elastic, _material, _shell_thickness
 
 
 def axial_impedance(cut: Cut, nodes: np.ndarray) -> np.ndarray:

@@ -45,7 +45,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.model import Model
+from ...model.model import Model
 
 _EDGES = ((0, 1), (1, 2), (2, 3), (3, 0), (0, 2), (1, 3))
 
@@ -103,7 +103,7 @@ def _shell_material(model: Model) -> tuple[np.ndarray, np.ndarray]:
 def _aligned_states(model: Model, results) -> np.ndarray | None:
     """(m, n_nodes, 3) field states of ``results`` in the deck's node order
     (nodes matched by ID), the first the initial one; None without states."""
-    from ..verify.fields import load_states
+    from ...verify.fields import load_states
 
     st = load_states(results, model) if results is not None else None
     if st is None:
@@ -137,7 +137,7 @@ def _shell_field(model: Model, results, name: str) -> np.ndarray | None:
         if name not in z.files or "shell_ids" not in z.files or not len(z["shell_ids"]):
             return None
         ids, values = z["shell_ids"], z[name]
-    from ..model.mesh import index_map
+    from ...model.mesh import index_map
 
     k = index_map(ids)(model.shells.ids)
     return np.where(k >= 0, values[np.maximum(k, 0)], 0.0)
@@ -152,7 +152,7 @@ def shell_plastic_strain(model: Model, results) -> np.ndarray | None:
 
 def shell_areas(model: Model) -> np.ndarray:
     """(n_shells,) initial area of every shell (degenerate quads as triangles)."""
-    from ..solver.shells import element_areas
+    from ...solver.shells import element_areas
 
     conn = model.shells.nodes.astype(np.int64)
     return element_areas(model.nodes.xyz, conn, (conn[:, 3] == conn[:, 2]).astype(np.int8))
@@ -160,7 +160,7 @@ def shell_areas(model: Model) -> np.ndarray:
 
 def shell_volumes(model: Model) -> np.ndarray:
     """(n_shells,) initial area x section thickness of every shell."""
-    from ..solver.tied import shell_thickness
+    from ...solver.tied import shell_thickness
 
     return shell_areas(model) * shell_thickness(model)
 
@@ -189,8 +189,8 @@ def propose_interface(model: Model, results, strain: float = 0.01, allowed: floa
     ``also`` (e.g. the interface in use); the proposal (module docstring).
     ``measures``: (plastic strain, absorbed energy) per shell instead of
     reading them from ``results``."""
-    from .cut import cut_behind
-    from .massprops import element_moments, replaced_mass
+    from ..steps.cut import cut_behind
+    from ..steps.massprops import element_moments, replaced_mass
     from .rigidfit import warping_history
 
     a = np.asarray(axis, float)

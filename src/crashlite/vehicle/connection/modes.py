@@ -29,10 +29,10 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import eigsh
 
+from ..steps.cut import Cut
+from ..steps.relief import static_masses
+from ..steps.stiffness import build_static
 from .connection import DIRECTIONS, vehicle_frame
-from .cut import Cut
-from .relief import static_masses
-from .stiffness import build_static
 
 
 @dataclass

@@ -32,11 +32,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..keyword.references import head_references
-from ..keyword.schema import Record
-from ..model.model import Model
-from .cut import Cut
-from .records import id_list, record
+from ...keyword.references import head_references
+from ...keyword.schema import Record
+from ...model.model import Model
+from ..car.records import id_list, record
+from ..steps.cut import Cut
 
 PLASTIC = ("MAT_PLASTIC_KINEMATIC", "MAT_PIECEWISE_LINEAR_PLASTICITY")
 _TABLES = ("shells", "solids")
@@ -132,7 +132,7 @@ def _extend_part_sets(m: Model, full: Model, split: dict) -> None:
 def _share_part_masses(m: Model, full: Model, split: dict) -> None:
     """*ELEMENT_MASS_PART rows naming a split part: ADDMASS and FINMASS
     shared between the part and its twin part by their element mass."""
-    from .massprops import element_moments
+    from ..steps.massprops import element_moments
 
     recs = [r for r in full.keywords if isinstance(r, Record) and r.keyword == "ELEMENT_MASS_PART"
             and "SET" not in r.options and np.isin(r.rows["pid"], list(split)).any()]

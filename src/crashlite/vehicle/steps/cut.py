@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..model.model import Model
+from ...model.model import Model
 
 ELEMENT_TABLES = ("shells", "solids", "beams", "discretes")
 

@@ -163,7 +163,7 @@ def from_history(history, sections=None, axis=(1.0, 0.0, 0.0), normals=None, loa
     t_end     ignore states after this time [time] (e.g. the rebound)
     """
     if not hasattr(history, "read"):
-        from ..results import load
+        from ...results import load
 
         history = load(history)
     t = np.asarray(history.read("secforc", "time"), float)
@@ -204,7 +204,7 @@ def from_run(results, deck=None, sections=None, axis=(1.0, 0.0, 0.0), load_case:
     normals = None
     if deck is not None:
         if isinstance(deck, (str, Path)):
-            from ..keyword.reader import read_deck
+            from ...keyword.reader import read_deck
 
             deck = read_deck(deck)
         found = deck_sections(deck)
@@ -248,7 +248,7 @@ def _unit(v, name: str) -> np.ndarray:
 
 def _curves(lp: LoadPaths, data: np.ndarray, ylabel: str, title: str, time_scale: float, time_unit: str,
             scale: float) -> bytes:
-    from ..report.plots import _pyplot, png
+    from ...report.plots import _pyplot, png
 
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(6.4, 3.6))
@@ -283,7 +283,7 @@ def plot_impulses(lp: LoadPaths, time_scale: float = 1e3, time_unit: str = "ms",
 def plot_shares(paths) -> bytes:
     """Figure 12: load-path shares [%] per assembly, one bar per load case
     (a LoadPaths or a list of them), PNG bytes."""
-    from ..report.plots import _pyplot, png
+    from ...report.plots import _pyplot, png
 
     paths = [paths] if isinstance(paths, LoadPaths) else list(paths)
     names = []

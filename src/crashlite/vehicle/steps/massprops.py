@@ -21,9 +21,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..model import mass as mk
-from ..model.mass import MassProperties
-from ..model.properties import section_area
+from ...model import mass as mk
+from ...model.mass import MassProperties
+from ...model.properties import section_area
 from .cut import Cut
 
 

@@ -38,11 +38,17 @@ import itertools
 
 import numpy as np
 
-from ..model import mass as mk
+from ...model import mass as mk
 from .cut import Cut
 from .massprops import _given_inertia, element_moments, node_indices
-from .stiffness import (StiffnessResult, build_static, solve_named, transverse_loads, transverse_stiffnesses,
-                        vehicle_axes)
+from .stiffness import (
+    StiffnessResult,
+    build_static,
+    solve_named,
+    transverse_loads,
+    transverse_stiffnesses,
+    vehicle_axes,
+)
 
 _NODES = {"shells": lambda t: t.nodes, "solids": lambda t: t.nodes, "beams": lambda t: t.nodes[:, :2]}
 

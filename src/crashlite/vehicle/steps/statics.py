@@ -1,6 +1,6 @@
 """Linear static finite-element solve with rigid links (step 3's engine).
 
-``LinearStatic`` collects element stiffness blocks (``vehicle.elements``)
+``LinearStatic`` collects element stiffness blocks (``vehicle.steps.elements``)
 on the nodes of a model, rigid groups (nodes moving with a master node:
 u_s = u_m + θ_m × (x_s − x_m), θ_s = θ_m), fixed degrees of freedom and
 nodal loads, and solves K u = f:

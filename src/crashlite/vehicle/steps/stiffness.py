@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..model.model import Model
+from ...model.model import Model
 from . import elements as el
 from .cut import ELEMENT_TABLES, Cut, rigid_part_ids
 from .massprops import node_indices
@@ -115,7 +115,7 @@ def build_static(model: Model, select: dict | None = None, drill: float = 1e-3) 
     """A LinearStatic of the selected elements of ``model`` (table name ->
     bool mask or index array; None: every element) with its rigid links.
     Returns (problem, element counts, notes)."""
-    from ..solver.beams import _frames, _properties
+    from ...solver.beams import _frames, _properties
 
     notes: list = []
     sel = {}

@@ -45,12 +45,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.mesh import Beams, Discretes, Inertias, Nodes
-from ..model.model import Model
-from ..model.sets import history_nodes
+from ...model.mesh import Beams, Discretes, Inertias, Nodes
+from ...model.model import Model
+from ...model.sets import history_nodes
+from ..car.records import id_list, record
 from .cut import ELEMENT_TABLES, Cut
 from .massprops import ReplacedMass, element_moments, split_replaced
-from .records import id_list, record
 from .truncate import Truncated, truncate
 
 STEEL_E, STEEL_NU, STEEL_RHO = 210000.0, 0.3, 7.85e-9  # MPa, -, t/mm³ (mm–t–s)
@@ -89,7 +89,7 @@ class Surrogate:
     mass_shares: dict = field(default_factory=dict)  # "interface", "rear body" -> MassProperties
 
     def write(self, path, fmt: str = "fixed") -> Path:
-        from ..keyword.writer import write_deck
+        from ...keyword.writer import write_deck
 
         return write_deck(self.model, path, fmt=fmt)[0]
 

@@ -28,11 +28,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..keyword.references import head_references
-from ..keyword.schema import INT, Record
-from ..model.model import Model
+from ...keyword.references import head_references
+from ...keyword.schema import INT, Record
+from ...model.model import Model
+from ..car.records import id_list
 from .cut import ELEMENT_TABLES, Cut
-from .records import id_list
 
 _MEMBER_REF = {"NODE": "node", "PART": "part", "SHELL": "shell", "SOLID": "solid", "BEAM": "beam",
                "DISCRETE": "discrete"}

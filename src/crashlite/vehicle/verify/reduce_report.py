@@ -3,9 +3,9 @@
 
 from __future__ import annotations
 
-from ..report.html import Raw, esc, image, num, page, table
-from . import loadpaths as lp
-from .connection import DIRECTIONS
+from ...report.html import Raw, esc, image, num, page, table
+from ..connection.connection import DIRECTIONS
+from ..steps import loadpaths as lp
 
 
 def reduction_page(r) -> str:

@@ -5,8 +5,8 @@ their pages and to the reduction page."""
 
 from __future__ import annotations
 
-from ..report.html import esc, image, num, page, table
-from ..report.plots import _pyplot, png
+from ...report.html import esc, image, num, page, table
+from ...report.plots import _pyplot, png
 from .verification import split_text
 
 

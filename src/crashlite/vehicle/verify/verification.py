@@ -35,14 +35,14 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.model import Model
-from ..verify.curves import make_pair, relative_percent
-from ..verify.errors import CompareError
-from ..verify.fields import load_states
-from ..verify.filters import filter_signal
-from ..verify.timing import reduction, run_info
-from .massprops import node_indices
-from .rigidfit import rearward_in_frame, warping
+from ...model.model import Model
+from ...verify.curves import make_pair, relative_percent
+from ...verify.errors import CompareError
+from ...verify.fields import load_states
+from ...verify.filters import filter_signal
+from ...verify.timing import reduction, run_info
+from ..connection.rigidfit import rearward_in_frame, warping
+from ..steps.massprops import node_indices
 from .verdict import intrusion_bound, verdict
 
 FLAT = 0.02  # an energy curve varying less than this share of its magnitude (the total) is not rated
@@ -63,7 +63,7 @@ class VehicleVerification:
 
     def write(self, directory) -> dict:
         """summary.json and index.html in ``directory``."""
-        from ..report.build import jsonable
+        from ...report.build import jsonable
         from .verification_report import verification_page
 
         out = Path(directory)
@@ -77,7 +77,7 @@ class VehicleVerification:
 def _model(deck) -> Model | None:
     if deck is None or isinstance(deck, Model):
         return deck
-    from ..keyword.reader import read_deck
+    from ...keyword.reader import read_deck
 
     return read_deck(deck)
 
@@ -252,7 +252,7 @@ def _twin_split(full, simplified, twin, decks, twin_deck, figures: dict, crash_b
     elastic twin's run: full vs twin (what the elastic premise costs at this
     interface; no elastic surrogate comes closer) and twin vs simplified
     (the surrogate's own), relative to the same full-model figures."""
-    from ..results import load
+    from ...results import load
 
     if twin_deck is None:
         raise CompareError("the elastic twin's deck is needed with its results")
@@ -312,10 +312,10 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
     measured in (the reference node alone where a deck lacks them: then the
     cell's rotation counts as intrusion, and a note says so). ``twin``,
     ``twin_deck``: a run of the full model's elastic twin
-    (``vehicle.twin``) in the same load case: the crash-box energy and
+    (``vehicle.connection.twin``) in the same load case: the crash-box energy and
     intrusion deviations split into the premise's (full vs twin) and the
     surrogate's (twin vs simplified), under ``elastic_twin``."""
-    from ..results import load
+    from ...results import load
 
     decks = (_model(full_deck), _model(simplified_deck))
     hist = (load(full), load(simplified))

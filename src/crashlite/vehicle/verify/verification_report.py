@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from ..report.html import esc, image, num, page, table
-from ..report.plots import _pyplot, pair_plot, png
+from ...report.html import esc, image, num, page, table
+from ...report.plots import _pyplot, pair_plot, png
 
 
 def intrusion_plot(intr: dict, names: tuple) -> bytes:
