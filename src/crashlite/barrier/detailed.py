@@ -22,7 +22,7 @@ import numpy as np
 
 from ..units import SYSTEMS, UnitSystem
 from .simplified import Placement, SimplifiedBarrier, _Deck
-from .spec import Block, ODBSpec
+from .spec import COMPACTED_MODULUS, Block, ODBSpec
 
 
 def _segments(bounds: list[float], size: float) -> np.ndarray:
@@ -69,7 +69,7 @@ def _honeycomb(dk: _Deck, mid: int, lcid: int, b: Block, u: UnitSystem, d: int, 
 
 def detailed_barrier(spec: ODBSpec | None = None, placement: Placement | None = None, element_size: float = 20.0,
                      id_offset: int = 0, units: UnitSystem | None = None, bumper: bool = True,
-                     compacted_modulus: float = 1000.0, lateral: float = 0.05, shear_modulus: float = 1.0,
+                     compacted_modulus: float = COMPACTED_MODULUS, lateral: float = 0.05, shear_modulus: float = 1.0,
                      shear_strength: float = 0.5, shear_failure: float = 1.5, cladding: bool = False,
                      title: str = "detailed ODB") -> SimplifiedBarrier:
     """Solid honeycomb barrier (mm–t–s spec, written in ``units``):

@@ -7,7 +7,7 @@ front to the block front, main-block beams join the block front to the
 back, one beam per grid node; the grid rows of the block include the
 bumper's rows, so both share the nodes of the middle sheet. Each beam is an
 inelastic spring (*MAT_SPRING_INELASTIC, compression only, elastic
-unloading) on its block's whole force–crush curve, scaled by its tributary
+unloading along the compacted honeycomb's stiffness) on its block's whole force–crush curve, scaled by its tributary
 share of the block face (ELEMENT_DISCRETE S). Cladding shells on the two
 front planes carry contact and allow local intrusion; every cladding node
 moves axially only; the back nodes are held (the fixed rigid wall of the
@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from ..units import SYSTEMS, UnitSystem
-from .spec import Block, ODBSpec
+from .spec import COMPACTED_MODULUS, Block, ODBSpec
 
 
 @dataclass(frozen=True)
@@ -185,7 +185,11 @@ def simplified_barrier(spec: ODBSpec | None = None, placement: Placement | None 
         dk.kw("PART", [f"{title} {key}"], [pid[key], pid[key], pid[key]])
         dk.kw("SECTION_DISCRETE", [pid[key], 0])
         cx, cf = b.curve.points(b.depth)
-        ku = float(np.max(np.diff(cf) / np.diff(cx))) * F / L  # unloading as steep as the steepest loading
+        # unloading along the compacted honeycomb's stiffness (E_c·A over the depth left at full compaction),
+        # or the steepest loading if steeper: a column a rail has bottomed out gives back F²/2KU, a few J
+        # (with the loading slope it was ~100 J per beam, which threw its light nodes back at the car)
+        k_compacted = COMPACTED_MODULUS * b.area / ((1.0 - b.curve.full) * b.depth)
+        ku = max(float(np.max(np.diff(cf) / np.diff(cx))), k_compacted) * F / L
         dk.kw("MAT_SPRING_INELASTIC", [pid[key], cid[key], ku, 1])
         pts = [(-x * L, -f * F) for x, f in zip(cx[::-1], cf[::-1])] + [(b.depth * L, 0.0)]
         dk.kw("DEFINE_CURVE", [cid[key]], *pts)

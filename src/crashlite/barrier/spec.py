@@ -17,6 +17,13 @@ import numpy as np
 from ..units import UnitSystem
 
 
+# Young's modulus of fully compacted honeycomb [MPa]: the detailed barrier's
+# MAT_026 E past full compaction and the simplified barrier's unloading
+# stiffness, so that both give back as little of a compacted column's
+# force as each other when a rail that bottomed it out draws back.
+COMPACTED_MODULUS = 1000.0
+
+
 @dataclass(frozen=True)
 class BlockCurve:
     """Force–crush characteristic of a whole honeycomb block (crush positive).

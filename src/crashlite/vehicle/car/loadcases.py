@@ -171,6 +171,25 @@ def usncap_deck(car, out, speed_kmh: float = 56.0, end_time: float = 0.1, gap: f
     return out
 
 
+def _rig_wall(v: VehicleInfo, pl, nodes: int):
+    """The test rig's rigid block behind the barrier (R94 Annex 9: the
+    barrier is fixed to the face of a block of at least 70 t): a finite
+    planar wall over the main block's back face, facing the vehicle, for
+    the vehicle's nodes. Without it a rail that has crushed the honeycomb
+    under it runs on through the barrier's back plane, which nothing holds
+    (the barrier's back nodes are held, not its area)."""
+    from ...barrier.spec import ODBSpec
+
+    spec, u = ODBSpec(), v.units
+    L = u.length
+    xb = (pl.x_face + pl.direction * spec.depth) * L
+    y0, z0 = pl.y_min * L, (pl.z_ground + spec.main.z_low) * L
+    # edge l up (+z), m = n x l across (+y) for the normal -x: the rectangle covers the block's face
+    return record("RIGIDWALL_PLANAR_FINITE_ID", rwid=v.id_offset + 1, heading="ODB test rig: rigid block",
+                  nsid=nodes, xt=xb, yt=y0, zt=z0, xh=xb - pl.direction * L, yh=y0, zh=z0,
+                  xhev=xb, yhev=y0, zhev=z0 + L, lenl=spec.main.height * L, lenm=spec.main.width * L)
+
+
 def odb_deck(car, out, barrier: str = "simplified", speed_kmh: float = 64.0, overlap: float = 0.4,
              side: str = "left", end_time: float = 0.12, gap: float = 1.0, ground: float = 0.0,
              output_dt: float = 1e-4, units: str | None = None, element_size: float = 20.0,
@@ -179,7 +198,8 @@ def odb_deck(car, out, barrier: str = "simplified", speed_kmh: float = 64.0, ove
     and the barrier to ``<out stem>_barrier<suffix>`` beside it:
     ``barrier`` "simplified" (discrete beams) or "detailed" (honeycomb
     solids of ``element_size`` mm), ``overlap`` of the vehicle width on
-    ``side`` (the driver's), face ``gap`` mm ahead of the vehicle. With the
+    ``side`` (the driver's), face ``gap`` mm ahead of the vehicle, and the
+    test rig's rigid block behind it (``_rig_wall``). With the
     detailed barrier, honeycomb elements crushed to a step below
     ``erode_dtmin`` x their first step, or turned inside out, are deleted
     (ERODE = 1, DTMIN), as honeycomb barrier models are run: crushed solid
@@ -208,6 +228,7 @@ def odb_deck(car, out, barrier: str = "simplified", speed_kmh: float = 64.0, ove
     recs.insert(3, record("CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID", cid=v.id_offset + 1,
                           heading="vehicle to barrier", ssid=parts, sstyp=2, msid=b.set_ids["parts"], mstyp=2,
                           fs=0.3, fd=0.3, soft=1))  # soft constraint: the barrier's faces are far softer than steel
+    recs.insert(4, _rig_wall(v, pl, nodes))
     title = f"Euro NCAP ODB {overlap * 100:g} % {side} {speed_kmh:g} km/h ({barrier} barrier)"
     text = _deck(title, [_include_name(car, out), bpath.name], recs)
     out.write_text(text)
