@@ -16,7 +16,6 @@ import numpy as np
 
 from ..units import UnitSystem
 
-
 # Young's modulus of fully compacted honeycomb [MPa]: the detailed barrier's
 # MAT_026 E past full compaction and the simplified barrier's unloading
 # stiffness, so that both give back as little of a compacted column's
