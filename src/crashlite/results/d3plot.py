@@ -227,3 +227,33 @@ def write(path, model, times: np.ndarray, coords: np.ndarray, fields: list, ener
     path.parent.mkdir(parents=True, exist_ok=True)
     d.write_d3plot(str(path))
     return path
+
+
+# --- reading -----------------------------------------------------------------------------------------------
+
+
+def read_states(path) -> tuple | None:
+    """(times (n_f,), coordinates (n_f, n_nodes, 3), node IDs (n_nodes,),
+    shell and solid connectivity rows (0-based node indices)) of an
+    LS-DYNA d3plot family (``path`` the d3plot or its folder), read
+    through lasso-python; None where there is no d3plot. Raises
+    ImportError without lasso-python."""
+    p = Path(path)
+    first = p / "d3plot" if p.is_dir() else p
+    if not first.is_file():
+        return None
+    lib = lasso()
+    if lib is None:
+        raise ImportError(MISSING)
+    D3plot, ArrayType = lib
+    d = D3plot(str(first))
+    arr = d.arrays
+    t = np.asarray(arr[ArrayType.global_timesteps], float)
+    x = np.asarray(arr[ArrayType.node_displacement], float)  # d3plot's "displacement" is the coordinates
+    ids = np.asarray(arr[ArrayType.node_ids], np.int64)
+    cells = []
+    for key in (ArrayType.element_shell_node_indexes, ArrayType.element_solid_node_indexes):
+        if key in arr:
+            # a triangle or degenerate solid repeats nodes: keep each once, in order
+            cells += [np.array(list(dict.fromkeys(r.tolist())), np.int64) for r in np.asarray(arr[key], np.int64)]
+    return t, x, ids, cells

@@ -46,11 +46,13 @@ def load_states(path, deck=None) -> FieldStates | None:
     """Field states of a crashlite results folder (``states_time``,
     ``states_x`` of results.npz; cells from its states/ VTK files); node IDs
     from results.npz (``node_ids``) or, when absent, from ``deck`` (path or
-    Model) with as many nodes. None when the run wrote no field states."""
+    Model) with as many nodes. A folder without results.npz but with an
+    LS-DYNA d3plot (an LS-DYNA run): its states through lasso-python. None
+    when the run wrote no field states."""
     p = Path(path)
     npz = p / "results.npz" if p.is_dir() else p
     if not npz.is_file():
-        return None
+        return _d3plot_states(p)
     with np.load(npz) as z:
         if "states_time" not in z.files or len(z["states_time"]) == 0:
             return None
@@ -67,6 +69,19 @@ def load_states(path, deck=None) -> FieldStates | None:
     vtk = (npz.parent / "states" / "state_0000.vtk")
     cells = read_cells(vtk) if vtk.is_file() else []
     return FieldStates(t, x, ids, cells, str(p))
+
+
+def _d3plot_states(p: Path) -> FieldStates | None:
+    """Field states of an LS-DYNA d3plot family (LS-DYNA's run, or a
+    crashlite run kept without its results.npz), through lasso-python."""
+    from ..results.d3plot import read_states
+
+    if not ((p / "d3plot").is_file() if p.is_dir() else p.name == "d3plot" and p.is_file()):
+        return None
+    t, x, ids, cells = read_states(p)
+    if len(t) == 0:
+        return None
+    return FieldStates(t, x, ids, cells, f"{p} (d3plot)")
 
 
 def history_states(history, deck=None) -> FieldStates | None:

@@ -13,6 +13,7 @@ cycles, about a second a run.
 import json
 import re
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -221,3 +222,42 @@ def test_the_output_folder_takes_the_d3plot_files_for_the_run_s_own(tmp_path, ca
     assert "d3plot07" in capsys.readouterr().err and (out / "d3plot07").read_bytes() == b"LS-DYNA's"
     assert main(["run", deck, "-o", str(out), "--quiet", "--force"]) == 0
     assert not (out / "d3plot07").exists()
+
+
+def test_field_states_of_a_run_kept_as_d3plot_only(tmp_path):
+    """A run folder with a d3plot and no results.npz (as LS-DYNA's) gives
+    its field states through the d3plot: the states crashlite saved, to
+    single precision, with the deck's node IDs and the shells as cells."""
+    from crashlite.verify.fields import load_states
+
+    deck = _strip(tmp_path)
+    out = tmp_path / "run"
+    run(deck, out=out)
+    full = load_states(out)
+    (out / "results.npz").unlink()
+    st = load_states(out)
+    assert st is not None and st.source.endswith("(d3plot)")
+    assert st.ids.tolist() == read_deck(deck).nodes.ids.tolist()
+    np.testing.assert_allclose(st.time, full.time, rtol=1e-6)
+    _close(st.x, full.x)
+    assert np.ptp(st.x[:, :, 0], axis=0).max() > 0.1  # the strip moved
+    assert [c.tolist() for c in st.cells] == read_deck(deck).shells.nodes.tolist()
+
+
+def test_field_states_of_an_lsdyna_d3plot():
+    """LS-DYNA R12.2.1's d3plot of lasso-python's SPH test model
+    (tests/data/lsdyna_r12_sph): states every DT = 0.004 of its
+    *DATABASE_BINARY_D3PLOT, first-state coordinates those of its *NODE
+    cards."""
+    from crashlite.verify.fields import load_states
+
+    folder = Path(__file__).parents[2] / "data" / "lsdyna_r12_sph"
+    st = load_states(folder)
+    assert len(st.time) == 10 and st.time[0] == 0.0
+    np.testing.assert_allclose(np.diff(st.time[:9]), 0.004, rtol=0.01)
+    deck = {int(ln.split()[0]): [float(v) for v in ln.split()[1:4]]
+            for ln in (folder / "sph_test.k").read_text().split("*NODE")[1].split("*")[0].splitlines()[2:]
+            if ln.strip()}
+    k = [list(st.ids).index(i) for i in deck]
+    np.testing.assert_allclose(st.x[0, k], np.array(list(deck.values())), rtol=1e-6, atol=1e-6)
+    assert np.abs(st.x[-1] - st.x[0]).max() > 0.1  # the particles moved
