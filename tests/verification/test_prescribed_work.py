@@ -56,6 +56,7 @@ def test_displacement_ramp_work_is_half_k_x_squared(tmp_path, m2):
     expected = 0.5 * K * u[ramp] ** 2 + 0.5 * m2 * (X / T) ** 2
     np.testing.assert_allclose(r.external[ramp], expected, rtol=2e-3, atol=1e-6 * 0.5 * K * X**2)
     assert np.all(np.abs(r.energy_ratio[1:] - 1.0) < 2e-3)
+    assert r.energy_ratio[0] == 1.0  # at rest, nothing supplied yet: 1, as LS-DYNA's glstat
 
 
 def test_velocity_and_acceleration_prescriptions_book_the_same_work(tmp_path):

@@ -97,11 +97,13 @@ class Results:
     @property
     def energy_ratio(self) -> np.ndarray:
         """(n_states,) total / (initial total + external work): 1 when
-        energy is conserved."""
+        energy is conserved; 1 while a model that starts at rest has neither
+        (LS-DYNA's glstat does the same)."""
         if len(self.time) == 0:
             return np.zeros(0)
         supplied = self.total[0] + self.external
-        return self.total / np.where(supplied != 0, supplied, 1.0)
+        ratio = self.total / np.where(supplied != 0, supplied, 1.0)
+        return np.where((supplied == 0) & (self.total == 0), 1.0, ratio)
 
     def save(self, directory, title: str | None = None) -> Path:
         """results.npz (every array, full precision) and the LS-DYNA ASCII
