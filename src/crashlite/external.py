@@ -43,6 +43,7 @@ import subprocess
 import time
 import tomllib
 from collections import deque
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -112,7 +113,7 @@ class SolverSettings:
 
 # --- configuration ------------------------------------------------------------
 
-def config_file(environ=None) -> Path | None:
+def config_file(environ: Mapping[str, str] | None = None) -> Path | None:
     """The solvers file: $CRASHLITE_SOLVERS (which must exist), else
     ~/.config/crashlite/solvers.toml (or under $XDG_CONFIG_HOME) if present."""
     env = os.environ if environ is None else environ
@@ -190,7 +191,8 @@ def _program(value: str, where: str) -> str:
     return found
 
 
-def settings(solver: str = "lsdyna", environ=None, path=None) -> SolverSettings:
+def settings(solver: str = "lsdyna", environ: Mapping[str, str] | None = None,
+             path: Path | str | None = None) -> SolverSettings:
     """The settings of ``solver`` from the environment (first) and the
     solvers file; ExternalSolverError names the variable or key at fault."""
     if solver not in SOLVERS:
@@ -296,7 +298,7 @@ def command_lines(s: SolverSettings, deck: str) -> list[list[str]]:
     return [c for c in out if c]
 
 
-def normal_termination(folder, s: SolverSettings, stem: str = "") -> tuple[str | None, str]:
+def normal_termination(folder: Path | str, s: SolverSettings, stem: str = "") -> tuple[str | None, str]:
     """(file that reports a normal termination or None, what was found
     instead), from the end of the solver's listing files."""
     folder = Path(folder)
@@ -325,7 +327,7 @@ def _tail_text(path: Path, size: int = 1 << 16) -> str:
 
 # --- the deck ---------------------------------------------------------------------
 
-def deck_files(deck) -> list[Path]:
+def deck_files(deck: Path | str) -> list[Path]:
     """The deck and the include files it names (as crashlite's reader finds them)."""
     from .keyword.errors import Collector
     from .keyword.lexer import Lexer
@@ -448,8 +450,8 @@ def _prepare(folder: Path, s: SolverSettings, stem: str, previous: dict | None, 
     return removed
 
 
-def run(deck, out, solver: str = "lsdyna", *, config: SolverSettings | None = None, force: bool = False,
-        echo=None) -> ExternalRun:
+def run(deck: Path | str, out: Path | str, solver: str = "lsdyna", *, config: SolverSettings | None = None,
+        force: bool = False, echo: Callable[[str], None] | None = None) -> ExternalRun:
     """Run ``deck`` unchanged in the external ``solver`` with ``out`` as its
     working directory; ``echo(line)`` gets the solver's output lines as they
     come. Raises ExternalSolverError (not configured, cannot start, non-zero

@@ -19,8 +19,10 @@ from __future__ import annotations
 
 import json
 import time
+from collections.abc import Iterable
 from dataclasses import asdict, dataclass, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -28,13 +30,16 @@ from .loadcases import Impactor
 from .simplified import simplified_barrier
 from .spec import ODBSpec
 
+if TYPE_CHECKING:
+    from .cases import Case
+
 # (name, lower, upper) of each multiplier on the starting curves
 PARAMETERS = (("main block plateau", 0.6, 1.6), ("main block compaction onset", 0.8, 1.15),
               ("main block densified force", 0.25, 4.0), ("bumper plateau", 0.4, 2.0),
               ("bumper peak", 0.4, 2.0))
 
 
-def adjusted(spec: ODBSpec, x) -> ODBSpec:
+def adjusted(spec: ODBSpec, x: Iterable[float]) -> ODBSpec:
     """``spec`` with its curves scaled by the multipliers ``x`` (order of
     PARAMETERS, each clipped to its bounds)."""
     m = [float(np.clip(v, lo, hi)) for v, (_, lo, hi) in zip(x, PARAMETERS)]
@@ -66,7 +71,7 @@ class Calibration:
                 "misfit_start": self.misfit_start, "misfit": self.misfit,
                 "curves": {b.name: asdict(b.curve) for b in (self.spec.main, self.spec.bumper)}}
 
-    def write_curves(self, path) -> Path:
+    def write_curves(self, path: Path | str) -> Path:
         """curves.json in the format of ``characterise.read_curves``."""
         p = Path(path)
         p.parent.mkdir(parents=True, exist_ok=True)
@@ -77,7 +82,7 @@ class Calibration:
         return p
 
 
-def misfit(reference, case, until: float) -> float:
+def misfit(reference: Case, case: Case, until: float) -> float:
     """RMS difference of the CFC 60 impactor forces over [0, until], both
     cut there before filtering, relative to the reference's mean force."""
     from .cases import rated_force
@@ -88,7 +93,7 @@ def misfit(reference, case, until: float) -> float:
     return float(np.sqrt(np.mean((f - f_ref) ** 2)) / np.mean(np.abs(f_ref)))
 
 
-def calibrate_curves(reference, spec: ODBSpec, impactor: Impactor, end_time: float, directory,
+def calibrate_curves(reference: Case, spec: ODBSpec, impactor: Impactor, end_time: float, directory: Path | str,
                      max_runs: int = 80, progress: bool = False) -> Calibration:
     """Adjust ``spec``'s curves so that the simplified barrier under
     ``impactor`` at the reference case's overlap matches ``reference`` (a

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from .loadcases import Impactor, write_impactor_case
-from .simplified import Placement
+from .simplified import Placement, SimplifiedBarrier
 from .spec import ODBSpec
 
 CFC = 60.0
@@ -66,8 +66,8 @@ def _counts(deck: Path) -> dict:
     return n
 
 
-def run_case(name: str, overlap: float, folder: Path, barrier, spec: ODBSpec, impactor: Impactor, end_time: float,
-             progress: bool = False, counts: bool = True, save: bool = True) -> Case:
+def run_case(name: str, overlap: float, folder: Path, barrier: SimplifiedBarrier, spec: ODBSpec, impactor: Impactor,
+             end_time: float, progress: bool = False, counts: bool = True, save: bool = True) -> Case:
     """Write and run one barrier under the impactor at ``overlap``;
     ``save``: write the results (and LS-DYNA ASCII files) to folder/out."""
     pl = Placement()

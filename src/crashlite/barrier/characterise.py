@@ -17,6 +17,7 @@ from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .detailed import detailed_barrier
 from .loadcases import Impactor, write_impactor_case
@@ -50,7 +51,7 @@ class Characteristic:
                 "max_crush_mm": float(self.crush.max()), "max_force_kN": float(self.force.max() / 1e3)}
 
 
-def reduce_curve(crush, force, depth: float, template: BlockCurve | None = None) -> BlockCurve:
+def reduce_curve(crush: ArrayLike, force: ArrayLike, depth: float, template: BlockCurve | None = None) -> BlockCurve:
     """The simplified curve of a measured force–crush characteristic.
 
     crush (n,) [mm] increasing from 0, force (n,) [N] smoothed. Plateau: the
@@ -109,7 +110,8 @@ def reduce_curve(crush, force, depth: float, template: BlockCurve | None = None)
 
 
 def compression_test(block: Block, spec: ODBSpec | None = None, element_size: float = 25.0,
-                     speed: float = 10000.0, crush: float = 0.9, directory=None,
+                     speed: float = 10000.0, crush: float = 0.9,
+                     directory: Path | str | None = None,
                      progress: bool = False) -> Characteristic:
     """Compress ``block`` (``spec.main`` or ``spec.bumper``) of the detailed
     barrier alone by a rigid impactor of 1000 t at ``speed`` [mm/s] up to
@@ -144,7 +146,7 @@ def compression_test(block: Block, spec: ODBSpec | None = None, element_size: fl
 
 
 def characterise(spec: ODBSpec | None = None, element_size: float = 25.0, speed: float = 10000.0,
-                 directory=None, progress: bool = False) -> dict[str, Characteristic]:
+                 directory: Path | str | None = None, progress: bool = False) -> dict[str, Characteristic]:
     """Compression tests of the bumper and the main block."""
     spec = spec or ODBSpec()
     out = {}
@@ -164,7 +166,7 @@ def characterised_spec(curves: dict[str, BlockCurve], spec: ODBSpec | None = Non
     return replace(spec, **blocks)
 
 
-def write_curves(chars: dict[str, Characteristic], path) -> Path:
+def write_curves(chars: dict[str, Characteristic], path: Path | str) -> Path:
     """curves.json: the reduced curves and the test facts, for ``read_curves``."""
     p = Path(path)
     p.parent.mkdir(parents=True, exist_ok=True)
@@ -172,7 +174,7 @@ def write_curves(chars: dict[str, Characteristic], path) -> Path:
     return p
 
 
-def read_curves(path) -> dict[str, BlockCurve]:
+def read_curves(path: Path | str) -> dict[str, BlockCurve]:
     """Block curves from a curves.json written by ``write_curves``."""
     p = Path(path)
     try:

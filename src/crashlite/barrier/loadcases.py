@@ -10,9 +10,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..units import kmh
-from .simplified import Placement
+from .simplified import Placement, SimplifiedBarrier
+
+if TYPE_CHECKING:
+    from .spec import ODBSpec
 
 DTMIN = 1e-3  # of the first step: a solid whose step falls below it is eroded (ERODE = 1); honeycomb
 # steps fall 50x from the soft uncompacted cells to the compacted ones, so only degenerate cells go
@@ -68,8 +72,8 @@ def impactor_deck(barrier_file: str, front_set: int, placement: Placement, impac
     return "\n".join(lines) + "\n"
 
 
-def write_impactor_case(directory, barrier, placement: Placement, impactor: Impactor, end_time: float,
-                        spec=None) -> Path:
+def write_impactor_case(directory: Path | str, barrier: SimplifiedBarrier, placement: Placement, impactor: Impactor,
+                        end_time: float, spec: ODBSpec | None = None) -> Path:
     """Write ``barrier.k`` (the generated barrier) and ``main.k`` (the load
     case) into ``directory``; returns the main deck's path."""
     from .spec import ODBSpec

@@ -4,12 +4,16 @@ figures 1–2) and the verification index (figures 6 and 8, table 1)."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..report.html import Raw, esc, image, num, page, table
 from ..report.plots import CMP_STYLE, REF_STYLE, _pyplot, png
 
+if TYPE_CHECKING:
+    from .characterise import Characteristic
 
-def characterisation_plot(chars) -> bytes:
+
+def characterisation_plot(chars: dict[str, Characteristic]) -> bytes:
     """Force–crush of each block's compression test (raw and CFC 600) with
     the reduced simplified curve, one panel per block."""
     plt = _pyplot()
@@ -93,7 +97,7 @@ def write_index(out: Path, summary: dict, cases: dict) -> Path:
     return path
 
 
-def write_characterisation_page(out: Path, chars) -> Path:
+def write_characterisation_page(out: Path, chars: dict[str, Characteristic]) -> Path:
     """index.html of a characterisation folder: plot and reduced curves."""
     rows = []
     for c in chars.values():

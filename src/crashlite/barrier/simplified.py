@@ -69,7 +69,7 @@ class SimplifiedBarrier:
     mass: float = 0.0  # in the deck's units
     solids: int = 0
 
-    def write(self, path, fmt: str = "fixed") -> Path:
+    def write(self, path: Path | str, fmt: str = "fixed") -> Path:
         """Write as an LS-DYNA include deck (re-read, then written by the
         keyword writer so the format is exact)."""
         from .. import read_deck, write_deck

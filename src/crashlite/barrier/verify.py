@@ -21,6 +21,7 @@ page.
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from pathlib import Path
 
 # One run under the impactor, its rated force and the crush phase live in
@@ -44,9 +45,9 @@ from .simplified import Placement, simplified_barrier
 from .spec import ODBSpec
 
 
-def verify_barriers(directory, spec: ODBSpec | None = None, element_size: float = 25.0, end_time: float = 0.045,
-                    overlaps=(1.0, 0.4), impactor: Impactor | None = None, progress: bool = False,
-                    report: bool = True, curves: str | ODBSpec = "calibrated",
+def verify_barriers(directory: Path | str, spec: ODBSpec | None = None, element_size: float = 25.0,
+                    end_time: float = 0.045, overlaps: Sequence[float] = (1.0, 0.4), impactor: Impactor | None = None,
+                    progress: bool = False, report: bool = True, curves: str | ODBSpec = "calibrated",
                     calibration_runs: int = 80) -> dict:
     """Run the impactor on both barriers at each overlap into ``directory``
     and write the reports; returns the summary (also ``summary.json``).

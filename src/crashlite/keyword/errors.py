@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 
 
@@ -39,10 +40,10 @@ class Collector:
         self.problems: list[Problem] = []
         self.warnings: list[Problem] = []
 
-    def error(self, file, line, keyword, field, message) -> None:
+    def error(self, file: str | os.PathLike, line: int, keyword: str, field: str | None, message: str) -> None:
         self.problems.append(Problem(str(file), int(line), keyword, field, message))
 
-    def warn(self, file, line, keyword, field, message) -> None:
+    def warn(self, file: str | os.PathLike, line: int, keyword: str, field: str | None, message: str) -> None:
         self.warnings.append(Problem(str(file), int(line), keyword, field, message))
 
     def raise_if_any(self) -> None:

@@ -15,7 +15,7 @@ from .schema import RawKeyword, Record, lookup
 from .transform import apply_offsets, matrix, transform_nodes
 
 
-def read_deck(path, strict: bool = False) -> Model:
+def read_deck(path: Path | str, strict: bool = False) -> Model:
     """Read an LS-DYNA keyword deck.
 
     Every problem of the deck (bad numbers, missing cards, undefined
@@ -37,7 +37,8 @@ def read_deck(path, strict: bool = False) -> Model:
     return model
 
 
-def read_records(path, problems: Collector | None = None, strict: bool = False):
+def read_records(path: Path | str, problems: Collector | None = None,
+                 strict: bool = False) -> tuple[list[Record | RawKeyword], Lexer, ParameterTable]:
     """The typed records and verbatim keywords of a deck in input order,
     before they become a Model (no reference checks). Returns (records,
     lexer, parameter table); raises DeckError when ``problems`` is None and

@@ -192,7 +192,7 @@ def _header(fmt: str) -> str:
     return "*KEYWORD" + {LONG: " LONG=Y", I10: " I10=Y"}.get(mode, "")
 
 
-def write_deck(model: Model, path, fmt: str = "fixed", split: bool = False) -> list[Path]:
+def write_deck(model: Model, path: Path | str, fmt: str = "fixed", split: bool = False) -> list[Path]:
     """Write ``model`` to ``path``; returns the files written.
 
     ``fmt``: "fixed" (default), "long", "i10" or "free". ``split`` puts nodes

@@ -9,12 +9,18 @@ contacts, controls, outputs, and keywords crashlite does not type) are kept in
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..keyword.schema import RawKeyword, Record, records_equal
 from .mesh import Beams, Discretes, Inertias, Masses, Nodes, Shells, Solids, index_map
+
+if TYPE_CHECKING:
+    from .mass import MassProperties
 
 MESH_TABLES = ("nodes", "shells", "solids", "beams", "discretes", "masses", "inertias")
 ENTITY_GROUPS = ("parts", "sections", "materials", "hourglasses", "curves", "vectors",
@@ -53,7 +59,7 @@ class Model:
                 return k.get("title", "")
         return ""
 
-    def node_index(self, ids) -> np.ndarray:
+    def node_index(self, ids: ArrayLike) -> np.ndarray:
         """0-based indices of deck node IDs (-1 where unknown)."""
         return index_map(self.nodes.ids)(ids)
 
@@ -72,7 +78,7 @@ class Model:
 
         return set_members(self, kind.upper(), int(sid))
 
-    def part_ids_of(self, parts) -> np.ndarray:
+    def part_ids_of(self, parts: int | str | Iterable[int | str] | None) -> np.ndarray:
         """Part IDs from part IDs, part titles or None (all parts)."""
         if parts is None:
             return np.array(sorted(self.parts), dtype=np.int64)
@@ -91,7 +97,7 @@ class Model:
         return np.array(out, dtype=np.int64)
 
     # --- derived quantities ------------------------------------------------
-    def mass_properties(self, parts=None):
+    def mass_properties(self, parts: int | str | Iterable[int | str] | None = None) -> MassProperties:
         """Mass, centre of gravity and inertia tensor about the CoG.
 
         ``parts``: None (whole model), part IDs or titles. Point masses and
@@ -126,7 +132,7 @@ def _raw_key(raw):
     return raw.keyword, rest[0].rstrip(), raw.mode, [ln.rstrip() for ln in raw.lines]
 
 
-def model_differences(a, b) -> list[str]:
+def model_differences(a: Model, b: Model) -> list[str]:
     """What differs between two models (empty: equal)."""
     out = []
     for t in MESH_TABLES:
@@ -153,5 +159,5 @@ def model_differences(a, b) -> list[str]:
     return out
 
 
-def models_equal(a, b) -> bool:
+def models_equal(a: Model, b: Model) -> bool:
     return not model_differences(a, b)

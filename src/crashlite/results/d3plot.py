@@ -30,15 +30,21 @@ after it; ``write`` writes the file. lasso-python is imported by ``write``
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from ..model.model import Model
+    from ..solver.groups import ElementGroup
 
 MISSING = "d3plot needs lasso-python: pip install crashlite[lsdyna]"
 LAYERS = 3  # shell layers written: mid-surface, inner, outer (LS-DYNA's MAXINT = 3)
 
 
-def lasso():
+def lasso() -> tuple[type, type] | None:
     """(D3plot, ArrayType) of lasso-python, or None where it is missing."""
     try:
         from lasso.dyna import ArrayType, D3plot
@@ -50,7 +56,7 @@ def lasso():
 # --- in the time loop ------------------------------------------------------------------------------------
 
 
-def state(groups, x: np.ndarray, v: np.ndarray) -> dict:
+def state(groups: Iterable[ElementGroup], x: np.ndarray, v: np.ndarray) -> dict:
     """The fields of one state of the time loop at positions ``x``, ``v``
     the half-step velocity before it (``complete`` adds the one after):
     float32 arrays by element group (deformable shells and solids, discrete
@@ -140,8 +146,8 @@ def _per_state(fields: list, group: str, name: str, rows: np.ndarray, shape: tup
     return out
 
 
-def write(path, model, times: np.ndarray, coords: np.ndarray, fields: list, energies: dict | None = None,
-          title: str = "") -> Path:
+def write(path: Path | str, model: Model, times: np.ndarray, coords: np.ndarray, fields: list,
+          energies: dict | None = None, title: str = "") -> Path:
     """The d3plot ``path`` (its states in ``path``01, as lasso-python
     writes them; earlier ``path``NN files are removed) of a model's field
     states: ``times`` (n_states,), ``coords`` (n_states, n_nodes, 3) and
@@ -232,7 +238,7 @@ def write(path, model, times: np.ndarray, coords: np.ndarray, fields: list, ener
 # --- reading -----------------------------------------------------------------------------------------------
 
 
-def read_states(path) -> tuple | None:
+def read_states(path: Path | str) -> tuple | None:
     """(times (n_f,), coordinates (n_f, n_nodes, 3), node IDs (n_nodes,),
     shell and solid connectivity rows (0-based node indices)) of an
     LS-DYNA d3plot family (``path`` the d3plot or its folder), read

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import json
 import re
+from collections.abc import Iterable
 from pathlib import Path
 
 from .lsdyna_ascii import FILES
@@ -83,7 +84,7 @@ class OutputFolder:
         return sorted(p.name for p in self.path.iterdir() if _D3PLOT_FILE.match(p.name))
 
     # --- before the run --------------------------------------------------------
-    def check(self, deck_files=()) -> None:
+    def check(self, deck_files: Iterable[Path | str] = ()) -> None:
         """Refuse the folder before anything is run or written (raises
         OutputFolderError naming the files)."""
         p = self.path

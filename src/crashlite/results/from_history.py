@@ -15,7 +15,14 @@ interpolation; identical axes are taken as they are).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
+
+if TYPE_CHECKING:
+    from ..model.model import Model
+    from ..solver.results import Results
+    from .history import History
 
 # category -> its time quantity
 _TIME = {"glstat": ("time",), "nodout": ("time",), "matsum": ("time",), "rwforc": ("forces", "time"),
@@ -55,7 +62,7 @@ def _interp(t_src: np.ndarray, y: np.ndarray, t: np.ndarray) -> np.ndarray:
     return out.reshape((len(t),) + y.shape[1:])
 
 
-def results_from_history(history, model=None):
+def results_from_history(history: History, model: Model | None = None) -> Results:
     """A ``solver.results.Results`` from a ``results.History``. ``model``
     (the run's deck) gives the history nodes' initial coordinates where
     nodout lacks its coordinate columns."""

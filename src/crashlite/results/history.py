@@ -11,6 +11,10 @@ here.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import numpy as np
 
 
 def __getattr__(name: str):
@@ -29,7 +33,7 @@ class History:
         self._data = data  # category -> {quantity or (group, quantity): array}
         self.source = source
 
-    def read(self, category: str, *quantity: str):
+    def read(self, category: str, *quantity: str) -> list[str] | np.ndarray:
         """Without a quantity: the quantities of a category; else the array
         (time first: (n_states, n_ids), ``ids`` (n_ids,), ``time`` (n_states,))."""
         cat = self._data.get(category)
@@ -94,7 +98,7 @@ def _from_binout(path) -> History:
     return _Binout({}, str(path))
 
 
-def load(path) -> History:
+def load(path: Path | str) -> History:
     """Time histories of a crashlite results folder (its results.npz), an
     LS-DYNA binout (lasso-python), an LS-DYNA ASCII output folder (glstat,
     matsum, nodout, rwforc, deforc, secforc, spcforc: the categories are

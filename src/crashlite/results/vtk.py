@@ -4,13 +4,17 @@ state, and a .pvd collection carrying the times)."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from ..model.model import Model
 
 _LINE, _TRI, _QUAD, _HEX = 3, 5, 9, 12
 
 
-def cells(model) -> tuple[list[np.ndarray], list[int]]:
+def cells(model: Model) -> tuple[list[np.ndarray], list[int]]:
     """Connectivity rows and VTK cell types of the model's elements."""
     rows, types = [], []
     for t, kind in ((model.beams, _LINE), (model.discretes, _LINE)):
@@ -30,7 +34,7 @@ def cells(model) -> tuple[list[np.ndarray], list[int]]:
     return rows, types
 
 
-def element_field(model, ids: dict, values: dict) -> np.ndarray:
+def element_field(model: Model, ids: dict, values: dict) -> np.ndarray:
     """(n_cells,) values in the order of ``cells``: for each element table
     name ("shells", "solids"), ``values[name]`` at the deck IDs
     ``ids[name]``; 0 for the elements without a value."""
@@ -49,7 +53,8 @@ def element_field(model, ids: dict, values: dict) -> np.ndarray:
     return np.concatenate(out)
 
 
-def write_states(directory, model, times: np.ndarray, coords: np.ndarray, last_cells: dict | None = None) -> Path:
+def write_states(directory: Path | str, model: Model, times: np.ndarray, coords: np.ndarray,
+                 last_cells: dict | None = None) -> Path:
     """``coords`` (n_states, n_nodes, 3); ``last_cells``: name -> (n_cells,)
     element values (``element_field``) written with the last state. Returns
     the .pvd collection."""
@@ -84,7 +89,7 @@ def write_states(directory, model, times: np.ndarray, coords: np.ndarray, last_c
     return pvd
 
 
-def read_points(path) -> tuple[np.ndarray, np.ndarray]:
+def read_points(path: Path | str) -> tuple[np.ndarray, np.ndarray]:
     """Points and displacement of a state file written by ``write_states``."""
     lines = Path(path).read_text().splitlines()
     i = next(k for k, ln in enumerate(lines) if ln.startswith("POINTS"))

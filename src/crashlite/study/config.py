@@ -215,7 +215,7 @@ class _Reader:
         return v.lower() if choices is not None else v
 
 
-def load_study(path, build_template: bool = True) -> StudyConfig:
+def load_study(path: Path | str, build_template: bool = True) -> StudyConfig:
     """Read and check a study file; the deck is read to resolve part
     names, parameters and response entities."""
     path = Path(path)

@@ -35,8 +35,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from ..model.model import Model
+    from ..solver.results import Results
+    from ..units import UnitSystem
 
 TYPES = ("mass", "part_energy", "energy", "wall_force", "section_force", "discrete_force", "contact_force",
          "node_displacement", "node_velocity", "intrusion", "deceleration", "pulse", "expression")
@@ -66,7 +72,7 @@ class ResponseSpec:
     scale: float = 1.0
     unit: str = ""
 
-    def get(self, key, default=None):
+    def get(self, key: str, default: Any = None) -> Any:
         v = self.options.get(key)
         return default if v is None else v
 
@@ -151,7 +157,7 @@ def parse_response(name: str, t: dict) -> ResponseSpec:
 
 # --- checks against the deck ---------------------------------------------------
 
-def history_node_ids(model) -> set[int]:
+def history_node_ids(model: Model) -> set[int]:
     """Deck IDs of the nodes a run records in nodout."""
     out: set[int] = set()
     for rec in model.find("DATABASE_HISTORY_NODE"):
@@ -168,7 +174,7 @@ def history_node_ids(model) -> set[int]:
     return out
 
 
-def check_response(spec: ResponseSpec, model, variables: list[str], responses: list[str]) -> None:
+def check_response(spec: ResponseSpec, model: Model, variables: list[str], responses: list[str]) -> None:
     """ValueError (naming the key) where the deck lacks what the response reads."""
     t, o = spec.type, spec.options
     if "parts" in o:
@@ -232,7 +238,7 @@ EXTERNAL_OUTPUT = {"energy": "GLSTAT", "part_energy": "MATSUM", "wall_force": "R
                    "deceleration": "NODOUT", "pulse": "NODOUT", "intrusion": "NODOUT"}
 
 
-def check_external_response(spec: ResponseSpec, model, solver: str) -> None:
+def check_external_response(spec: ResponseSpec, model: Model, solver: str) -> None:
     """ValueError where a run of the deck in an external solver (LS-DYNA,
     OpenRadioss: its time histories are read, ``results.from_history``)
     cannot give the response."""
@@ -309,7 +315,8 @@ def _filtered(spec, t, y, time_scale):
         raise ResponseError(f"CFC {cfc:g} filter: {e}") from None
 
 
-def evaluate_responses(specs: dict, res, model, variables: dict, units=None) -> dict[str, float]:
+def evaluate_responses(specs: dict, res: Results, model: Model, variables: dict,
+                       units: UnitSystem | None = None) -> dict[str, float]:
     """Every response of a finished run: name -> float (scaled).
 
     res: solver Results; model: the design's Model; variables: name ->

@@ -20,7 +20,9 @@ from __future__ import annotations
 
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -31,6 +33,9 @@ from .evaluate import Task, evaluate
 # them); importable here
 from .optimize import best_design, pareto  # noqa: F401
 from .storage import Design, StudyStore, constraints_of
+
+if TYPE_CHECKING:
+    from .executor import DaskExecutor, SerialExecutor
 
 
 @dataclass
@@ -245,8 +250,8 @@ def solver_options(cfg: StudyConfig) -> dict:
         raise StudyError(f"{cfg.path}: [execution] solver = {cfg.execution.solver!r}: {e}") from None
 
 
-def run_study(cfg: StudyConfig, executor=None, progress: Progress | None = None, force: bool = False,
-              fn=evaluate, cluster=None) -> RunSummary:
+def run_study(cfg: StudyConfig, executor: SerialExecutor | DaskExecutor | None = None, progress: Progress | None = None,
+              force: bool = False, fn: Callable[[Task], dict] = evaluate, cluster: object | None = None) -> RunSummary:
     """Run (or resume) every phase of a study; returns what this session
     did. ``executor`` defaults to a Dask LocalCluster of the study file's
     [execution]; ``cluster`` (instead of ``executor``): a Dask cluster

@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -27,6 +28,9 @@ from .filters import filter_signal
 from .pulse import crash_pulse
 from .rating import RatingError, common_interval
 from .timing import RunInfo, run_info, timing_table
+
+if TYPE_CHECKING:
+    from ..model.model import Model
 
 # glstat quantities compared, with the names the report shows
 ENERGIES = (("total_energy", "total"), ("kinetic_energy", "kinetic"), ("internal_energy", "internal"),
@@ -85,7 +89,7 @@ class Run:
     info: RunInfo | None = None
     notes: list[str] = field(default_factory=list)
 
-    def read(self, category: str, *quantity: str):
+    def read(self, category: str, *quantity: str) -> np.ndarray | None:
         """The array, or None when the run has no such history."""
         try:
             return np.asarray(self.history.read(category, *quantity))
@@ -128,7 +132,7 @@ def _plain(v):
     return str(v)
 
 
-def open_run(path, name: str | None = None, deck=None) -> Run:
+def open_run(path: Path | str, name: str | None = None, deck: Path | str | Model | None = None) -> Run:
     """A run from a crashlite results folder (or results.npz), an LS-DYNA
     output folder (binout or ASCII files), with its deck (path or Model)
     when given: the deck supplies part titles and sets, node IDs of the
@@ -548,8 +552,8 @@ def _mismatch_text(c: Comparison) -> str:
     return (" (" + "; ".join(parts) + ")") if parts else ""
 
 
-def compare_paths(ref, cmp, options: Options | None = None, names: tuple[str | None, str | None] = (None, None),
-                  decks: tuple = (None, None)) -> Comparison:
+def compare_paths(ref: Path | str, cmp: Path | str, options: Options | None = None,
+                  names: tuple[str | None, str | None] = (None, None), decks: tuple = (None, None)) -> Comparison:
     """``compare`` of two results paths (crashlite or LS-DYNA), with their decks when given."""
     a = open_run(ref, names[0], decks[0])
     b = open_run(cmp, names[1], decks[1])

@@ -7,6 +7,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .errors import CompareError
 from .rating import Rating, RatingError, common_interval, iso_rating
@@ -68,7 +69,7 @@ def _integral(t: np.ndarray, y: np.ndarray, a: float, b: float) -> float:
     return float(np.sum(0.5 * (yy[1:] + yy[:-1]) * np.diff(tt)))
 
 
-def deviation(t_ref, y_ref, t_cmp, y_cmp, at: float | None = None) -> dict:
+def deviation(t_ref: ArrayLike, y_ref: ArrayLike, t_cmp: ArrayLike, y_cmp: ArrayLike, at: float | None = None) -> dict:
     """Deviation figures of a comparison curve from a reference on their
     common time range [t0, t1]: peaks (signed value of largest magnitude and
     its time), values at ``at`` (default t1), integrals over [t0, t1]
@@ -107,7 +108,8 @@ def deviation(t_ref, y_ref, t_cmp, y_cmp, at: float | None = None) -> dict:
             "integral_deviation_percent": relative_percent(ir, ic), "max_abs_difference": diff}
 
 
-def make_pair(group: str, name: str, unit: str, t_ref, y_ref, t_cmp, y_cmp, at: float | None = None,
+def make_pair(group: str, name: str, unit: str, t_ref: ArrayLike, y_ref: ArrayLike, t_cmp: ArrayLike,
+              y_cmp: ArrayLike, at: float | None = None,
               time_scale: float = 1.0, rate: bool = True) -> CurvePair:
     """A CurvePair with its figures; a rating that is not defined (e.g. a
     curve that stays zero) leaves ``rating`` None and says why in ``note``."""

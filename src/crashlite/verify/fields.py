@@ -5,10 +5,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .errors import CompareError
+
+if TYPE_CHECKING:
+    from ..model.model import Model
+    from ..results.history import History
 
 _AXES = {"x": 0, "y": 1, "z": 2}
 
@@ -42,7 +48,7 @@ class FieldStates:
         return (1 - w) * self.x[k - 1] + w * self.x[k]
 
 
-def load_states(path, deck=None) -> FieldStates | None:
+def load_states(path: Path | str, deck: Path | str | Model | None = None) -> FieldStates | None:
     """Field states of a crashlite results folder (``states_time``,
     ``states_x`` of results.npz; cells from its states/ VTK files); node IDs
     from results.npz (``node_ids``) or, when absent, from ``deck`` (path or
@@ -84,7 +90,7 @@ def _d3plot_states(p: Path) -> FieldStates | None:
     return FieldStates(t, x, ids, cells, f"{p} (d3plot)")
 
 
-def history_states(history, deck=None) -> FieldStates | None:
+def history_states(history: History, deck: Path | str | Model | None = None) -> FieldStates | None:
     """Field states of the history nodes of a run (nodout of a crashlite
     or LS-DYNA run: ``load(path)``), for node-field comparisons of runs
     without field states, e.g. firewall intrusion from LS-DYNA ASCII
@@ -120,7 +126,7 @@ def history_states(history, deck=None) -> FieldStates | None:
     return FieldStates(t, x0[None, :, :] + u, ids, [], f"{getattr(history, 'source', '')} (history nodes)")
 
 
-def read_cells(path) -> list[np.ndarray]:
+def read_cells(path: Path | str) -> list[np.ndarray]:
     """Connectivity rows of a legacy VTK file's CELLS block."""
     lines = Path(path).read_text().splitlines()
     i = next((k for k, ln in enumerate(lines) if ln.startswith("CELLS")), None)
@@ -160,7 +166,7 @@ def _id_list(ids: np.ndarray, limit: int = 50) -> dict:
     return {"count": int(len(ids)), "ids": [int(i) for i in ids[:limit]]}
 
 
-def compare_fields(ref: FieldStates, cmp: FieldStates, time: float, nodes=None,
+def compare_fields(ref: FieldStates, cmp: FieldStates, time: float, nodes: ArrayLike | None = None,
                    component: str | None = None) -> FieldComparison:
     """Compare displacements (from the first state) of two runs at ``time``
     on the nodes both have (``nodes``: the node IDs to compare, default all

@@ -19,6 +19,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .kernels import biquad_filtfilt
 
@@ -46,7 +47,7 @@ def corner_frequency(cfc: float, dt: float) -> float:
     return math.atan(_M3DB * wa) / (math.pi * dt)
 
 
-def gain(freq, cfc: float, dt: float) -> np.ndarray:
+def gain(freq: ArrayLike, cfc: float, dt: float) -> np.ndarray:
     """Magnitude response of the forward+backward filter at ``freq`` [Hz]
     (array), from its coefficients: |H(e^{jωT})|²."""
     a0, a1, a2, b1, b2 = cfc_coefficients(cfc, dt)
@@ -63,7 +64,7 @@ def default_pad(cfc: float, dt: float, n: int) -> int:
     return int(min(n - 1, math.ceil(2.0 / (cfc * dt))))
 
 
-def cfc_filter(y, dt: float, cfc: float, pad: int | None = None, time_scale: float = 1.0) -> np.ndarray:
+def cfc_filter(y: ArrayLike, dt: float, cfc: float, pad: int | None = None, time_scale: float = 1.0) -> np.ndarray:
     """Zero-phase J211-1 filtering of a uniformly sampled signal.
 
     y: (n,) or (n, m) float64, m signals on one time grid [any unit];
@@ -93,13 +94,14 @@ def cfc_filter(y, dt: float, cfc: float, pad: int | None = None, time_scale: flo
     return out[p:p + n].reshape(x.shape)
 
 
-def is_uniform(t, rtol: float = 1e-6) -> bool:
+def is_uniform(t: ArrayLike, rtol: float = 1e-6) -> bool:
     """True when the steps of ``t`` agree within ``rtol`` of their mean."""
     d = np.diff(np.asarray(t, float))
     return len(d) > 0 and float(np.ptp(d)) <= rtol * abs(float(d.mean()))
 
 
-def resample(t, y, dt: float | None = None, t0: float | None = None, t1: float | None = None):
+def resample(t: ArrayLike, y: ArrayLike, dt: float | None = None, t0: float | None = None,
+             t1: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Linear interpolation of (t, y) onto a uniform grid.
 
     t: (n,) strictly increasing [time]; y: (n,) or (n, m); dt: step [time],
@@ -130,8 +132,8 @@ def resample(t, y, dt: float | None = None, t0: float | None = None, t1: float |
     return tu, np.stack([np.interp(tu, t, y[:, j]) for j in range(y.shape[1])], axis=1)
 
 
-def filter_signal(t, y, cfc: float, dt: float | None = None, pad: int | None = None,
-                  time_scale: float = 1.0):
+def filter_signal(t: ArrayLike, y: ArrayLike, cfc: float, dt: float | None = None, pad: int | None = None,
+                  time_scale: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
     """CFC-filter a signal that may be unevenly sampled.
 
     t: (n,) [time]; y: (n,) or (n, m). The signal is taken onto a uniform

@@ -20,6 +20,7 @@ import math
 from dataclasses import asdict, dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .filters import filter_signal, is_uniform, resample
 
@@ -49,8 +50,8 @@ class Pulse:
         return d
 
 
-def olc(t, v, free_flight: float = 65.0, restraint: float = 235.0) -> tuple[float | None, float | None,
-                                                                             float | None]:
+def olc(t: ArrayLike, v: ArrayLike, free_flight: float = 65.0,
+        restraint: float = 235.0) -> tuple[float | None, float | None, float | None]:
     """(OLC, t1, t2) of a forward-speed history.
 
     t (n,) [time], v (n,) [length/time], speed along the travel direction
@@ -79,7 +80,8 @@ def olc(t, v, free_flight: float = 65.0, restraint: float = 235.0) -> tuple[floa
     return (u0 - float(np.interp(t2, t, v))) / (t2 - t1), t1, t2
 
 
-def crash_pulse(t, velocity=None, acceleration=None, v0: float | None = None, cfc: float | None = None,
+def crash_pulse(t: ArrayLike, velocity: ArrayLike | None = None, acceleration: ArrayLike | None = None,
+                v0: float | None = None, cfc: float | None = None,
                 free_flight: float = 65.0, restraint: float = 235.0, time_scale: float = 1.0,
                 step: float | None = None) -> Pulse:
     """Pulse figures from a velocity or an acceleration history.

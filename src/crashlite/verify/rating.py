@@ -17,6 +17,7 @@ import math
 from dataclasses import asdict, dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .filters import resample
 
@@ -59,7 +60,8 @@ def grade(score: float) -> str:
     return "poor"
 
 
-def common_interval(t_ref, t_cmp, t0: float | None = None, t1: float | None = None) -> tuple[float, float]:
+def common_interval(t_ref: ArrayLike, t_cmp: ArrayLike, t0: float | None = None,
+                    t1: float | None = None) -> tuple[float, float]:
     """The overlap of two time axes (narrowed to [t0, t1] when given)."""
     a = max(float(t_ref[0]), float(t_cmp[0]), -math.inf if t0 is None else float(t0))
     b = min(float(t_ref[-1]), float(t_cmp[-1]), math.inf if t1 is None else float(t1))
@@ -70,8 +72,8 @@ def common_interval(t_ref, t_cmp, t0: float | None = None, t1: float | None = No
     return a, b
 
 
-def iso_rating(t_ref, y_ref, t_cmp, y_cmp, t0: float | None = None, t1: float | None = None,
-               time_scale: float = 1.0) -> Rating:
+def iso_rating(t_ref: ArrayLike, y_ref: ArrayLike, t_cmp: ArrayLike, y_cmp: ArrayLike, t0: float | None = None,
+               t1: float | None = None, time_scale: float = 1.0) -> Rating:
     """Rate ``y_cmp`` against ``y_ref`` by ISO/TS 18571.
 
     t_ref (n,), y_ref (n,), t_cmp (k,), y_cmp (k,): the two curves [time],

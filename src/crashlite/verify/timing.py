@@ -12,8 +12,13 @@ import math
 import re
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from ..model.model import Model
+    from ..solver.results import Results
 
 
 @dataclass
@@ -42,14 +47,15 @@ class RunInfo:
         return {**asdict(self), "n_elements": self.n_elements}
 
 
-def elements_of_model(model) -> dict[str, int]:
+def elements_of_model(model: Model) -> dict[str, int]:
     """Element counts of a crashlite Model by LS-DYNA element type."""
     from ..solver.results import element_counts
 
     return element_counts(model)
 
 
-def run_info(source, name: str | None = None, deck=None) -> RunInfo:
+def run_info(source: Results | Path | str, name: str | None = None,
+             deck: Path | str | Model | None = None) -> RunInfo:
     """RunInfo of a Results object, a crashlite results folder / results.npz,
     or an LS-DYNA output folder / d3hsp file; ``deck`` (path or Model)
     supplies the element counts when the source has none."""
