@@ -246,7 +246,7 @@ def read_states(path: Path | str) -> tuple | None:
     ImportError without lasso-python."""
     p = Path(path)
     first = p / "d3plot" if p.is_dir() else p
-    if not first.is_file():
+    if first.name != "d3plot" or not first.is_file():
         return None
     lib = lasso()
     if lib is None:

@@ -103,6 +103,11 @@ def results_from_history(history: History, model: Model | None = None) -> Result
         parts = [columns(category, m, *group, fmt.format(a)) for a in "xyz"]
         return None if any(p is None for p in parts) else np.stack(parts, axis=2)
 
+    def ids(category, *group) -> np.ndarray:
+        """The entity IDs of a category, empty when the history lacks it."""
+        v = _ids(history, category, *group) if category in times else None
+        return np.zeros(0, np.int64) if v is None else v
+
     kinetic = series("glstat", "kinetic_energy")
     internal = series("glstat", "internal_energy")
     wall = series("glstat", "stonewall_energy")
@@ -114,44 +119,38 @@ def results_from_history(history: History, model: Model | None = None) -> Result
     if not len(external) and len(kinetic):
         external = np.zeros(n)
 
-    hist = _ids(history, "nodout") if "nodout" in times else None
-    hist = np.zeros(0, np.int64) if hist is None else hist
+    hist = ids("nodout")
     k = len(hist)
     disp = vectors("nodout", k, "{}_displacement")
     vel = vectors("nodout", k, "{}_velocity")
     acc = vectors("nodout", k, "{}_acceleration")
     coor = vectors("nodout", k, "{}_coordinate")
 
-    pids = _ids(history, "matsum") if "matsum" in times else None
-    pids = np.zeros(0, np.int64) if pids is None else pids
+    pids = ids("matsum")
     part_internal = columns("matsum", len(pids), "internal_energy")
     part_kinetic = columns("matsum", len(pids), "kinetic_energy")
     part_hourglass = columns("matsum", len(pids), "hourglass_energy")
     if part_internal is None:
         pids, part_kinetic, part_hourglass = np.zeros(0, np.int64), None, None
 
-    walls = _ids(history, "rwforc", "forces") if "rwforc" in times else None
-    walls = np.zeros(0, np.int64) if walls is None else walls
+    walls = ids("rwforc", "forces")
     wall_force = vectors("rwforc", len(walls), "{}_force", "forces")
     wall_normal = columns("rwforc", len(walls), "forces", "normal_force")
 
-    dids = _ids(history, "deforc") if "deforc" in times else None
-    dids = np.zeros(0, np.int64) if dids is None else dids
+    dids = ids("deforc")
     dforce = columns("deforc", len(dids), "resultant_force")
     delong = columns("deforc", len(dids), "displacement")
     dvec = vectors("deforc", len(dids), "{}_force")
     if dforce is None:
         dids, delong, dvec = np.zeros(0, np.int64), None, None
 
-    sids = _ids(history, "secforc") if "secforc" in times else None
-    sids = np.zeros(0, np.int64) if sids is None else sids
+    sids = ids("secforc")
     sforce = vectors("secforc", len(sids), "{}_force")
     smoment = vectors("secforc", len(sids), "{}_moment")
     if sforce is None:
         sids, smoment = np.zeros(0, np.int64), None
 
-    spc = _ids(history, "spcforc") if "spcforc" in times else None
-    spc = np.zeros(0, np.int64) if spc is None else spc
+    spc = ids("spcforc")
     spc_force = vectors("spcforc", len(spc), "{}_force")
 
     final_x = np.zeros((0, 3))

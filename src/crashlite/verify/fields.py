@@ -82,11 +82,10 @@ def _d3plot_states(p: Path) -> FieldStates | None:
     crashlite run kept without its results.npz), through lasso-python."""
     from ..results.d3plot import read_states
 
-    if not ((p / "d3plot").is_file() if p.is_dir() else p.name == "d3plot" and p.is_file()):
+    got = read_states(p)  # None without a d3plot
+    if got is None or len(got[0]) == 0:
         return None
-    t, x, ids, cells = read_states(p)
-    if len(t) == 0:
-        return None
+    t, x, ids, cells = got
     return FieldStates(t, x, ids, cells, f"{p} (d3plot)")
 
 
