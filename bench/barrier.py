@@ -46,10 +46,13 @@ def main() -> None:
         chars = characterise(spec, args.size)
         print(f"characterisation of the detailed blocks: {time.perf_counter() - t:.1f} s")
         d = _timed(folder, "detailed", detailed_barrier(spec, pl, element_size=args.size), spec, imp, end)
-        cal = calibrate_curves(d, characterised_spec({k: c.curve for k, c in chars.items()}, spec), imp, end,
-                               folder / "calibration")
-        print(f"calibration: {cal.runs} simplified runs in {cal.wall_time:.1f} s, misfit {cal.misfit_start:.3f} "
-              f"-> {cal.misfit:.3f}")
+        cal = calibrate_curves(
+            d, characterised_spec({k: c.curve for k, c in chars.items()}, spec), imp, end, folder / "calibration"
+        )
+        print(
+            f"calibration: {cal.runs} simplified runs in {cal.wall_time:.1f} s, misfit {cal.misfit_start:.3f} "
+            f"-> {cal.misfit:.3f}"
+        )
         s = _timed(folder, "simplified", simplified_barrier(cal.spec, pl), cal.spec, imp, end)
     print(f"{'':<22}{'detailed':>14}{'simplified':>14}")
     for key in ("nodes", "solids", "shells", "beams", "elements"):
@@ -57,13 +60,17 @@ def main() -> None:
     print(f"{'cycles':<22}{d.cycles:>14,}{s.cycles:>14,}")
     print(f"{'time step [ms]':<22}{d.dt * 1e3:>14.3e}{s.dt * 1e3:>14.3e}")
     print(f"{'run time [s]':<22}{d.run_time:>14.2f}{s.run_time:>14.3f}")
-    print(f"elements: simplified = {100 * s.counts['elements'] / d.counts['elements']:.2f} % of detailed; "
-          f"run time ratio detailed / simplified = {d.run_time / s.run_time:.0f}x (target >= 100x)")
+    print(
+        f"elements: simplified = {100 * s.counts['elements'] / d.counts['elements']:.2f} % of detailed; "
+        f"run time ratio detailed / simplified = {d.run_time / s.run_time:.0f}x (target >= 100x)"
+    )
     t_c = crush_phase_end(d, s, spec)
     r = rate_pair(d, s, t_c)
-    print(f"ISO/TS 18571 rating of the simplified CFC 60 force to {t_c * 1e3:.1f} ms: {r['overall']:.3f} "
-          f"({r['grade']}); corridor {r['corridor']:.3f}, phase {r['phase']:.3f}, magnitude {r['magnitude']:.3f}, "
-          f"slope {r['slope']:.3f}")
+    print(
+        f"ISO/TS 18571 rating of the simplified CFC 60 force to {t_c * 1e3:.1f} ms: {r['overall']:.3f} "
+        f"({r['grade']}); corridor {r['corridor']:.3f}, phase {r['phase']:.3f}, magnitude {r['magnitude']:.3f}, "
+        f"slope {r['slope']:.3f}"
+    )
 
 
 if __name__ == "__main__":

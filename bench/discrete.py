@@ -33,10 +33,23 @@ def chain(n: int, cycles: int) -> Setup:
     fixed = np.zeros((nodes, 3), bool)
     fixed[0] = True
     z = np.zeros(n)
-    d = Discrete(np.arange(1, n + 1), np.arange(n, dtype=np.int64), np.arange(1, n + 1, dtype=np.int64),
-                 np.full(n, LINEAR, np.int64), np.full(n, 100.0), np.ones(n), z.copy(), np.full(n, 10.0),
-                 np.zeros((n, 3)), x0[:-1].copy(), np.zeros(n, np.int64), np.zeros(n, np.int64),
-                 np.zeros(0), np.zeros(0), np.zeros(n, np.int64))
+    d = Discrete(
+        np.arange(1, n + 1),
+        np.arange(n, dtype=np.int64),
+        np.arange(1, n + 1, dtype=np.int64),
+        np.full(n, LINEAR, np.int64),
+        np.full(n, 100.0),
+        np.ones(n),
+        z.copy(),
+        np.full(n, 10.0),
+        np.zeros((n, 3)),
+        x0[:-1].copy(),
+        np.zeros(n, np.int64),
+        np.zeros(n, np.int64),
+        np.zeros(0),
+        np.zeros(0),
+        np.zeros(n, np.int64),
+    )
     s = Setup(x0, v0, mass, fixed, d)
     s.end_cycle = cycles
     s.end_time = 1.0
@@ -72,11 +85,14 @@ def main() -> None:
     for threads in sorted({1, min(2, numba.config.NUMBA_NUM_THREADS)}):
         e, setup = timed(n, c, threads)
         results[threads] = e
-        print(f"{threads} thread(s): {1 / e:8.1f} cycles/s  {e / n * 1e9:7.1f} ns per spring-cycle "
-              f"({n:,} springs, {c} cycles; set-up {setup:.3f} s)")
+        print(
+            f"{threads} thread(s): {1 / e:8.1f} cycles/s  {e / n * 1e9:7.1f} ns per spring-cycle "
+            f"({n:,} springs, {c} cycles; set-up {setup:.3f} s)"
+        )
     if 2 in results:
-        print(f"2-thread speed-up: {results[1] / results[2]:.2f}x  (targets: <= 20 ns per spring-cycle, "
-              f"speed-up >= 1.6)")
+        print(
+            f"2-thread speed-up: {results[1] / results[2]:.2f}x  (targets: <= 20 ns per spring-cycle, speed-up >= 1.6)"
+        )
 
 
 if __name__ == "__main__":

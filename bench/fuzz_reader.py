@@ -51,8 +51,10 @@ def main(argv=None) -> int:
             if (i + 1) % 1000 == 0:
                 print(f"  {i + 1} cases, {dict(counts)}", file=sys.stderr, flush=True)
     wall = time.perf_counter() - t0
-    print(f"{a.n} fuzzed decks, seed {a.seed}, {wall:.1f} s ({1000 * wall / max(a.n, 1):.1f} ms a case; "
-          f"slowest case {slowest[1]}: {slowest[0]:.2f} s)")
+    print(
+        f"{a.n} fuzzed decks, seed {a.seed}, {wall:.1f} s ({1000 * wall / max(a.n, 1):.1f} ms a case; "
+        f"slowest case {slowest[1]}: {slowest[0]:.2f} s)"
+    )
     for o in fuzz.OUTCOMES:
         print(f"  {o:10s} {counts[o]:7d}")
     print("by mutation (a case may hold several):")

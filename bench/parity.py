@@ -46,10 +46,12 @@ def main(argv=None) -> int:
             print(f"{case.name:<20} {q:<6} {got[q]:>13.6g} {ref:>13.6g} {got[q] / ref:>7.3f}{spread}")
         total = res.kinetic + res.internal + res.sliding + res.hourglass + res.wall
         supplied = res.kinetic[0] + res.internal[0] + res.external
-        print(f"{case.name:<20} kinetic energy at the end {res.kinetic[-1]:.4g}, hourglass {res.hourglass[-1]:.4g}, "
-              f"sliding lowest {res.sliding.min():.4g} ({100 * res.sliding.min() / res.internal.max():.2f} % of "
-              f"the internal energy), end {res.sliding[-1]:.4g}; energy balance "
-              f"{np.abs(total - supplied).max() / np.abs(supplied).max() * 100:.2f} %; {res.cycles} cycles, {wall:.0f} s")
+        print(
+            f"{case.name:<20} kinetic energy at the end {res.kinetic[-1]:.4g}, hourglass {res.hourglass[-1]:.4g}, "
+            f"sliding lowest {res.sliding.min():.4g} ({100 * res.sliding.min() / res.internal.max():.2f} % of "
+            f"the internal energy), end {res.sliding[-1]:.4g}; energy balance "
+            f"{np.abs(total - supplied).max() / np.abs(supplied).max() * 100:.2f} %; {res.cycles} cycles, {wall:.0f} s"
+        )
         for w in res.info.get("warnings", []):
             print(f"{'':<20} warning: {w}")
     return 0

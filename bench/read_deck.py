@@ -59,16 +59,22 @@ def generate(directory: Path, n_shells: int) -> tuple[Path, Path]:
         f.write("\n".join(rows.tolist()))
         f.write("\n*END\n")
     with open(main, "w") as f:
-        f.write("*KEYWORD\n*TITLE\nread_deck benchmark\n*PARAMETER\nR t0      1.2\nR ro      7.85e-9\n"
-                "*PARAMETER_EXPRESSION\nR sigy    235.0*1.1\n")
+        f.write(
+            "*KEYWORD\n*TITLE\nread_deck benchmark\n*PARAMETER\nR t0      1.2\nR ro      7.85e-9\n"
+            "*PARAMETER_EXPRESSION\nR sigy    235.0*1.1\n"
+        )
         for p in range(1, N_PARTS + 1):
             f.write(f"*PART\npart {p}\n{p:10d}{p:10d}{p:10d}\n")
             f.write(f"*SECTION_SHELL\n{p:10d}{2:10d}\n{'&t0':>10}\n")
-            f.write(f"*MAT_PIECEWISE_LINEAR_PLASTICITY\n{p:10d}{'&ro':>10}{210000.0:10}{0.3:10}{'&sigy':>10}"
-                    f"{500.0:10}\n\n\n\n")
+            f.write(
+                f"*MAT_PIECEWISE_LINEAR_PLASTICITY\n{p:10d}{'&ro':>10}{210000.0:10}{0.3:10}{'&sigy':>10}"
+                f"{500.0:10}\n\n\n\n"
+            )
         f.write("*INCLUDE\nmesh.k\n*END\n")
-    print(f"generated {n_shells:,} shells, {n_nodes:,} nodes in {time.perf_counter() - t0:.1f} s "
-          f"({mesh.stat().st_size / 2**20:.0f} MiB mesh include)")
+    print(
+        f"generated {n_shells:,} shells, {n_nodes:,} nodes in {time.perf_counter() - t0:.1f} s "
+        f"({mesh.stat().st_size / 2**20:.0f} MiB mesh include)"
+    )
     return main, mesh
 
 
@@ -110,26 +116,39 @@ def main() -> None:
     main_deck, mesh = generate(args.dir, args.shells)
     tiny = args.dir / "tiny.k"
     tiny.write_text("*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n*END\n")
-    cl = probe("import crashlite", f"crashlite.read_deck({str(main_deck)!r})",
-               "counts = [len(obj.nodes), len(obj.shells), len(obj.parts)]",
-               warmup=f"crashlite.read_deck({str(tiny)!r})  # loads the compiled kernels")
-    print(f"crashlite.read_deck      import+kernels {cl['import']:5.2f} s  first {cl['first']:6.2f} s  "
-          f"median {cl['median']:6.2f} s  peak {cl['peak_mib']:6.0f} MiB  "
-          f"(nodes, shells, parts) = {cl['counts']}")
+    cl = probe(
+        "import crashlite",
+        f"crashlite.read_deck({str(main_deck)!r})",
+        "counts = [len(obj.nodes), len(obj.shells), len(obj.parts)]",
+        warmup=f"crashlite.read_deck({str(tiny)!r})  # loads the compiled kernels",
+    )
+    print(
+        f"crashlite.read_deck      import+kernels {cl['import']:5.2f} s  first {cl['first']:6.2f} s  "
+        f"median {cl['median']:6.2f} s  peak {cl['peak_mib']:6.0f} MiB  "
+        f"(nodes, shells, parts) = {cl['counts']}"
+    )
     try:
-        lm = probe("import lsdyna_mesh_reader", f"lsdyna_mesh_reader.Deck({str(mesh)!r})",
-                   "counts = [sum(len(s.nid) for s in obj.node_sections), "
-                   "sum(len(s.eid) for s in obj.element_shell_sections)]")
+        lm = probe(
+            "import lsdyna_mesh_reader",
+            f"lsdyna_mesh_reader.Deck({str(mesh)!r})",
+            "counts = [sum(len(s.nid) for s in obj.node_sections), "
+            "sum(len(s.eid) for s in obj.element_shell_sections)]",
+        )
     except RuntimeError as e:
-        print(f"lsdyna-mesh-reader not available ({str(e).strip().splitlines()[-1]}); "
-              "install the 'bench' extra")
+        print(f"lsdyna-mesh-reader not available ({str(e).strip().splitlines()[-1]}); install the 'bench' extra")
         return
-    print(f"lsdyna-mesh-reader       import         {lm['import']:5.2f} s  first {lm['first']:6.2f} s  "
-          f"median {lm['median']:6.2f} s  peak {lm['peak_mib']:6.0f} MiB  (nodes, shells) = {lm['counts']}")
-    print(f"ratio crashlite / lsdyna-mesh-reader: first read {cl['first'] / lm['first']:.2f}x, "
-          f"median of 3 more {cl['median'] / lm['median']:.2f}x  (target: within 2x; peak under 3 GB)")
-    print("each reader runs in a fresh process; crashlite loads its compiled Numba kernels "
-          "(cached on disk after the very first run) before the timed reads")
+    print(
+        f"lsdyna-mesh-reader       import         {lm['import']:5.2f} s  first {lm['first']:6.2f} s  "
+        f"median {lm['median']:6.2f} s  peak {lm['peak_mib']:6.0f} MiB  (nodes, shells) = {lm['counts']}"
+    )
+    print(
+        f"ratio crashlite / lsdyna-mesh-reader: first read {cl['first'] / lm['first']:.2f}x, "
+        f"median of 3 more {cl['median'] / lm['median']:.2f}x  (target: within 2x; peak under 3 GB)"
+    )
+    print(
+        "each reader runs in a fresh process; crashlite loads its compiled Numba kernels "
+        "(cached on disk after the very first run) before the timed reads"
+    )
 
 
 if __name__ == "__main__":

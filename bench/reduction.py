@@ -38,23 +38,35 @@ def main() -> None:
     ap.add_argument("--out", type=Path, default=None)
     args = ap.parse_args()
     root = args.out or Path(tempfile.mkdtemp(prefix="crashlite-bench-reduction-"))
-    print(f"paper study: car {args.mesh:g} mm, detailed barrier {args.barrier:g} mm, {numba.get_num_threads()} "
-          f"thread(s); runs in {root}")
-    st = paper_study(root, mesh_size=args.mesh, barrier_size=args.barrier, usncap_end=args.usncap_end / 1e3,
-                     odb_end=args.odb_end / 1e3, say=lambda *a: None)
+    print(
+        f"paper study: car {args.mesh:g} mm, detailed barrier {args.barrier:g} mm, {numba.get_num_threads()} "
+        f"thread(s); runs in {root}"
+    )
+    st = paper_study(
+        root,
+        mesh_size=args.mesh,
+        barrier_size=args.barrier,
+        usncap_end=args.usncap_end / 1e3,
+        odb_end=args.odb_end / 1e3,
+        say=lambda *a: None,
+    )
     print(f"  {'run':<40}{'elements':>9}{'cycles':>9}{'loop [s]':>10}{'µs/el-cycle':>12}")
     for name, r in st.summary["runs"].items():
         el, cyc, loop = r["elements"], r["cycles"], r["loop_time_s"]
         print(f"  {name:<40}{el:>9}{cyc:>9}{loop:>10.1f}{1e6 * loop / max(el * cyc, 1):>12.3f}")
     t = st.summary["time"]
     print("time-loop reduction")
-    print(f"  US NCAP, simplified vehicle                {_pc(t['us_ncap']['vehicle_reduction_percent'])}"
-          f"   (target >= 60 %, paper 65 %)")
+    print(
+        f"  US NCAP, simplified vehicle                {_pc(t['us_ncap']['vehicle_reduction_percent'])}"
+        f"   (target >= 60 %, paper 65 %)"
+    )
     o = t["odb"]
     print(f"  ODB, simplified barrier (full car)         {_pc(o.get('barrier_reduction_percent'))}")
     print(f"  ODB, simplified vehicle (detailed barrier) {_pc(o.get('vehicle_reduction_percent'))}")
-    print(f"  ODB, both simplified                       {_pc(o['combined_reduction_percent'])}"
-          f"   (target >= 90 %, paper 92 %)")
+    print(
+        f"  ODB, both simplified                       {_pc(o['combined_reduction_percent'])}"
+        f"   (target >= 90 %, paper 92 %)"
+    )
     print("verification (full against simplified)")
     for line in verification_lines(st.summary):
         print(f"  {line}")

@@ -67,15 +67,18 @@ def write_deck(path: Path, n: int, cycles: int, nip: int = 5) -> int:
         f.write("\n")
         for p in range(1, n * n + 1):
             f.write(f"*PART\ntube {p}\n{p},1,1,0,1\n")
-        f.write(f"*SECTION_SHELL\n1,2,0.8333,{nip}\n{T},{T},{T},{T}\n"
-                "*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,7.85e-9,210000.0,0.3,250.0,1.0\n0,0,0,0\n"
-                "*HOURGLASS\n1,4,0.05\n"
-                "*SET_NODE_LIST\n1\n" + "\n".join(",".join(map(str, bottom[k:k + 8]))
-                                                  for k in range(0, len(bottom), 8)) + "\n"
-                "*BOUNDARY_SPC_SET\n1,0,1,1,1,1,1,1\n"
-                f"*RIGIDWALL_PLANAR_MOVING\n0\n0,0,{LENGTH + 0.01},0,0,{LENGTH - 1.0}\n1.0,{V0}\n"
-                "*CONTACT_AUTOMATIC_SINGLE_SURFACE\n0,0,0\n\n\n"
-                f"*CONTROL_TERMINATION\n1.0,{cycles}\n*END\n")
+        f.write(
+            f"*SECTION_SHELL\n1,2,0.8333,{nip}\n{T},{T},{T},{T}\n"
+            "*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,7.85e-9,210000.0,0.3,250.0,1.0\n0,0,0,0\n"
+            "*HOURGLASS\n1,4,0.05\n"
+            "*SET_NODE_LIST\n1\n"
+            + "\n".join(",".join(map(str, bottom[k : k + 8])) for k in range(0, len(bottom), 8))
+            + "\n"
+            "*BOUNDARY_SPC_SET\n1,0,1,1,1,1,1,1\n"
+            f"*RIGIDWALL_PLANAR_MOVING\n0\n0,0,{LENGTH + 0.01},0,0,{LENGTH - 1.0}\n1.0,{V0}\n"
+            "*CONTACT_AUTOMATIC_SINGLE_SURFACE\n0,0,0\n\n\n"
+            f"*CONTROL_TERMINATION\n1.0,{cycles}\n*END\n"
+        )
     return len(conn)
 
 
@@ -92,6 +95,7 @@ class _Clock:
             t0 = time.perf_counter()
             fn(st)
             self.spent[kind] = self.spent.get(kind, 0.0) + time.perf_counter() - t0
+
         return timed
 
 
@@ -116,8 +120,12 @@ def timed(model, cycles: int, threads: int) -> dict:
     t_short, c_short, g_short = _run(model, short)
     t_long, c_long, g_long = _run(model, cycles)
     per_cycle = (t_long - t_short) / (cycles - short)
-    return dict(wall=per_cycle, cpu=(c_long - c_short) / (cycles - short), set_up=t_long - per_cycle * cycles,
-                groups={k: (g_long[k] - g_short.get(k, 0.0)) / (cycles - short) for k in g_long})
+    return dict(
+        wall=per_cycle,
+        cpu=(c_long - c_short) / (cycles - short),
+        set_up=t_long - per_cycle * cycles,
+        groups={k: (g_long[k] - g_short.get(k, 0.0)) / (cycles - short) for k in g_long},
+    )
 
 
 def main() -> None:
@@ -133,8 +141,10 @@ def main() -> None:
         t0 = time.perf_counter()
         n = write_deck(path, args.tubes, args.cycles, args.nip)
         model = read_deck(path)
-        print(f"{args.tubes}x{args.tubes} tubes: {n:,} shells (NIP {args.nip}), {len(model.nodes):,} nodes "
-              f"(deck written and read in {time.perf_counter() - t0:.1f} s)")
+        print(
+            f"{args.tubes}x{args.tubes} tubes: {n:,} shells (NIP {args.nip}), {len(model.nodes):,} nodes "
+            f"(deck written and read in {time.perf_counter() - t0:.1f} s)"
+        )
     results = {}
     for threads in sorted({1, min(2, numba.config.NUMBA_NUM_THREADS)}):
         r = timed(model, args.cycles, threads)
@@ -142,14 +152,20 @@ def main() -> None:
         us = r["wall"] / n * 1e6
         rest = r["wall"] - sum(r["groups"].values())
         parts = "  ".join(f"{k} {v / n * 1e6:.3f}" for k, v in r["groups"].items())
-        print(f"{threads} thread(s): {us:.3f} µs per element-cycle, {us * threads:.3f} per element-cycle-core "
-              f"(CPU {r['cpu'] / n * 1e6:.3f}; by group: {parts}  rest {rest / n * 1e6:.3f}); contact share "
-              f"{r['groups'].get('contact', 0.0) / r['wall']:.1%}; {args.cycles} cycles, set-up {r['set_up']:.1f} s")
+        print(
+            f"{threads} thread(s): {us:.3f} µs per element-cycle, {us * threads:.3f} per element-cycle-core "
+            f"(CPU {r['cpu'] / n * 1e6:.3f}; by group: {parts}  rest {rest / n * 1e6:.3f}); contact share "
+            f"{r['groups'].get('contact', 0.0) / r['wall']:.1%}; {args.cycles} cycles, set-up {r['set_up']:.1f} s"
+        )
     if 2 in results:
-        print(f"2-thread speed-up: {results[1] / results[2]:.2f}x  (targets: <= 0.5 µs per element-cycle-core, "
-              "contact share <= 30 %, speed-up >= 1.7)")
-    print("wall-clock figures; the CPU time counts every thread (waiting ones too). On a machine shared with "
-          "other jobs the wall figures grow and the speed-up shrinks.")
+        print(
+            f"2-thread speed-up: {results[1] / results[2]:.2f}x  (targets: <= 0.5 µs per element-cycle-core, "
+            "contact share <= 30 %, speed-up >= 1.7)"
+        )
+    print(
+        "wall-clock figures; the CPU time counts every thread (waiting ones too). On a machine shared with "
+        "other jobs the wall figures grow and the speed-up shrinks."
+    )
 
 
 if __name__ == "__main__":

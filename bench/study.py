@@ -56,11 +56,21 @@ def study_file(folder: Path, name: str, deck: Path, parts: list[str], designs: i
     for i, part in enumerate(parts):
         pid = int(model.part_ids_of([part])[0])
         t = float(model.sections[model.parts[pid]["secid"]]["t1"])
-        variables.append(f'[variables.t{i}]\npart = "{part}"\nproperty = "thickness"\n'
-                         f"bounds = [{0.8 * t!r}, {1.2 * t!r}]\n")
+        variables.append(
+            f'[variables.t{i}]\npart = "{part}"\nproperty = "thickness"\nbounds = [{0.8 * t!r}, {1.2 * t!r}]\n'
+        )
     p = folder / f"{name}.toml"
-    p.write_text(STUDY.format(name=name, deck=deck.resolve(), directory=folder / name, variables="".join(variables),
-                              parts=", ".join(f'"{x}"' for x in parts), designs=designs, seed=seed))
+    p.write_text(
+        STUDY.format(
+            name=name,
+            deck=deck.resolve(),
+            directory=folder / name,
+            variables="".join(variables),
+            parts=", ".join(f'"{x}"' for x in parts),
+            designs=designs,
+            seed=seed,
+        )
+    )
     return p
 
 
@@ -68,8 +78,12 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--full", type=Path, help="full model deck")
     ap.add_argument("--surrogate", type=Path, help="surrogate deck")
-    ap.add_argument("--parts", nargs="+", default=["crash box", "rail"],
-                    help="parts whose thickness the designs vary (names in both decks)")
+    ap.add_argument(
+        "--parts",
+        nargs="+",
+        default=["crash box", "rail"],
+        help="parts whose thickness the designs vary (names in both decks)",
+    )
     ap.add_argument("--designs", type=int, default=6, help="designs per deck")
     ap.add_argument("--workers", type=int, default=os.cpu_count() or 1)
     ap.add_argument("--element-size", type=float, default=12.5, help="built-in pair: element size [mm]")
@@ -85,17 +99,26 @@ def main(argv=None) -> int:
         tmp = Path(tmp)
         if args.full is None:
             args.full = front_structure(tmp / "full.k", "full", element_size=args.element_size, rear_length=900.0)
-            args.surrogate = front_structure(tmp / "surrogate.k", "surrogate", element_size=args.element_size,
-                                             rear_length=900.0)
-            print(f"built-in pair: crash box + rail, element size {args.element_size:g} mm; "
-                  f"full with a 900 mm shell rear frame, surrogate with its spring and mass")
+            args.surrogate = front_structure(
+                tmp / "surrogate.k", "surrogate", element_size=args.element_size, rear_length=900.0
+            )
+            print(
+                f"built-in pair: crash box + rail, element size {args.element_size:g} mm; "
+                f"full with a 900 mm shell rear frame, surrogate with its spring and mass"
+            )
         decks = {"full": args.full, "surrogate": args.surrogate}
         from crashlite import read_deck
 
         for name, deck in decks.items():
             m = read_deck(deck)
-            print(f"  {name:9s} {deck}: " + ", ".join(f"{len(getattr(m, t))} {t}" for t in
-                                                      ("shells", "solids", "beams", "discretes") if len(getattr(m, t))))
+            print(
+                f"  {name:9s} {deck}: "
+                + ", ".join(
+                    f"{len(getattr(m, t))} {t}"
+                    for t in ("shells", "solids", "beams", "discretes")
+                    if len(getattr(m, t))
+                )
+            )
         rates = {}
         with DaskExecutor(workers=args.workers) as ex:
             print(f"{ex.describe()}; {args.designs} designs per deck")
@@ -110,11 +133,16 @@ def main(argv=None) -> int:
                     print(f"  {name}: {s.failed} of {s.ran} designs failed")
                 from crashlite.study.storage import StudyStore
 
-                runs = [d.info.get("run_time", 0.0) for d in StudyStore(cfg, readonly=True).designs()
-                        if d.status == "complete"]
+                runs = [
+                    d.info.get("run_time", 0.0)
+                    for d in StudyStore(cfg, readonly=True).designs()
+                    if d.status == "complete"
+                ]
                 rates[name] = s.complete / wall * 3600.0
-                print(f"  {name:9s}: {s.complete} designs in {wall:6.1f} s -> {rates[name]:8.0f} designs/hour "
-                      f"(solver {sum(runs) / max(len(runs), 1):.2f} s per design)")
+                print(
+                    f"  {name:9s}: {s.complete} designs in {wall:6.1f} s -> {rates[name]:8.0f} designs/hour "
+                    f"(solver {sum(runs) / max(len(runs), 1):.2f} s per design)"
+                )
     print(f"surrogate / full designs per hour: {rates['surrogate'] / rates['full']:.2f}x")
     return 0
 

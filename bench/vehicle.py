@@ -24,8 +24,10 @@ from crashlite.vehicle.workflow import us_ncap_study
 
 def _row(name: str, info: dict) -> str:
     el, cyc, loop = info["n_elements"], info["cycles"], info["wall_time"]
-    return (f"  {name:<11}{el:>9}{cyc:>9}{loop:>10.2f}{1e6 * loop / max(el * cyc, 1):>12.3f}"
-            f"{info['time_step'] * 1e6:>11.3f}")
+    return (
+        f"  {name:<11}{el:>9}{cyc:>9}{loop:>10.2f}{1e6 * loop / max(el * cyc, 1):>12.3f}"
+        f"{info['time_step'] * 1e6:>11.3f}"
+    )
 
 
 def main() -> None:
@@ -44,8 +46,10 @@ def main() -> None:
         print(_row("full", t["full"]))
         print(_row("simplified", t["simplified"]))
         full, sim = t["full"]["wall_time"], t["simplified"]["wall_time"]
-        print(f"  simplified / full time loop: {sim / full:.3f} ({100 * (1 - sim / full):.0f} % less), "
-              f"elements {t['elements_simplified'] / t['elements_full']:.3f}")
+        print(
+            f"  simplified / full time loop: {sim / full:.3f} ({100 * (1 - sim / full):.0f} % less), "
+            f"elements {t['elements_simplified'] / t['elements_full']:.3f}"
+        )
 
 
 if __name__ == "__main__":

@@ -69,6 +69,6 @@ def _prune(base: Path, keep: Path) -> None:
         others = sorted((p for p in base.iterdir() if p.is_dir() and p != keep), key=lambda p: p.stat().st_mtime)
     except OSError:
         return
-    for p in others[:max(len(others) - (KEEP - 1), 0)]:
+    for p in others[: max(len(others) - (KEEP - 1), 0)]:
         shutil.rmtree(p, ignore_errors=True)
     os.utime(keep)  # the one in use is the newest

@@ -24,8 +24,10 @@ def _convert(args) -> int:
     from . import read_deck, write_deck
 
     if Path(args.output).is_dir():  # checked before reading: a deck may take minutes to read
-        raise IsADirectoryError(f"-o {args.output} is a folder: -o names the deck file to write "
-                                f"(e.g. {Path(args.output) / Path(args.deck).name})")
+        raise IsADirectoryError(
+            f"-o {args.output} is a folder: -o names the deck file to write "
+            f"(e.g. {Path(args.output) / Path(args.deck).name})"
+        )
     model = read_deck(args.deck, strict=args.strict)
     written = write_deck(model, args.output, fmt=args.format, split=args.split)
     for w in model.warnings:
@@ -70,11 +72,16 @@ def _run_external(args) -> int:
     except FileNotFoundError as e:
         print(f"error: {ext.solver} terminated normally but left no results crashlite reads: {e}", file=sys.stderr)
         return 2
-    head = (f"{ext.solver}: normal termination ({ext.termination}), {ext.wall_time:.1f} s wall" if ext.ran else
-            f"{ext.solver}: {args.output} already holds a normally terminated run of this deck ({ext.termination}); "
-            "not run again (--force runs it)")
-    print(f"{head}; results in {args.output} ({', '.join(history.categories()) or 'no time histories'}), read by "
-          "crashlite.results.load")
+    head = (
+        f"{ext.solver}: normal termination ({ext.termination}), {ext.wall_time:.1f} s wall"
+        if ext.ran
+        else f"{ext.solver}: {args.output} already holds a normally terminated run of this deck ({ext.termination}); "
+        "not run again (--force runs it)"
+    )
+    print(
+        f"{head}; results in {args.output} ({', '.join(history.categories()) or 'no time histories'}), read by "
+        "crashlite.results.load"
+    )
     return 0
 
 
@@ -110,9 +117,11 @@ def _run(args) -> int:
     ratio = res.energy_ratio
     stopped = res.info.get("stopped") or ""
     head = f"{stopped}: " if stopped else ""
-    print(f"{head}{res.cycles} cycles, dt {res.dt:.4g}, end time {res.time[-1]:.6g}, "
-          f"energy ratio {ratio.min():.4f}..{ratio.max():.4f}, {res.wall_time:.2f} s wall"
-          f"{_added_mass(res, model)}; results{' so far' if stopped else ''} in {args.output}/results.npz")
+    print(
+        f"{head}{res.cycles} cycles, dt {res.dt:.4g}, end time {res.time[-1]:.6g}, "
+        f"energy ratio {ratio.min():.4f}..{ratio.max():.4f}, {res.wall_time:.2f} s wall"
+        f"{_added_mass(res, model)}; results{' so far' if stopped else ''} in {args.output}/results.npz"
+    )
     return INTERRUPTED if stopped.startswith("interrupted") else 0
 
 
@@ -124,8 +133,10 @@ def _path_arg(text: str) -> Path:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(prog="crashlite", description="crashlite: LS-DYNA decks in and out, and "
-                                "an explicit solver for simplified frontal crash models")
+    p = argparse.ArgumentParser(
+        prog="crashlite",
+        description="crashlite: LS-DYNA decks in and out, and an explicit solver for simplified frontal crash models",
+    )
     sub = p.add_subparsers(dest="command", required=True)
     info = sub.add_parser("info", help="summarise a keyword deck: counts, parts, mass, CoG")
     info.add_argument("deck", type=Path)
@@ -139,22 +150,38 @@ def build_parser() -> argparse.ArgumentParser:
     conv.add_argument("--split", action="store_true", help="nodes and elements in an include file")
     conv.add_argument("--strict", action="store_true")
     conv.set_defaults(func=_convert)
-    run = sub.add_parser("run", help="run a deck with the explicit solver (masses, springs, dampers, "
-                                     "beams, rigid bodies, rigid walls at this stage), or unchanged in an "
-                                     "installed LS-DYNA or OpenRadioss (--solver)")
+    run = sub.add_parser(
+        "run",
+        help="run a deck with the explicit solver (masses, springs, dampers, "
+        "beams, rigid bodies, rigid walls at this stage), or unchanged in an "
+        "installed LS-DYNA or OpenRadioss (--solver)",
+    )
     run.add_argument("deck", type=Path)
-    run.add_argument("-o", "--output", type=_path_arg, required=True,
-                     help="results folder; one reused by an earlier run is emptied of that run's files (listed in "
-                          "its crashlite-run.json) first; files of the names a run writes that no run wrote "
-                          "refuse the run, and the deck is never overwritten")
-    run.add_argument("--force", action="store_true", help="overwrite files in the results folder that have the "
-                                                          "names a run writes but no crashlite run wrote; with "
-                                                          "--solver, also run again a deck already run there")
-    run.add_argument("--solver", choices=("crashlite", "lsdyna", "openradioss"), default="crashlite",
-                     help="crashlite's solver, or the deck unchanged in an installed LS-DYNA or OpenRadioss in the "
-                          "results folder (executable and options: CRASHLITE_LSDYNA, CRASHLITE_LSDYNA_NCPU, "
-                          "CRASHLITE_LSDYNA_MEMORY, CRASHLITE_MPI or ~/.config/crashlite/solvers.toml; see "
-                          "docs/external.md)")
+    run.add_argument(
+        "-o",
+        "--output",
+        type=_path_arg,
+        required=True,
+        help="results folder; one reused by an earlier run is emptied of that run's files (listed in "
+        "its crashlite-run.json) first; files of the names a run writes that no run wrote "
+        "refuse the run, and the deck is never overwritten",
+    )
+    run.add_argument(
+        "--force",
+        action="store_true",
+        help="overwrite files in the results folder that have the "
+        "names a run writes but no crashlite run wrote; with "
+        "--solver, also run again a deck already run there",
+    )
+    run.add_argument(
+        "--solver",
+        choices=("crashlite", "lsdyna", "openradioss"),
+        default="crashlite",
+        help="crashlite's solver, or the deck unchanged in an installed LS-DYNA or OpenRadioss in the "
+        "results folder (executable and options: CRASHLITE_LSDYNA, CRASHLITE_LSDYNA_NCPU, "
+        "CRASHLITE_LSDYNA_MEMORY, CRASHLITE_MPI or ~/.config/crashlite/solvers.toml; see "
+        "docs/external.md)",
+    )
     run.add_argument("--quiet", action="store_true", help="no progress bar (with --solver: no solver output)")
     run.set_defaults(func=_run)
     from .cli_barrier import add_commands as barrier_commands

@@ -17,8 +17,9 @@ def _run(args) -> int:
     solver_options(cfg)  # an external solver not configured: said before any worker starts
     if args.cluster is not None and ":" not in args.cluster:
         raise ValueError(f"--cluster {args.cluster!r}: give MODULE:CALLABLE (a function returning a Dask cluster)")
-    executor = make_executor(cfg.execution, scheduler=args.scheduler, workers=args.workers, serial=args.serial,
-                             cluster=args.cluster)
+    executor = make_executor(
+        cfg.execution, scheduler=args.scheduler, workers=args.workers, serial=args.serial, cluster=args.cluster
+    )
     progress = Progress(cfg, quiet=args.quiet)
     try:
         with executor:
@@ -27,11 +28,12 @@ def _run(args) -> int:
         print(f"error: {e}", file=sys.stderr)
         return 3
     except KeyboardInterrupt:
-        print("interrupted: the designs that were running will run again when the study is resumed",
-              file=sys.stderr)
+        print("interrupted: the designs that were running will run again when the study is resumed", file=sys.stderr)
         return 130
-    print(f"study {cfg.name!r}: {s.ran} design(s) run in this session ({s.complete} complete, {s.failed} failed), "
-          f"{s.skipped} already done, {s.rerun} interrupted one(s) rerun; {s.wall_time:.1f} s on {s.executor}")
+    print(
+        f"study {cfg.name!r}: {s.ran} design(s) run in this session ({s.complete} complete, {s.failed} failed), "
+        f"{s.skipped} already done, {s.rerun} interrupted one(s) rerun; {s.wall_time:.1f} s on {s.executor}"
+    )
     if args.report:
         return _report_of(cfg, None)
     return 0
@@ -43,13 +45,19 @@ def _report_of(cfg, out) -> int:
     summary = build_report(cfg, out)
     where = Path(out) if out else cfg.directory / "report"
     c = summary["counts"]
-    print(f"report of {cfg.name!r} in {where}: {c['complete']} complete, {c['failed']} failed, "
-          f"{c['feasible']} feasible; figures: " + ", ".join(f["file"] for f in summary["figures"]))
+    print(
+        f"report of {cfg.name!r} in {where}: {c['complete']} complete, {c['failed']} failed, "
+        f"{c['feasible']} feasible; figures: " + ", ".join(f["file"] for f in summary["figures"])
+    )
     if summary["best"]:
         b = summary["best"]
-        print(f"best design {b['key']}: " + ", ".join(f"{k} = {v:.6g}" for k, v in b["values"].items())
-              + " -> " + ", ".join(f"{k} = {v:.6g}" for k, v in b["responses"].items())
-              + (f"; deck {where / summary['best_deck']}" if summary.get("best_deck") else ""))
+        print(
+            f"best design {b['key']}: "
+            + ", ".join(f"{k} = {v:.6g}" for k, v in b["values"].items())
+            + " -> "
+            + ", ".join(f"{k} = {v:.6g}" for k, v in b["responses"].items())
+            + (f"; deck {where / summary['best_deck']}" if summary.get("best_deck") else "")
+        )
     for n in summary["notes"]:
         print(f"note: {n}")
     return 0
@@ -88,13 +96,21 @@ def add_commands(sub) -> None:
     ssub = st.add_subparsers(dest="study_command", required=True)
     r = ssub.add_parser("run", help="run or resume the study of a study file", formatter_class=fmt)
     r.add_argument("study", type=Path, help="study file (TOML)")
-    r.add_argument("--scheduler", default=None, help="address of a running Dask scheduler (tcp://host:8786); "
-                                                     "default: a LocalCluster on this machine")
-    r.add_argument("--cluster", default=None, metavar="MODULE:CALLABLE",
-                   help="a function returning a Dask cluster to run on (e.g. a dask-jobqueue SLURMCluster); "
-                        "overrides the study file's [execution] scheduler and cluster")
-    r.add_argument("--workers", type=_workers, default=None,
-                   help="LocalCluster worker processes (default: one per core)")
+    r.add_argument(
+        "--scheduler",
+        default=None,
+        help="address of a running Dask scheduler (tcp://host:8786); default: a LocalCluster on this machine",
+    )
+    r.add_argument(
+        "--cluster",
+        default=None,
+        metavar="MODULE:CALLABLE",
+        help="a function returning a Dask cluster to run on (e.g. a dask-jobqueue SLURMCluster); "
+        "overrides the study file's [execution] scheduler and cluster",
+    )
+    r.add_argument(
+        "--workers", type=_workers, default=None, help="LocalCluster worker processes (default: one per core)"
+    )
     r.add_argument("--serial", action="store_true", help="run the designs one by one in this process (no Dask)")
     r.add_argument("--force", action="store_true", help="take over a study whose session looks alive")
     r.add_argument("--report", action="store_true", help="write the report when the study is done")

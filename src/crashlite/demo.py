@@ -39,8 +39,11 @@ def decks(out: Path) -> int:
     """Stages 1–6: decks in and out, the solver on closed-form cases, the barrier."""
     deck = example_deck()
     print(f"== 1. Read an LS-DYNA keyword deck: {deck.name}\n")
-    print("(the very first run compiles crashlite's Numba kernels: about a minute; "
-          "they are cached for every later run)\n", flush=True)
+    print(
+        "(the very first run compiles crashlite's Numba kernels: about a minute; "
+        "they are cached for every later run)\n",
+        flush=True,
+    )
     t0 = time.perf_counter()
     model = read_deck(deck)
     t_read = time.perf_counter() - t0
@@ -94,13 +97,17 @@ def crash_pulse(out: Path) -> int:
     m, v0, k = params["m"], params["v0"], params["k"]
     u = -res.node_displacement[:, 0, 0]
     a = np.abs(np.gradient(res.node_velocity[:, 0, 0], res.time)) / 9810.0
-    rows = [("dynamic crush [mm]", u.max(), v0 * math.sqrt(m / k)),
-            ("time of max crush [ms]", 1e3 * res.time[np.argmax(u)], 1e3 * math.pi / 2 * math.sqrt(m / k)),
-            ("peak deceleration [g]", a.max(), v0 * math.sqrt(k / m) / 9810.0)]
+    rows = [
+        ("dynamic crush [mm]", u.max(), v0 * math.sqrt(m / k)),
+        ("time of max crush [ms]", 1e3 * res.time[np.argmax(u)], 1e3 * math.pi / 2 * math.sqrt(m / k)),
+        ("peak deceleration [g]", a.max(), v0 * math.sqrt(k / m) / 9810.0),
+    ]
     worst = _compare(rows)
     ratio = res.energy_ratio
-    print(f"\n  {res.cycles} cycles of {res.dt * 1e3:.3g} ms in {res.wall_time:.2f} s; energy ratio "
-          f"{ratio.min():.5f}..{ratio.max():.5f}; results in {out / 'pulse'}/results.npz")
+    print(
+        f"\n  {res.cycles} cycles of {res.dt * 1e3:.3g} ms in {res.wall_time:.2f} s; energy ratio "
+        f"{ratio.min():.5f}..{ratio.max():.5f}; results in {out / 'pulse'}/results.npz"
+    )
     if worst >= 0.02:
         return 1
     return impactor(out)
@@ -123,10 +130,12 @@ def impactor(out: Path) -> int:
     m, v0, force, k_total = p["mass"], p["v0"], 100 * p["f"], 100 * p["ku"]
     v = res.wall_velocity[:, 0]
     stroke = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(res.time))])
-    rows = [("stroke [mm]", stroke.max(), m * v0**2 / (2 * force)),
-            ("time to stop [ms]", 1e3 * res.time[np.argmax(stroke)], 1e3 * m * v0 / force),
-            ("plateau force [kN]", np.abs(res.wall_force[:, 0, 0]).max() / 1e3, force / 1e3),
-            ("rebound velocity [mm/s]", -v[-1], math.sqrt(force**2 / k_total / m))]
+    rows = [
+        ("stroke [mm]", stroke.max(), m * v0**2 / (2 * force)),
+        ("time to stop [ms]", 1e3 * res.time[np.argmax(stroke)], 1e3 * m * v0 / force),
+        ("plateau force [kN]", np.abs(res.wall_force[:, 0, 0]).max() / 1e3, force / 1e3),
+        ("rebound velocity [mm/s]", -v[-1], math.sqrt(force**2 / k_total / m)),
+    ]
     worst = _compare(rows)
     print(f"\n  {res.cycles} cycles in {res.wall_time:.2f} s; results in {out / 'impactor'}/")
     return barrier(out) if worst < 0.02 else 1
@@ -149,17 +158,23 @@ def barrier(out: Path) -> int:
     folder = out / "barrier"
     main = write_impactor_case(folder, b, pl, Impactor(overlap=0.4), end_time=0.03)
     model = read_deck(main)
-    print(f"  {folder / 'barrier.k'}: {len(model.discretes)} non-linear discrete beams "
-          f"({int(np.sum(model.discretes.pid == 1))} main block, {int(np.sum(model.discretes.pid == 2))} bumper), "
-          f"{b.shells} cladding shells, {len(model.nodes)} nodes, {b.mass * 1e3:.1f} kg")
+    print(
+        f"  {folder / 'barrier.k'}: {len(model.discretes)} non-linear discrete beams "
+        f"({int(np.sum(model.discretes.pid == 1))} main block, {int(np.sum(model.discretes.pid == 2))} bumper), "
+        f"{b.shells} cladding shells, {len(model.nodes)} nodes, {b.mass * 1e3:.1f} kg"
+    )
     res = run(model, out=folder / "out")
     t, f = filter_signal(res.time, -res.wall_force[:, 0, 0], 60.0)
     dx = res.final_x[:, 0] - model.nodes.xyz[:, 0]
-    print(f"  rigid impactor 5000 kg at 64 km/h, 40 % overlap, 30 ms: CFC 60 force peak {f.max() / 1e3:.0f} kN, "
-          f"deepest intrusion {dx.max():.0f} mm")
+    print(
+        f"  rigid impactor 5000 kg at 64 km/h, 40 % overlap, 30 ms: CFC 60 force peak {f.max() / 1e3:.0f} kN, "
+        f"deepest intrusion {dx.max():.0f} mm"
+    )
     ratio = res.energy_ratio
-    print(f"  {res.cycles} cycles of {res.dt * 1e3:.3g} ms in {res.wall_time:.2f} s; energy ratio "
-          f"{ratio.min():.4f}..{ratio.max():.4f}; results in {folder / 'out'}/")
+    print(
+        f"  {res.cycles} cycles of {res.dt * 1e3:.3g} ms in {res.wall_time:.2f} s; energy ratio "
+        f"{ratio.min():.4f}..{ratio.max():.4f}; results in {folder / 'out'}/"
+    )
     return 0 if np.all(np.abs(ratio - 1.0) < 0.02) else 1
 
 
@@ -174,19 +189,25 @@ def vehicle(out: Path, mesh_size: float = 60.0, end_time: float = 0.07) -> int:
     fw = f.get("firewall_intrusion") or {}
     ratings = ", ".join(f"{k} {v:.3f}" for k, v in f["energy_ratings_deceleration_phase"].items() if v is not None)
     print(f"  energy ratings over the deceleration phase: {ratings}")
-    print(f"  crash-box internal energy deviation {f['crash_box_internal_energy_deviation_percent']:+.2f} %; "
-          f"firewall intrusion {fw.get('max_intrusion_full', float('nan')):.0f} mm, deviation max "
-          f"{fw.get('max_deviation_percent', float('nan')):.1f} %, mean "
-          f"{fw.get('mean_deviation_percent', float('nan')):.1f} %")
+    print(
+        f"  crash-box internal energy deviation {f['crash_box_internal_energy_deviation_percent']:+.2f} %; "
+        f"firewall intrusion {fw.get('max_intrusion_full', float('nan')):.0f} mm, deviation max "
+        f"{fw.get('max_deviation_percent', float('nan')):.1f} %, mean "
+        f"{fw.get('mean_deviation_percent', float('nan')):.1f} %"
+    )
     if f.get("elastic_twin"):
         from .vehicle.verify.study_report import twin_text
 
-        print("  split by the full car's elastic twin (its structure behind the interface elastic): "
-              + twin_text(f["elastic_twin"]).lstrip("; "))
+        print(
+            "  split by the full car's elastic twin (its structure behind the interface elastic): "
+            + twin_text(f["elastic_twin"]).lstrip("; ")
+        )
     t = f["time"]
-    print(f"  time loop {t['full']['wall_time']:.1f} s -> {t['simplified']['wall_time']:.1f} s "
-          f"(reduction {t['reduction_percent']:.0f} %); reports: {st.out / 'reduction.html'}, "
-          f"{st.out / 'verify' / 'index.html'}")
+    print(
+        f"  time loop {t['full']['wall_time']:.1f} s -> {t['simplified']['wall_time']:.1f} s "
+        f"(reduction {t['reduction_percent']:.0f} %); reports: {st.out / 'reduction.html'}, "
+        f"{st.out / 'verify' / 'index.html'}"
+    )
     from .vehicle.verify.verdict import verdict, verdict_lines
 
     print("\n  the simplified vehicle against its bounds (US NCAP):")

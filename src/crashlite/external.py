@@ -71,14 +71,42 @@ _OPENRADIOSS_ERROR = re.compile(r"ERROR\s+TERMINATION")
 # Names LS-DYNA (and crashlite) write in a run folder: present without this
 # module's manifest naming them, they belong to a run crashlite did not
 # start and refuse the folder (unless force).
-OUTPUT_PATTERNS = ("d3hsp", "messag", "mes[0-9][0-9][0-9][0-9]*", "glstat", "matsum", "nodout", "rwforc",
-                   "deforc", "secforc", "spcforc", "rcforc", "sleout", "bndout", "nodfor", "elout", "jntforc",
-                   "abstat", "rbdout", "gceout", "sbtout", "swforc", "binout*", "d3plot*", "d3thdt*", "d3dump*",
-                   "runrsf*", "results.npz", "status.out")
+OUTPUT_PATTERNS = (
+    "d3hsp",
+    "messag",
+    "mes[0-9][0-9][0-9][0-9]*",
+    "glstat",
+    "matsum",
+    "nodout",
+    "rwforc",
+    "deforc",
+    "secforc",
+    "spcforc",
+    "rcforc",
+    "sleout",
+    "bndout",
+    "nodfor",
+    "elout",
+    "jntforc",
+    "abstat",
+    "rbdout",
+    "gceout",
+    "sbtout",
+    "swforc",
+    "binout*",
+    "d3plot*",
+    "d3thdt*",
+    "d3dump*",
+    "runrsf*",
+    "results.npz",
+    "status.out",
+)
 _OPENRADIOSS_OUTPUTS = ("{stem}_[0-9][0-9][0-9][0-9]*", "{stem}T[0-9]*", "{stem}A[0-9]*")
 
-_TABLE_KEYS = {"lsdyna": ("executable", "ncpu", "memory", "mpi", "args", "env"),
-               "openradioss": ("starter", "engine", "ncpu", "mpi", "args", "env", "commands", "termination_files")}
+_TABLE_KEYS = {
+    "lsdyna": ("executable", "ncpu", "memory", "mpi", "args", "env"),
+    "openradioss": ("starter", "engine", "ncpu", "mpi", "args", "env", "commands", "termination_files"),
+}
 
 
 class ExternalSolverError(RuntimeError):
@@ -113,6 +141,7 @@ class SolverSettings:
 
 # --- configuration ------------------------------------------------------------
 
+
 def config_file(environ: Mapping[str, str] | None = None) -> Path | None:
     """The solvers file: $CRASHLITE_SOLVERS (which must exist), else
     ~/.config/crashlite/solvers.toml (or under $XDG_CONFIG_HOME) if present."""
@@ -121,8 +150,9 @@ def config_file(environ: Mapping[str, str] | None = None) -> Path | None:
     if named:
         p = Path(named).expanduser()
         if not p.is_file():
-            raise ExternalSolverError(f"{CONFIG_VARIABLE}={named}: no such file (it names the TOML file of the "
-                                      "external solvers' settings)")
+            raise ExternalSolverError(
+                f"{CONFIG_VARIABLE}={named}: no such file (it names the TOML file of the external solvers' settings)"
+            )
         return p
     base = Path(env.get("XDG_CONFIG_HOME") or Path(env.get("HOME") or Path.home()) / ".config").expanduser()
     p = base / "crashlite" / "solvers.toml"
@@ -141,8 +171,9 @@ def _read_table(path: Path | None, solver: str) -> dict:
         raise ExternalSolverError(f"{path}: [{solver}] must be a table")
     extra = [k for k in t if k not in _TABLE_KEYS[solver]]
     if extra:
-        raise ExternalSolverError(f"{path}: [{solver}] unknown key(s) {', '.join(map(repr, extra))} (known: "
-                                  f"{', '.join(_TABLE_KEYS[solver])})")
+        raise ExternalSolverError(
+            f"{path}: [{solver}] unknown key(s) {', '.join(map(repr, extra))} (known: {', '.join(_TABLE_KEYS[solver])})"
+        )
     return t
 
 
@@ -170,8 +201,10 @@ def _ncpu(value, where: str, negative: bool) -> int | None:
     except ValueError:
         n = None
     if n is None or n == 0 or (n < 0 and not negative):
-        raise ExternalSolverError(f"{where}: must be a whole number of 1 or more"
-                                  + (" (or -N: LS-DYNA's consistent mode on N CPUs)" if negative else ""))
+        raise ExternalSolverError(
+            f"{where}: must be a whole number of 1 or more"
+            + (" (or -N: LS-DYNA's consistent mode on N CPUs)" if negative else "")
+        )
     return n
 
 
@@ -191,8 +224,9 @@ def _program(value: str, where: str) -> str:
     return found
 
 
-def settings(solver: str = "lsdyna", environ: Mapping[str, str] | None = None,
-             path: Path | str | None = None) -> SolverSettings:
+def settings(
+    solver: str = "lsdyna", environ: Mapping[str, str] | None = None, path: Path | str | None = None
+) -> SolverSettings:
     """The settings of ``solver`` from the environment (first) and the
     solvers file; ExternalSolverError names the variable or key at fault."""
     if solver not in SOLVERS:
@@ -221,15 +255,17 @@ def settings(solver: str = "lsdyna", environ: Mapping[str, str] | None = None,
             return f"{src}={env[src].strip()}"
         return f"{src} = {table[key]!r}"
 
-    file_hint = f"{path}" if path is not None else "~/.config/crashlite/solvers.toml (or the file " \
-                                                   f"{CONFIG_VARIABLE} names)"
+    file_hint = (
+        f"{path}" if path is not None else f"~/.config/crashlite/solvers.toml (or the file {CONFIG_VARIABLE} names)"
+    )
     if solver == "lsdyna":
         exe = pick("executable", prefix)
         if not exe:
             raise ExternalSolverError(
                 f"no LS-DYNA executable configured: set {prefix}=/path/to/lsdyna (options: {prefix}_NCPU, "
-                f"{prefix}_MEMORY, {prefix}_ARGS, {MPI_VARIABLE}), or executable = \"...\" under [lsdyna] "
-                f"in {file_hint}")
+                f'{prefix}_MEMORY, {prefix}_ARGS, {MPI_VARIABLE}), or executable = "..." under [lsdyna] '
+                f"in {file_hint}"
+            )
         engine = ""
         executable = _program(str(exe), where("executable"))
     else:
@@ -239,32 +275,45 @@ def settings(solver: str = "lsdyna", environ: Mapping[str, str] | None = None,
             raise ExternalSolverError(
                 f"no OpenRadioss {lack} configured: set {prefix}_STARTER and {prefix}_ENGINE (the starter and "
                 f"engine executables; options: {prefix}_NCPU, {prefix}_ARGS, {MPI_VARIABLE}), or starter and "
-                f"engine under [openradioss] in {file_hint}")
+                f"engine under [openradioss] in {file_hint}"
+            )
         executable = _program(str(starter), where("starter"))
         engine = _program(str(eng), where("engine"))
     ncpu = _ncpu(pick("ncpu", f"{prefix}_NCPU"), where("ncpu"), negative=solver == "lsdyna")
     memory = pick("memory", f"{prefix}_MEMORY") if solver == "lsdyna" else None
-    if memory is not None and (isinstance(memory, bool) or not isinstance(memory, (str, int))
-                               or not str(memory).strip()):
-        raise ExternalSolverError(f"{where('memory')}: must be LS-DYNA's memory= value (e.g. \"2000m\" or a "
-                                  f"number of words), got {memory!r}")
+    if memory is not None and (
+        isinstance(memory, bool) or not isinstance(memory, (str, int)) or not str(memory).strip()
+    ):
+        raise ExternalSolverError(
+            f'{where("memory")}: must be LS-DYNA\'s memory= value (e.g. "2000m" or a number of words), got {memory!r}'
+        )
     mpi = _words(pick("mpi", MPI_VARIABLE), where("mpi"))
     if mpi:
         _program(mpi[0], where("mpi"))
     args = _words(pick("args", f"{prefix}_ARGS"), where("args"))
     run_env = table.get("env", {})
     if not isinstance(run_env, dict) or not all(isinstance(v, (str, int, float)) for v in run_env.values()):
-        raise ExternalSolverError(f"{path} [{solver}.env]: must be a table of NAME = \"value\"")
+        raise ExternalSolverError(f'{path} [{solver}.env]: must be a table of NAME = "value"')
     commands: tuple[str, ...] = ()
     term: tuple[str, ...] = LSDYNA_TERMINATION
     if solver == "openradioss":
         commands = _templates(table.get("commands", list(OPENRADIOSS_COMMANDS)), f"{path} [openradioss] commands")
-        term = _templates(table.get("termination_files", list(OPENRADIOSS_TERMINATION)),
-                          f"{path} [openradioss] termination_files")
-    return SolverSettings(solver=solver, executable=executable, engine=engine, ncpu=ncpu,
-                          memory=None if memory is None else str(memory).strip(), mpi=mpi, args=args,
-                          env={str(k): str(v) for k, v in run_env.items()}, commands=commands,
-                          termination_files=term, sources=sources)
+        term = _templates(
+            table.get("termination_files", list(OPENRADIOSS_TERMINATION)), f"{path} [openradioss] termination_files"
+        )
+    return SolverSettings(
+        solver=solver,
+        executable=executable,
+        engine=engine,
+        ncpu=ncpu,
+        memory=None if memory is None else str(memory).strip(),
+        mpi=mpi,
+        args=args,
+        env={str(k): str(v) for k, v in run_env.items()},
+        commands=commands,
+        termination_files=term,
+        sources=sources,
+    )
 
 
 def _templates(value, where: str) -> tuple[str, ...]:
@@ -274,6 +323,7 @@ def _templates(value, where: str) -> tuple[str, ...]:
 
 
 # --- command line ---------------------------------------------------------------
+
 
 def command_lines(s: SolverSettings, deck: str) -> list[list[str]]:
     """The argument lists the run executes, in order, with ``deck`` the
@@ -285,16 +335,24 @@ def command_lines(s: SolverSettings, deck: str) -> list[list[str]]:
         if s.memory is not None:
             cmd.append(f"memory={s.memory}")
         return [cmd + list(s.args)]
-    values = {"starter": shlex.quote(s.executable), "engine": shlex.quote(s.engine), "deck": shlex.quote(deck),
-              "stem": shlex.quote(Path(deck).stem), "ncpu": str(s.ncpu or 1),
-              "mpi": " ".join(map(shlex.quote, s.mpi)), "args": " ".join(map(shlex.quote, s.args))}
+    values = {
+        "starter": shlex.quote(s.executable),
+        "engine": shlex.quote(s.engine),
+        "deck": shlex.quote(deck),
+        "stem": shlex.quote(Path(deck).stem),
+        "ncpu": str(s.ncpu or 1),
+        "mpi": " ".join(map(shlex.quote, s.mpi)),
+        "args": " ".join(map(shlex.quote, s.args)),
+    }
     out = []
     for t in s.commands:
         try:
             out.append(shlex.split(t.format(**values)))
         except (KeyError, IndexError, ValueError) as e:
-            raise ExternalSolverError(f"[openradioss] commands: {t!r}: {type(e).__name__}: {e} (placeholders: "
-                                      f"{', '.join('{' + k + '}' for k in values)})") from None
+            raise ExternalSolverError(
+                f"[openradioss] commands: {t!r}: {type(e).__name__}: {e} (placeholders: "
+                f"{', '.join('{' + k + '}' for k in values)})"
+            ) from None
     return [c for c in out if c]
 
 
@@ -302,8 +360,9 @@ def normal_termination(folder: Path | str, s: SolverSettings, stem: str = "") ->
     """(file that reports a normal termination or None, what was found
     instead), from the end of the solver's listing files."""
     folder = Path(folder)
-    normal, error = (_LSDYNA_NORMAL, _LSDYNA_ERROR) if s.solver == "lsdyna" else \
-        (_OPENRADIOSS_NORMAL, _OPENRADIOSS_ERROR)
+    normal, error = (
+        (_LSDYNA_NORMAL, _LSDYNA_ERROR) if s.solver == "lsdyna" else (_OPENRADIOSS_NORMAL, _OPENRADIOSS_ERROR)
+    )
     seen = []
     for pattern in s.termination_files:
         name = pattern.format(stem=stem)
@@ -314,8 +373,7 @@ def normal_termination(folder: Path | str, s: SolverSettings, stem: str = "") ->
         if normal.search(text):
             return name, ""
         seen.append(f"{name}: error termination" if error.search(text) else f"{name}: no termination line")
-    return None, "; ".join(seen) or f"none of {', '.join(t.format(stem=stem) for t in s.termination_files)} " \
-                                    "was written"
+    return None, "; ".join(seen) or f"none of {', '.join(t.format(stem=stem) for t in s.termination_files)} was written"
 
 
 def _tail_text(path: Path, size: int = 1 << 16) -> str:
@@ -326,6 +384,7 @@ def _tail_text(path: Path, size: int = 1 << 16) -> str:
 
 
 # --- the deck ---------------------------------------------------------------------
+
 
 def deck_files(deck: Path | str) -> list[Path]:
     """The deck and the include files it names (as crashlite's reader finds them)."""
@@ -364,6 +423,7 @@ def deck_hash(files: list[Path]) -> str:
 
 # --- the run -----------------------------------------------------------------------
 
+
 @dataclass
 class ExternalRun:
     """What ``run`` did: the folder holds the solver's results."""
@@ -388,8 +448,9 @@ def _manifest(folder: Path) -> dict | None:
             raise ValueError("not a table with a list of files")
         return data
     except (OSError, ValueError) as e:
-        raise ExternalFolderError(f"{p}: not a crashlite solver manifest ({e}); remove it or choose another "
-                                  "folder") from None
+        raise ExternalFolderError(
+            f"{p}: not a crashlite solver manifest ({e}); remove it or choose another folder"
+        ) from None
 
 
 def _write_manifest(folder: Path, data: dict) -> None:
@@ -408,13 +469,15 @@ def _listing(folder: Path) -> dict[str, tuple[int, int]]:
 
 
 def _outputs_present(folder: Path, s: SolverSettings, stem: str) -> list[str]:
-    patterns = OUTPUT_PATTERNS + (tuple(p.format(stem=stem) for p in _OPENRADIOSS_OUTPUTS)
-                                  if s.solver == "openradioss" else ())
+    patterns = OUTPUT_PATTERNS + (
+        tuple(p.format(stem=stem) for p in _OPENRADIOSS_OUTPUTS) if s.solver == "openradioss" else ()
+    )
     return sorted(n for n in _listing(folder) if any(fnmatch.fnmatchcase(n, p) for p in patterns))
 
 
-def _prepare(folder: Path, s: SolverSettings, stem: str, previous: dict | None, protected: set[Path],
-             force: bool) -> list[str]:
+def _prepare(
+    folder: Path, s: SolverSettings, stem: str, previous: dict | None, protected: set[Path], force: bool
+) -> list[str]:
     """Remove the previous run's files (and, with force, other runs' files
     of the names a solver writes); refuse the folder when it holds files of
     a run crashlite did not start. Returns the names removed."""
@@ -424,13 +487,14 @@ def _prepare(folder: Path, s: SolverSettings, stem: str, previous: dict | None, 
     ours = set(previous.get("files", [])) if previous else set()
     embedded = OutputFolder(folder).previous if (folder / CRASHLITE_MANIFEST).is_file() else set()
     present = _outputs_present(folder, s, stem)
-    foreign = [n for n in present if n not in ours and n not in embedded
-               and (folder / n).resolve() not in protected]
+    foreign = [n for n in present if n not in ours and n not in embedded and (folder / n).resolve() not in protected]
     if foreign and not force:
         shown = ", ".join(foreign[:8]) + (f" and {len(foreign) - 8} more" if len(foreign) > 8 else "")
-        raise ExternalFolderError(f"the output folder {folder} holds files of a run crashlite did not start "
-                                  f"({shown}): choose another folder (-o), remove them, or overwrite them with "
-                                  "--force")
+        raise ExternalFolderError(
+            f"the output folder {folder} holds files of a run crashlite did not start "
+            f"({shown}): choose another folder (-o), remove them, or overwrite them with "
+            "--force"
+        )
     removed = []
     targets = sorted(ours | set(foreign) | {n for n in embedded if "/" not in n})
     for name in targets:
@@ -450,8 +514,15 @@ def _prepare(folder: Path, s: SolverSettings, stem: str, previous: dict | None, 
     return removed
 
 
-def run(deck: Path | str, out: Path | str, solver: str = "lsdyna", *, config: SolverSettings | None = None,
-        force: bool = False, echo: Callable[[str], None] | None = None) -> ExternalRun:
+def run(
+    deck: Path | str,
+    out: Path | str,
+    solver: str = "lsdyna",
+    *,
+    config: SolverSettings | None = None,
+    force: bool = False,
+    echo: Callable[[str], None] | None = None,
+) -> ExternalRun:
     """Run ``deck`` unchanged in the external ``solver`` with ``out`` as its
     working directory; ``echo(line)`` gets the solver's output lines as they
     come. Raises ExternalSolverError (not configured, cannot start, non-zero
@@ -460,8 +531,9 @@ def run(deck: Path | str, out: Path | str, solver: str = "lsdyna", *, config: So
     s = config or settings(solver)
     deck = Path(deck)
     if not deck.is_file():
-        raise FileNotFoundError(f"{deck}: deck file not found" if not deck.is_dir()
-                                else f"{deck}: a folder, not a deck file")
+        raise FileNotFoundError(
+            f"{deck}: deck file not found" if not deck.is_dir() else f"{deck}: a folder, not a deck file"
+        )
     deck = deck.resolve()
     folder = Path(out)
     if folder.exists() and not folder.is_dir():
@@ -476,8 +548,14 @@ def run(deck: Path | str, out: Path | str, solver: str = "lsdyna", *, config: So
     stem = deck.stem
     from .results.folder import MANIFEST as CRASHLITE_MANIFEST
 
-    if previous and not force and previous.get("solver") == s.solver and previous.get("deck_sha256") == digest \
-            and previous.get("status") == "complete" and not (folder / CRASHLITE_MANIFEST).exists():
+    if (
+        previous
+        and not force
+        and previous.get("solver") == s.solver
+        and previous.get("deck_sha256") == digest
+        and previous.get("status") == "complete"
+        and not (folder / CRASHLITE_MANIFEST).exists()
+    ):
         found, _ = normal_termination(folder, s, stem)
         if found:
             return ExternalRun(s.solver, folder, deck, previous.get("commands", []), False, 0.0, found, log)
@@ -489,9 +567,18 @@ def run(deck: Path | str, out: Path | str, solver: str = "lsdyna", *, config: So
     env = dict(os.environ)
     env.update(s.env)
     before = _listing(folder)
-    record = {"written_by": "crashlite run --solver", "solver": s.solver, "deck": str(deck),
-              "deck_files": [str(f) for f in files], "deck_sha256": digest, "commands": commands,
-              "settings": dict(s.sources), "status": "running", "started": time.time(), "files": [LOG]}
+    record = {
+        "written_by": "crashlite run --solver",
+        "solver": s.solver,
+        "deck": str(deck),
+        "deck_files": [str(f) for f in files],
+        "deck_sha256": digest,
+        "commands": commands,
+        "settings": dict(s.sources),
+        "status": "running",
+        "started": time.time(),
+        "files": [LOG],
+    }
     _write_manifest(folder, record)
     t0 = time.perf_counter()
     tail: deque = deque(maxlen=TAIL)
@@ -503,13 +590,17 @@ def run(deck: Path | str, out: Path | str, solver: str = "lsdyna", *, config: So
                 fh.flush()
                 rc = _execute(cmd, folder, env, fh, tail, echo, s)
                 if rc != 0:
-                    message = (f"{s.name} exited with status {rc} ({shlex.join(cmd[:3])} ...); last lines of "
-                               f"{log}:\n" + "\n".join(tail))
+                    message = (
+                        f"{s.name} exited with status {rc} ({shlex.join(cmd[:3])} ...); last lines of "
+                        f"{log}:\n" + "\n".join(tail)
+                    )
                     raise ExternalSolverError(message)
         found, instead = normal_termination(folder, s, stem)
         if found is None:
-            message = (f"{s.name} exited with status 0 but reports no normal termination ({instead}); last lines "
-                       f"of {log}:\n" + "\n".join(tail))
+            message = (
+                f"{s.name} exited with status 0 but reports no normal termination ({instead}); last lines "
+                f"of {log}:\n" + "\n".join(tail)
+            )
             raise ExternalSolverError(message)
         status, termination = "complete", found
     except KeyboardInterrupt:
@@ -520,10 +611,19 @@ def run(deck: Path | str, out: Path | str, solver: str = "lsdyna", *, config: So
         raise
     finally:
         after = _listing(folder)
-        written = sorted(n for n, st in after.items()
-                         if (before.get(n) != st or n == LOG) and (folder / n).resolve() not in protected)
-        record.update(status=status, message=message[:4000], files=written, finished=time.time(),
-                      wall_time=time.perf_counter() - t0, termination=termination)
+        written = sorted(
+            n
+            for n, st in after.items()
+            if (before.get(n) != st or n == LOG) and (folder / n).resolve() not in protected
+        )
+        record.update(
+            status=status,
+            message=message[:4000],
+            files=written,
+            finished=time.time(),
+            wall_time=time.perf_counter() - t0,
+            termination=termination,
+        )
         _write_manifest(folder, record)
     return ExternalRun(s.solver, folder, deck, commands, True, record["wall_time"], termination, log)
 
@@ -533,8 +633,15 @@ def _execute(cmd: list[str], cwd: Path, env: dict, fh, tail: deque, echo, s: Sol
     tail and ``echo``; the exit status. Ctrl-C stops the solver's process
     group (terminate, then kill after 10 s) and is raised again."""
     try:
-        proc = subprocess.Popen(cmd, cwd=cwd, env=env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
-                                stderr=subprocess.STDOUT, start_new_session=True)
+        proc = subprocess.Popen(
+            cmd,
+            cwd=cwd,
+            env=env,
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+        )
     except OSError as e:
         which = s.sources.get("mpi" if s.mpi and cmd[0] == s.mpi[0] else "executable", "the executable")
         raise ExternalSolverError(f"cannot start {s.name} ({which}): {cmd[0]}: {e.strerror or e}") from None

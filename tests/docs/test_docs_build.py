@@ -62,14 +62,23 @@ def _anchors(path: Path) -> set[str]:
 
 
 def _relative_links(path: Path) -> list[str]:
-    return [t for t in LINK.findall(_prose(path.read_text(encoding="utf-8")))
-            if not re.match(r"^[a-zA-Z][a-zA-Z0-9+.-]*:", t)]  # http:, https:, mailto:
+    return [
+        t
+        for t in LINK.findall(_prose(path.read_text(encoding="utf-8")))
+        if not re.match(r"^[a-zA-Z][a-zA-Z0-9+.-]*:", t)
+    ]  # http:, https:, mailto:
 
 
 def test_mkdocs_builds_strict(tmp_path):
     env = dict(os.environ, NO_MKDOCS_2_WARNING="1")
-    proc = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "-d", str(tmp_path / "site")],
-                          cwd=ROOT, env=env, capture_output=True, text=True, timeout=600)
+    proc = subprocess.run(
+        [sys.executable, "-m", "mkdocs", "build", "--strict", "-d", str(tmp_path / "site")],
+        cwd=ROOT,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert proc.returncode == 0, proc.stdout + proc.stderr
     for page in ("index.html", "method/index.html", "validation/index.html", "api/solver/index.html"):
         assert (tmp_path / "site" / page).is_file(), page

@@ -43,8 +43,17 @@ GSA_REPO = "dbrizard/GSA-car-crash"
 GSA_COMMIT = "477fb0578b764fb8dd630608b18d0b808b1fc12a"
 GSA_DECK = "lsopt_car6_v3/car6_crash_v223.k"
 # *PARAMETER of the nominal design (lsopt_car6_v3/main_v223.k)
-GSA_NOMINAL = {"tbumper": 3.0, "trailb": 2.0, "trailf": 5.0, "yrailb": 400.0, "tgrill": 1.0, "thood": 1.0,
-               "ybumper": 400.0, "yrailf": 400.0, "ybody": 400.0}
+GSA_NOMINAL = {
+    "tbumper": 3.0,
+    "trailb": 2.0,
+    "trailf": 5.0,
+    "yrailb": 400.0,
+    "tgrill": 1.0,
+    "thood": 1.0,
+    "ybumper": 400.0,
+    "yrailf": 400.0,
+    "ybody": 400.0,
+}
 
 
 @dataclass
@@ -101,10 +110,12 @@ def measure(res) -> dict:
     part = list(res.part_ids).index(1)
     # LS-DYNA's rwforc x force of the pole is positive (the study takes its largest value), crashlite
     # writes the nodes' force on the wall (negative here): the peak magnitude is compared
-    return {"fmax": float(np.max(np.abs(res.wall_force[:, wall, 0]))),
-            "dmax": float(res.node_displacement[-1, node, 0]),
-            "vfin": float(res.part_rigid_velocity[-1, part, 0]),
-            "IE": float(res.internal[-1])}
+    return {
+        "fmax": float(np.max(np.abs(res.wall_force[:, wall, 0]))),
+        "dmax": float(res.node_displacement[-1, node, 0]),
+        "vfin": float(res.part_rigid_velocity[-1, part, 0]),
+        "IE": float(res.internal[-1]),
+    }
 
 
 def _lhs(n: int) -> list[Case]:
@@ -118,8 +129,17 @@ def _lhs(n: int) -> list[Case]:
     out = []
     for i in range(min(n, len(x))):
         p = dict(GSA_NOMINAL, tbumper=x[i, 0], trailb=x[i, 1], trailf=x[i, 2], yrailf=x[i, 3])
-        out.append(Case(f"gsa-car-lhs{i:03d}", GSA_REPO, GSA_COMMIT, GSA_DECK, p,
-                        {q: float(y[q][i]) for q in y}, "LHS/4param/LHS-200_{X,Y_*}.csv, row %d" % i))
+        out.append(
+            Case(
+                f"gsa-car-lhs{i:03d}",
+                GSA_REPO,
+                GSA_COMMIT,
+                GSA_DECK,
+                p,
+                {q: float(y[q][i]) for q in y},
+                "LHS/4param/LHS-200_{X,Y_*}.csv, row %d" % i,
+            )
+        )
     return out
 
 
@@ -127,14 +147,22 @@ def cases(lhs: int = 5) -> list[Case]:
     """The parity set: the nominal small car against a pole (LS-DYNA R10.1,
     five repeated runs, their mean and scatter), and ``lhs`` designs of the
     study's Latin hypercube."""
-    runs = {"fmax": [772836.8, 775579.75, 772913.4, 770100.4, 773196.4],
-            "dmax": [-641.87, -643.65, -642.13, -643.91, -642.20],
-            "vfin": [-710.95, -716.19, -693.02, -730.54, -706.61],
-            "IE": [1.20394832e8, 1.2032208e8, 1.20379344e8, 1.2035144e8, 1.20424064e8]}
-    nominal = Case("gsa-car-nominal", GSA_REPO, GSA_COMMIT, GSA_DECK, dict(GSA_NOMINAL),
-                   {q: float(np.mean(v)) for q, v in runs.items()},
-                   "lsopt_car6_v3/MODIFICATIONS_LOG.md, 'base design output 2024-05-03' (5 runs)",
-                   {q: float(np.ptp(v) / abs(np.mean(v))) for q, v in runs.items()})
+    runs = {
+        "fmax": [772836.8, 775579.75, 772913.4, 770100.4, 773196.4],
+        "dmax": [-641.87, -643.65, -642.13, -643.91, -642.20],
+        "vfin": [-710.95, -716.19, -693.02, -730.54, -706.61],
+        "IE": [1.20394832e8, 1.2032208e8, 1.20379344e8, 1.2035144e8, 1.20424064e8],
+    }
+    nominal = Case(
+        "gsa-car-nominal",
+        GSA_REPO,
+        GSA_COMMIT,
+        GSA_DECK,
+        dict(GSA_NOMINAL),
+        {q: float(np.mean(v)) for q, v in runs.items()},
+        "lsopt_car6_v3/MODIFICATIONS_LOG.md, 'base design output 2024-05-03' (5 runs)",
+        {q: float(np.ptp(v) / abs(np.mean(v))) for q, v in runs.items()},
+    )
     return [nominal] + _lhs(lhs) + _cantilevers() + [_cube()]
 
 
@@ -146,9 +174,14 @@ CANTILEVER_BOUNDS = {"KE": 0.05, "IE": 0.05, "EW": 0.05, "uz5": 0.05, "ux5": 0.0
 def measure_cantilever(res) -> dict:
     """The cantilever's quantities from crashlite Results."""
     k = list(res.history_nodes).index(5)
-    return {"KE": float(res.kinetic[-1]), "IE": float(res.internal[-1]), "EW": float(res.external[-1]),
-            "uz5": float(res.node_displacement[-1, k, 2]), "ux5": float(res.node_displacement[-1, k, 0]),
-            "cycles": float(res.cycles)}
+    return {
+        "KE": float(res.kinetic[-1]),
+        "IE": float(res.internal[-1]),
+        "EW": float(res.external[-1]),
+        "uz5": float(res.node_displacement[-1, k, 2]),
+        "ux5": float(res.node_displacement[-1, k, 0]),
+        "cycles": float(res.cycles),
+    }
 
 
 def lsdyna_cantilever(folder: Path) -> dict:
@@ -158,8 +191,11 @@ def lsdyna_cantilever(folder: Path) -> dict:
 
     out = read_folder(folder)
     g = out["glstat"]
-    ref = {"KE": float(g["kinetic_energy"][-1]), "IE": float(g["internal_energy"][-1]),
-           "EW": float(g["external_work"][-1])}
+    ref = {
+        "KE": float(g["kinetic_energy"][-1]),
+        "IE": float(g["internal_energy"][-1]),
+        "EW": float(g["external_work"][-1]),
+    }
     if "nodout" in out:
         n = out["nodout"]
         k = list(n["ids"]).index(5)
@@ -174,9 +210,17 @@ def _cantilevers() -> list[Case]:
     precision), 1 mm with 3 integration points and 2 mm with 5."""
     out = []
     for name, sub in (("tug-shell-t1-nip3", "T1_NIP3"), ("tug-shell-t2-nip5", "T2_NIP5")):
-        case = Case(name, TUG_REPO, TUG_COMMIT, f"Element_Types/01_Shell/{sub}/01_Shell.dyn", None, {},
-                    f"Element_Types/01_Shell/{sub}/{{glstat,nodout,d3hsp}}", measure=measure_cantilever,
-                    bounds=dict(CANTILEVER_BOUNDS))
+        case = Case(
+            name,
+            TUG_REPO,
+            TUG_COMMIT,
+            f"Element_Types/01_Shell/{sub}/01_Shell.dyn",
+            None,
+            {},
+            f"Element_Types/01_Shell/{sub}/{{glstat,nodout,d3hsp}}",
+            measure=measure_cantilever,
+            bounds=dict(CANTILEVER_BOUNDS),
+        )
         if available(case):
             case.reference = lsdyna_cantilever((repo_dir(case) / case.deck).parent)
             case.bounds = {q: b for q, b in case.bounds.items() if q in case.reference}
@@ -201,8 +245,12 @@ def lsdyna_cube(binout: Path) -> dict:
     h = load(binout)
     fz = np.asarray(h.read("secforc", "z_force"), float).ravel()
     ts = np.asarray(h.read("secforc", "time"), float)
-    return {"IE": float(h.read("glstat", "internal_energy")[-1]), "EW": float(h.read("glstat", "external_work")[-1]),
-            "Fz": float(np.interp(CUBE_FZ_TIME, ts, fz)), "cycles": float(h.read("glstat", "cycle")[-1])}
+    return {
+        "IE": float(h.read("glstat", "internal_energy")[-1]),
+        "EW": float(h.read("glstat", "external_work")[-1]),
+        "Fz": float(np.interp(CUBE_FZ_TIME, ts, fz)),
+        "cycles": float(h.read("glstat", "cycle")[-1]),
+    }
 
 
 def _cube() -> Case:
@@ -212,8 +260,17 @@ def _cube() -> Case:
     *DATABASE_CROSS_SECTION_SET through that face (LS-DYNA R10.1 SMP; its
     binout at the repository root holds glstat, nodout, secforc, elout and
     curvout of exactly this deck's requests)."""
-    case = Case("tug-solid-cube", TUG_REPO, TUG_COMMIT, "Exercise 1/cube_complete.key", None, {},
-                "binout (repository root): glstat, secforc", measure=measure_cube, bounds=dict(CUBE_BOUNDS))
+    case = Case(
+        "tug-solid-cube",
+        TUG_REPO,
+        TUG_COMMIT,
+        "Exercise 1/cube_complete.key",
+        None,
+        {},
+        "binout (repository root): glstat, secforc",
+        measure=measure_cube,
+        bounds=dict(CUBE_BOUNDS),
+    )
     binout = repo_dir(case) / "binout"
     if available(case) and binout.is_file():  # lasso-python reads it (in the test extra)
         case.reference = lsdyna_cube(binout)

@@ -21,8 +21,7 @@ from crashlite.solver import run
 from crashlite.solver.setup import build
 
 FETCH = "the parity decks are not redistributed: run tests/parity/fetch.sh (network) to run these"
-CASES = [pytest.param(c, id=c.name, marks=pytest.mark.skipif(not available(c), reason=FETCH))
-         for c in cases(lhs=0)]
+CASES = [pytest.param(c, id=c.name, marks=pytest.mark.skipif(not available(c), reason=FETCH)) for c in cases(lhs=0)]
 
 
 @pytest.mark.parametrize("case", CASES)

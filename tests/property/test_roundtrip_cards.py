@@ -35,7 +35,8 @@ def _variants():
 
 VARIANTS = _variants()
 _TEXT = st.text(alphabet=string.ascii_letters + string.digits + "_-. /()", min_size=1, max_size=8).map(
-    lambda s: "t" + s.strip())
+    lambda s: "t" + s.strip()
+)
 _FLOAT = st.floats(allow_nan=False, allow_infinity=False, width=64)
 _INT = st.integers(min_value=-(10**12), max_value=10**12)
 
@@ -85,8 +86,9 @@ def records(draw, spec, options):
 
 
 @pytest.mark.parametrize("spec,options", VARIANTS, ids=[f"{s.name}:{'_'.join(sorted(o))}" for s, o in VARIANTS])
-@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow,
-                                                                  HealthCheck.function_scoped_fixture])
+@settings(
+    max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture]
+)
 @given(data=st.data())
 def test_record_roundtrip_all_formats(tmp_path, spec, options, data):
     rec = data.draw(records(spec, options))

@@ -19,8 +19,12 @@ def models(draw):
     n = draw(st.integers(4, 30))
     ids = np.sort(draw(st.lists(st.integers(1, 10**9), min_size=n, max_size=n, unique=True)))
     xyz = draw(arrays(np.float64, (n, 3), elements=_F))
-    nodes = Nodes(np.array(ids, np.int64), xyz, np.array(draw(st.lists(st.integers(0, 7), min_size=n, max_size=n)),
-                                                         np.int8), np.zeros(n, np.int8))
+    nodes = Nodes(
+        np.array(ids, np.int64),
+        xyz,
+        np.array(draw(st.lists(st.integers(0, 7), min_size=n, max_size=n)), np.int8),
+        np.zeros(n, np.int8),
+    )
     m = Model(nodes=nodes)
     k = draw(st.integers(1, 10))
     conn = draw(arrays(np.int32, (k, 4), elements=st.integers(0, n - 1)))
@@ -49,10 +53,16 @@ def models(draw):
     ms.node[:] = n - 1
     ms.mass[:] = draw(st.floats(1e-9, 1e3))
     m.masses = ms
-    m.parts[1] = Record("PART", frozenset(), {"heading": "p1", "pid": 1, "secid": 1, "mid": 1, "eosid": 0,
-                                               "hgid": 0, "grav": 0, "adpopt": 0, "tmid": 0})
-    m.parts[2] = Record("PART", frozenset(), {"heading": "spring", "pid": 2, "secid": 2, "mid": 2, "eosid": 0,
-                                               "hgid": 0, "grav": 0, "adpopt": 0, "tmid": 0})
+    m.parts[1] = Record(
+        "PART",
+        frozenset(),
+        {"heading": "p1", "pid": 1, "secid": 1, "mid": 1, "eosid": 0, "hgid": 0, "grav": 0, "adpopt": 0, "tmid": 0},
+    )
+    m.parts[2] = Record(
+        "PART",
+        frozenset(),
+        {"heading": "spring", "pid": 2, "secid": 2, "mid": 2, "eosid": 0, "hgid": 0, "grav": 0, "adpopt": 0, "tmid": 0},
+    )
     return m
 
 
@@ -62,8 +72,12 @@ def test_model_roundtrip_every_format(tmp_path, model):
     # sections and materials as verbatim keywords: references resolve, values kept
     from crashlite.keyword.schema import RawKeyword
 
-    model.keywords = [RawKeyword("*SECTION_SHELL", ["1,2", "1.0"]), RawKeyword("*SECTION_DISCRETE", ["2"]),
-                      RawKeyword("*MAT_ELASTIC", ["1,1e-9,1.0,0.3"]), RawKeyword("*MAT_SPRING_ELASTIC", ["2,1.0"])]
+    model.keywords = [
+        RawKeyword("*SECTION_SHELL", ["1,2", "1.0"]),
+        RawKeyword("*SECTION_DISCRETE", ["2"]),
+        RawKeyword("*MAT_ELASTIC", ["1,1e-9,1.0,0.3"]),
+        RawKeyword("*MAT_SPRING_ELASTIC", ["2,1.0"]),
+    ]
     write_deck(model, tmp_path / "first.k")
     first = read_deck(tmp_path / "first.k")  # the verbatim cards are typed from here on
     for table in ("nodes", "shells", "solids", "discretes", "masses"):

@@ -135,13 +135,17 @@ def _deck(tmp_path, name="model/pulse.k", history=True):
     p.parent.mkdir(parents=True, exist_ok=True)
     text = PULSE.read_text()
     if history:
-        text = text.replace("*END", "*DATABASE_GLSTAT\n   1.0E-3\n*DATABASE_MATSUM\n   1.0E-3\n*DATABASE_NODOUT\n"
-                                    "   1.0E-3\n*DATABASE_DEFORC\n   1.0E-3\n*END")
+        text = text.replace(
+            "*END",
+            "*DATABASE_GLSTAT\n   1.0E-3\n*DATABASE_MATSUM\n   1.0E-3\n*DATABASE_NODOUT\n"
+            "   1.0E-3\n*DATABASE_DEFORC\n   1.0E-3\n*END",
+        )
     p.write_text(text)
     return p
 
 
 # --- configuration and command line ----------------------------------------------
+
 
 def test_command_line_cwd_environment_and_results(tmp_path, standin, monkeypatch):
     monkeypatch.setenv("CRASHLITE_MPI", f"{sys.executable} -c 'import os,sys; os.execv(sys.argv[1], sys.argv[1:])'")
@@ -175,8 +179,9 @@ def test_command_line_cwd_environment_and_results(tmp_path, standin, monkeypatch
     np.testing.assert_allclose(h.read("nodout", "time"), data["nodout_time"], rtol=1e-7, atol=1e-12)
     res = results_from_history(h)  # nodout's finer time axis is the common one
     assert len(res.time) == 241 and res.history_nodes.tolist() == [2] and res.part_ids.tolist() == [1]
-    np.testing.assert_allclose(res.kinetic, np.interp(data["nodout_time"], data["glstat_time"], data["kinetic"]),
-                               rtol=1e-5, atol=1e-5 * 1.6e8)
+    np.testing.assert_allclose(
+        res.kinetic, np.interp(data["nodout_time"], data["glstat_time"], data["kinetic"]), rtol=1e-5, atol=1e-5 * 1.6e8
+    )
     np.testing.assert_allclose(res.final_x[0], [1000.0 + data["x"][-1], 0.0, 0.0], atol=0.1)
 
 
@@ -184,13 +189,20 @@ def test_settings_from_a_solvers_file(tmp_path, standin, monkeypatch):
     for k in ("CRASHLITE_LSDYNA", "CRASHLITE_LSDYNA_NCPU", "CRASHLITE_LSDYNA_MEMORY"):
         monkeypatch.delenv(k)
     cfg = tmp_path / "solvers.toml"
-    cfg.write_text(f'[lsdyna]\nexecutable = "{standin}"\nncpu = 2\nmemory = "20m"\nmpi = ["{sys.executable}", '
-                   f'"-c", "import os,sys; os.execv(sys.argv[1], sys.argv[1:])"]\nargs = "d=nodump"\n'
-                   '[lsdyna.env]\nLSTC_LICENSE = "network"\n')
+    cfg.write_text(
+        f'[lsdyna]\nexecutable = "{standin}"\nncpu = 2\nmemory = "20m"\nmpi = ["{sys.executable}", '
+        f'"-c", "import os,sys; os.execv(sys.argv[1], sys.argv[1:])"]\nargs = "d=nodump"\n'
+        '[lsdyna.env]\nLSTC_LICENSE = "network"\n'
+    )
     monkeypatch.setenv("CRASHLITE_SOLVERS", str(cfg))
     s = settings("lsdyna")
-    assert (s.executable, s.ncpu, s.memory, s.args, s.env) == (str(standin), 2, "20m", ("d=nodump",),
-                                                               {"LSTC_LICENSE": "network"})
+    assert (s.executable, s.ncpu, s.memory, s.args, s.env) == (
+        str(standin),
+        2,
+        "20m",
+        ("d=nodump",),
+        {"LSTC_LICENSE": "network"},
+    )
     assert command_lines(s, "deck.k")[0][3:] == [str(standin), "i=deck.k", "ncpu=2", "memory=20m", "d=nodump"]
     external.run(_deck(tmp_path), tmp_path / "out", config=s)
     (call,) = standin.calls()
@@ -206,8 +218,10 @@ def test_openradioss_command_templates(tmp_path, standin, monkeypatch):
     cfg.write_text(f'[openradioss]\nstarter = "{standin}"\nengine = "{standin}"\nncpu = 4\n')
     monkeypatch.setenv("CRASHLITE_SOLVERS", str(cfg))
     s = settings("openradioss")
-    assert command_lines(s, "../car.k") == [[str(standin), "-i", "../car.k", "-np", "4"],
-                                            [str(standin), "-i", "car_0001.rad"]]
+    assert command_lines(s, "../car.k") == [
+        [str(standin), "-i", "../car.k", "-np", "4"],
+        [str(standin), "-i", "car_0001.rad"],
+    ]
     assert s.termination_files == ("{stem}_0001.out",)
 
 
@@ -244,6 +258,7 @@ def test_missing_configuration_names_the_variable(tmp_path, standin, monkeypatch
 
 # --- failures and resumption ------------------------------------------------------
 
+
 def test_nonzero_exit_shows_the_log_tail(tmp_path, standin, monkeypatch):
     monkeypatch.setenv("STANDIN_MODE", "fail")
     out = tmp_path / "out"
@@ -257,8 +272,11 @@ def test_nonzero_exit_shows_the_log_tail(tmp_path, standin, monkeypatch):
 
 def test_exit_zero_without_normal_termination_is_an_error(tmp_path, standin, monkeypatch):
     monkeypatch.setenv("STANDIN_MODE", "error")
-    with pytest.raises(ExternalSolverError, match=r"status 0 but reports no normal termination \(d3hsp: error "
-                                                  r"termination; messag: error termination\)(.|\n)*E r r o r"):
+    with pytest.raises(
+        ExternalSolverError,
+        match=r"status 0 but reports no normal termination \(d3hsp: error "
+        r"termination; messag: error termination\)(.|\n)*E r r o r",
+    ):
         external.run(_deck(tmp_path), tmp_path / "out")
 
 
@@ -418,8 +436,9 @@ def test_study_on_a_cluster_object(tmp_path, standin):
         def __init__(self, cluster):
             self.scheduler_address = cluster.scheduler_address
 
-    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, protocol="tcp", dashboard_address=None,
-                      silence_logs=40) as lc:
+    with LocalCluster(
+        n_workers=1, threads_per_worker=1, processes=False, protocol="tcp", dashboard_address=None, silence_logs=40
+    ) as lc:
         s = run_study(cfg, progress=Progress(cfg, quiet=True), cluster=Batch(lc))
         assert s.executor.startswith("Dask cluster Batch (scheduler tcp://")
     assert (s.ran, s.complete, s.failed) == (2, 2, 0)
@@ -432,16 +451,20 @@ def test_study_config_for_external_runs(tmp_path, standin, monkeypatch):
     cfg = _study(tmp_path, extra='cluster = "mymodule:make_cluster"')
     assert cfg.execution.cluster == "mymodule:make_cluster"
     p = tmp_path / "study.toml"
-    for extra, match in (('cluster = "nocolon"', "module:callable"),
-                         ('cluster = "a:b"\nscheduler = "tcp://x:8786"', "scheduler or cluster, not both"),
-                         ('solver = "abaqus"', "solver = 'abaqus' is not one of")):
+    for extra, match in (
+        ('cluster = "nocolon"', "module:callable"),
+        ('cluster = "a:b"\nscheduler = "tcp://x:8786"', "scheduler or cluster, not both"),
+        ('solver = "abaqus"', "solver = 'abaqus' is not one of"),
+    ):
         p.write_text(STUDY.format(extra="").replace('solver = "lsdyna"\n', "") + extra + "\n")
         with pytest.raises(StudyError, match=match):
             load_study(p)
     # responses an LS-DYNA run cannot give, said before anything runs
-    for response, match in (('type = "contact_force"', "rcforc"),
-                            ('type = "node_displacement"\nnode = 1', r"node\(s\) 1: .*\*DATABASE_HISTORY_NODE"),
-                            ('type = "wall_force"', None)):
+    for response, match in (
+        ('type = "contact_force"', "rcforc"),
+        ('type = "node_displacement"\nnode = 1', r"node\(s\) 1: .*\*DATABASE_HISTORY_NODE"),
+        ('type = "wall_force"', None),
+    ):
         p.write_text(STUDY.format(extra="") + "\n[responses.extra]\n" + response + "\n")
         if match is None:
             with pytest.raises(StudyError, match="rigid wall"):  # crashlite's own check comes first
@@ -470,6 +493,7 @@ def test_compare_reads_solver_runs(tmp_path, standin, capsys):
     deck.write_text(deck.read_text().replace("R crush      600.0", "R crush      650.0"))
     assert main(["run", str(deck), "--solver", "lsdyna", "-o", str(tmp_path / "b"), "--quiet"]) == 0
     capsys.readouterr()
-    assert main(["compare", str(tmp_path / "a"), str(tmp_path / "b"), "-o", str(tmp_path / "report"),
-                 "--no-plots"]) == 0
+    assert (
+        main(["compare", str(tmp_path / "a"), str(tmp_path / "b"), "-o", str(tmp_path / "report"), "--no-plots"]) == 0
+    )
     assert "curve pairs" in capsys.readouterr().out and (tmp_path / "report").is_dir()

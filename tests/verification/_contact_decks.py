@@ -38,16 +38,28 @@ class Deck:
             for i in range(nx):
                 self.elem += 1
                 rows.append(f"{self.elem},{pid},{ids[j, i]},{ids[j, i + 1]},{ids[j + 1, i + 1]},{ids[j + 1, i]}")
-        self.lines += ["*ELEMENT_SHELL", *rows, "*PART", f"plate {pid}", f"{pid},{pid},{pid}",
-                       "*SECTION_SHELL", f"{pid},2,1.0,2", f"{thick},{thick},{thick},{thick}",
-                       "*MAT_RIGID" if rigid else "*MAT_ELASTIC", f"{pid},{mat[0]},{mat[1]},{mat[2]}"]
+        self.lines += [
+            "*ELEMENT_SHELL",
+            *rows,
+            "*PART",
+            f"plate {pid}",
+            f"{pid},{pid},{pid}",
+            "*SECTION_SHELL",
+            f"{pid},2,1.0,2",
+            f"{thick},{thick},{thick},{thick}",
+            "*MAT_RIGID" if rigid else "*MAT_ELASTIC",
+            f"{pid},{mat[0]},{mat[1]},{mat[2]}",
+        ]
         return ids.ravel()
 
     def bar(self, pid, n, length, side, x0=0.0, mat=STEEL) -> np.ndarray:
         """A bar of n hexahedra along x from x0, square section side × side;
         its node IDs (4 per station, station by station)."""
-        st = [[x, y, z] for x in np.linspace(x0, x0 + length, n + 1) for (y, z) in
-              ((0, 0), (side, 0), (side, side), (0, side))]
+        st = [
+            [x, y, z]
+            for x in np.linspace(x0, x0 + length, n + 1)
+            for (y, z) in ((0, 0), (side, 0), (side, side), (0, side))
+        ]
         ids = self.nodes(st).reshape(n + 1, 4)
         rows = []
         for i in range(n):
@@ -55,8 +67,17 @@ class Deck:
             a, b = ids[i], ids[i + 1]
             # LS-DYNA order: n1-n4 one face, n5-n8 the opposite one, right-handed
             rows.append(f"{self.elem},{pid},{a[0]},{a[1]},{a[2]},{a[3]},{b[0]},{b[1]},{b[2]},{b[3]}")
-        self.lines += ["*ELEMENT_SOLID", *rows, "*PART", f"bar {pid}", f"{pid},{pid},{pid}",
-                       "*SECTION_SOLID", f"{pid},1", "*MAT_ELASTIC", f"{pid},{mat[0]},{mat[1]},{mat[2]}"]
+        self.lines += [
+            "*ELEMENT_SOLID",
+            *rows,
+            "*PART",
+            f"bar {pid}",
+            f"{pid},{pid},{pid}",
+            "*SECTION_SOLID",
+            f"{pid},1",
+            "*MAT_ELASTIC",
+            f"{pid},{mat[0]},{mat[1]},{mat[2]}",
+        ]
         return ids.ravel()
 
     def mass(self, nid, m) -> None:
@@ -65,7 +86,7 @@ class Deck:
 
     def node_set(self, sid, ids) -> None:
         ids = [int(i) for i in ids]
-        self.lines += ["*SET_NODE_LIST", f"{sid}"] + [",".join(map(str, ids[k:k + 8])) for k in range(0, len(ids), 8)]
+        self.lines += ["*SET_NODE_LIST", f"{sid}"] + [",".join(map(str, ids[k : k + 8])) for k in range(0, len(ids), 8)]
 
     def fix(self, ids) -> None:
         self.lines += ["*BOUNDARY_SPC_NODE"] + [f"{int(i)},0,1,1,1,1,1,1" for i in ids]
@@ -79,8 +100,21 @@ class Deck:
 
     def text(self, end_time) -> str:
         nodes = [f"{i + 1},{x!r},{y!r},{z!r}" for i, (x, y, z) in enumerate(self.xyz)]
-        return "\n".join(["*KEYWORD", "*NODE", *nodes, *self.lines, *self.extra, "*CONTROL_TERMINATION",
-                          f"{end_time:.8g},", "*END"]) + "\n"
+        return (
+            "\n".join(
+                [
+                    "*KEYWORD",
+                    "*NODE",
+                    *nodes,
+                    *self.lines,
+                    *self.extra,
+                    "*CONTROL_TERMINATION",
+                    f"{end_time:.8g},",
+                    "*END",
+                ]
+            )
+            + "\n"
+        )
 
     def write(self, path, end_time):
         path.write_text(self.text(end_time))

@@ -28,8 +28,9 @@ class Plates:
                 self.nodes.append((int(ids[j, i]), float(x), float(y), float(z)))
         for j in range(ny):
             for i in range(nx):
-                self.elems.append((1000 * pid + j * nx + i + 1, pid,
-                                   [ids[j, i], ids[j, i + 1], ids[j + 1, i + 1], ids[j + 1, i]]))
+                self.elems.append(
+                    (1000 * pid + j * nx + i + 1, pid, [ids[j, i], ids[j, i + 1], ids[j + 1, i + 1], ids[j + 1, i]])
+                )
         self.grids[pid] = ids
         return ids
 
@@ -38,7 +39,7 @@ class Plates:
 
     def node_set(self, sid: int, ids) -> None:
         ids = [int(i) for i in np.ravel(ids)]
-        rows = [",".join(str(i) for i in ids[k:k + 8]) for k in range(0, len(ids), 8)]
+        rows = [",".join(str(i) for i in ids[k : k + 8]) for k in range(0, len(ids), 8)]
         self.add("*SET_NODE_LIST\n" + f"{sid}\n" + "\n".join(rows))
 
     def spc(self, ids, dofs: str = "1,1,1,1,1,1") -> None:
@@ -46,8 +47,10 @@ class Plates:
 
     def history(self, ids) -> None:
         ids = [int(i) for i in np.ravel(ids)]
-        self.add("*DATABASE_HISTORY_NODE\n" + "\n".join(",".join(str(i) for i in ids[k:k + 8])
-                                                       for k in range(0, len(ids), 8)))
+        self.add(
+            "*DATABASE_HISTORY_NODE\n"
+            + "\n".join(",".join(str(i) for i in ids[k : k + 8]) for k in range(0, len(ids), 8))
+        )
 
     def text(self, end_time: float) -> str:
         pids = sorted({e[1] for e in self.elems})
@@ -56,8 +59,15 @@ class Plates:
         out += [f"{e},{p}," + ",".join(str(int(n)) for n in q) for e, p, q in self.elems]
         for p in pids:
             out += ["*PART", f"plate {p}", f"{p},1,1,0,1"]
-        out += ["*SECTION_SHELL", "1,2,0.8333,2", f"{self.t},{self.t},{self.t},{self.t}",
-                "*MAT_ELASTIC", f"1,{RHO},{E},{self.nu}", "*HOURGLASS", self.hourglass]
+        out += [
+            "*SECTION_SHELL",
+            "1,2,0.8333,2",
+            f"{self.t},{self.t},{self.t},{self.t}",
+            "*MAT_ELASTIC",
+            f"1,{RHO},{E},{self.nu}",
+            "*HOURGLASS",
+            self.hourglass,
+        ]
         out += [x.rstrip("\n") for x in self.extra]
         out += ["*CONTROL_TERMINATION", f"{end_time!r},", "*END"]
         return "\n".join(out) + "\n"

@@ -30,8 +30,9 @@ def grid(nx, ny, lx, ly, x0=0.0, y0=0.0):
     xs, ys = np.linspace(x0, x0 + lx, nx + 1), np.linspace(y0, y0 + ly, ny + 1)
     xyz = np.array([[x, y, 0.0] for y in ys for x in xs])
     nid = lambda i, j: j * (nx + 1) + i + 1  # noqa: E731
-    quads = np.array([[nid(i, j), nid(i + 1, j), nid(i + 1, j + 1), nid(i, j + 1)]
-                      for j in range(ny) for i in range(nx)])
+    quads = np.array(
+        [[nid(i, j), nid(i + 1, j), nid(i + 1, j + 1), nid(i, j + 1)] for j in range(ny) for i in range(nx)]
+    )
     return xyz, quads
 
 

@@ -22,8 +22,9 @@ from crashlite.solver.solids import SolidGroup, build_solids, lumped_mass
 def brick_mesh(nx: int, ny: int, nz: int, hx: float, hy: float, hz: float):
     """Nodes (n, 3) [length] and hexahedra (ne, 8) int64 (0-based, LS-DYNA
     order) of a block [0, nx·hx] × [0, ny·hy] × [0, nz·hz]."""
-    g = np.stack(np.meshgrid(np.arange(nx + 1) * hx, np.arange(ny + 1) * hy, np.arange(nz + 1) * hz,
-                             indexing="ij"), axis=-1).reshape(-1, 3)
+    g = np.stack(
+        np.meshgrid(np.arange(nx + 1) * hx, np.arange(ny + 1) * hy, np.arange(nz + 1) * hz, indexing="ij"), axis=-1
+    ).reshape(-1, 3)
 
     def nid(i, j, k):
         return (i * (ny + 1) + j) * (nz + 1) + k
@@ -32,13 +33,24 @@ def brick_mesh(nx: int, ny: int, nz: int, hx: float, hy: float, hz: float):
     for i in range(nx):
         for j in range(ny):
             for k in range(nz):
-                el.append([nid(i, j, k), nid(i + 1, j, k), nid(i + 1, j + 1, k), nid(i, j + 1, k),
-                           nid(i, j, k + 1), nid(i + 1, j, k + 1), nid(i + 1, j + 1, k + 1), nid(i, j + 1, k + 1)])
+                el.append(
+                    [
+                        nid(i, j, k),
+                        nid(i + 1, j, k),
+                        nid(i + 1, j + 1, k),
+                        nid(i, j + 1, k),
+                        nid(i, j, k + 1),
+                        nid(i + 1, j, k + 1),
+                        nid(i + 1, j + 1, k + 1),
+                        nid(i, j + 1, k + 1),
+                    ]
+                )
     return g.astype(float), np.array(el, np.int64)
 
 
-def deck_text(x: np.ndarray, conn: np.ndarray, material: str, section: str = "1,1", hourglass: str | None = None,
-              extra: str = "") -> str:
+def deck_text(
+    x: np.ndarray, conn: np.ndarray, material: str, section: str = "1,1", hourglass: str | None = None, extra: str = ""
+) -> str:
     """Keyword deck of one solid part (PID 1, SECID 1, MID 1, HGID 1 when
     ``hourglass`` card text is given); ``material`` is the *MAT keyword
     with its cards, ``extra`` more keywords (curves, controls)."""
@@ -72,16 +84,30 @@ class Driver:
     velocity; dt_max caps the step [time].
     """
 
-    def __init__(self, group: SolidGroup, x0: np.ndarray, fixed=None, driven=(), v0=None, tssfac: float = 0.9,
-                 dt_max: float = np.inf):
+    def __init__(
+        self,
+        group: SolidGroup,
+        x0: np.ndarray,
+        fixed=None,
+        driven=(),
+        v0=None,
+        tssfac: float = 0.9,
+        dt_max: float = np.inf,
+    ):
         n = len(x0)
         self.g = group
         self.mass = lumped_mass(group.s, n)
         self.fixed = np.zeros((n, 3), bool) if fixed is None else np.asarray(fixed, bool)
         self.driven = list(driven)
         self.tssfac, self.dt_max = tssfac, dt_max
-        self.st = SimpleNamespace(x=np.array(x0, float), v=np.zeros((n, 3)) if v0 is None else np.array(v0, float),
-                                  f=np.zeros((n, 3)), t=0.0, dt=0.0, mass=self.mass)
+        self.st = SimpleNamespace(
+            x=np.array(x0, float),
+            v=np.zeros((n, 3)) if v0 is None else np.array(v0, float),
+            f=np.zeros((n, 3)),
+            t=0.0,
+            dt=0.0,
+            mass=self.mass,
+        )
         self.held = self.fixed.copy()
         for nodes, dof, _ in self.driven:
             self.held[nodes, dof] = True

@@ -29,7 +29,8 @@ def test_main_block_crushes_at_its_crush_strength(tmp_path):
     assert plateau == pytest.approx(spec.main.strength * spec.main.area, rel=0.05)
     ke_lost = 0.5 * m_imp * (v0**2 - r.wall_velocity[-1, 0] ** 2)
     assert r.internal[-1] + r.kinetic[-1] - 0.5 * m_imp * r.wall_velocity[-1, 0] ** 2 == pytest.approx(
-        ke_lost, rel=0.02)
+        ke_lost, rel=0.02
+    )
     # largest crush: the kinetic energy spent on the plateau, m v0² / (2 F) (+ the gap)
     v = r.wall_velocity[:, 0]
     travel = np.concatenate([[0.0], np.cumsum(0.5 * (v[1:] + v[:-1]) * np.diff(r.time))])

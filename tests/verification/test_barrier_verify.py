@@ -23,13 +23,15 @@ def test_calibration_recovers_known_curve_multipliers(tmp_path):
     the search settles on an equivalent pair, not on the one used.)"""
     spec, imp = ODBSpec(), Impactor()
     truth = adjusted(spec, [1.10, 1.0, 1.0, 0.85, 1.0])
-    ref = run_case("reference", 1.0, tmp_path / "ref", simplified_barrier(truth), truth, imp, 0.032, counts=False,
-                   save=False)
+    ref = run_case(
+        "reference", 1.0, tmp_path / "ref", simplified_barrier(truth), truth, imp, 0.032, counts=False, save=False
+    )
     cal = calibrate_curves(ref, spec, imp, 0.032, tmp_path / "cal", max_runs=45)
     assert cal.misfit_start > 0.05 and cal.misfit < min(0.03, 0.5 * cal.misfit_start)
     assert cal.multipliers["main block plateau"] == pytest.approx(1.10, rel=0.03)
-    same = run_case("again", 1.0, tmp_path / "again", simplified_barrier(truth), truth, imp, 0.032, counts=False,
-                    save=False)
+    same = run_case(
+        "again", 1.0, tmp_path / "again", simplified_barrier(truth), truth, imp, 0.032, counts=False, save=False
+    )
     assert misfit(ref, same, cal.until) == pytest.approx(0.0, abs=1e-12)  # the runs are deterministic
 
 
@@ -53,8 +55,9 @@ def test_simplified_matches_detailed_at_both_overlaps(tmp_path):
     its 1080 beams; summary.json, pages and the calibrated curves are written."""
     s = verify_barriers(tmp_path, element_size=60.0, calibration_runs=40)
     out = Path(tmp_path)
-    assert json.loads((out / "summary.json").read_text())["overlaps"][0]["rating_crush_phase"]["overall"] == \
-        pytest.approx(s["overlaps"][0]["rating_crush_phase"]["overall"])
+    assert json.loads((out / "summary.json").read_text())["overlaps"][0]["rating_crush_phase"][
+        "overall"
+    ] == pytest.approx(s["overlaps"][0]["rating_crush_phase"]["overall"])
     for e in s["overlaps"]:
         r = e["rating_crush_phase"]
         assert r["overall"] >= 0.80, (e["overlap_percent"], r)

@@ -14,14 +14,31 @@ C = math.sqrt(E / RO)  # bar wave speed, mm/s
 
 
 def _bar(tmp_path, n_el=20, length=1000.0, extra=(), end=2e-3, tc="0", rc="0", name="bar.k"):
-    nodes = [f"{i + 1},{length * i / n_el},0,0,{tc if i == 0 else 0},{rc if i == 0 else 0}"
-             for i in range(n_el + 1)]
+    nodes = [f"{i + 1},{length * i / n_el},0,0,{tc if i == 0 else 0},{rc if i == 0 else 0}" for i in range(n_el + 1)]
     beams = [f"{i + 1},1,{i + 1},{i + 2}" for i in range(n_el)]
-    text = "\n".join(["*KEYWORD", "*NODE", *nodes, "*ELEMENT_BEAM", *beams,
-                      "*PART", "bar", "1,1,1", "*SECTION_BEAM", "1,2",
-                      f"{A},{I},{I},{2 * I}", "*MAT_ELASTIC", f"1,{RO},{E},0.3",
-                      "*CONTROL_TERMINATION", f"{end}", "*DATABASE_HISTORY_NODE", f"1,{n_el + 1}",
-                      *extra, "*END"])
+    text = "\n".join(
+        [
+            "*KEYWORD",
+            "*NODE",
+            *nodes,
+            "*ELEMENT_BEAM",
+            *beams,
+            "*PART",
+            "bar",
+            "1,1,1",
+            "*SECTION_BEAM",
+            "1,2",
+            f"{A},{I},{I},{2 * I}",
+            "*MAT_ELASTIC",
+            f"1,{RO},{E},0.3",
+            "*CONTROL_TERMINATION",
+            f"{end}",
+            "*DATABASE_HISTORY_NODE",
+            f"1,{n_el + 1}",
+            *extra,
+            "*END",
+        ]
+    )
     p = tmp_path / name
     p.write_text(text)
     return read_deck(p)
@@ -31,14 +48,18 @@ def test_bar_hits_wall_with_rho_c_v_stress_for_2L_over_c(tmp_path):
     """A free bar at v0 = 1000 mm/s hits a rigid wall with its front end:
     contact force ρ·c·v0·A for 2L/c, then it leaves at v0."""
     v0 = 1000.0
-    m = _bar(tmp_path, n_el=50, extra=["*INITIAL_VELOCITY", "0", f"{-v0},0,0",
-                                      "*RIGIDWALL_PLANAR", "0", "0,0,0,1,0,0"], end=3e-3)
+    m = _bar(
+        tmp_path,
+        n_el=50,
+        extra=["*INITIAL_VELOCITY", "0", f"{-v0},0,0", "*RIGIDWALL_PLANAR", "0", "0,0,0,1,0,0"],
+        end=3e-3,
+    )
     r = run(m, output_dt=2e-6)
     fx = r.wall_force[:, 0, 0]
     contact = np.flatnonzero(np.abs(fx) > 0.5 * RO * C * v0 * A)
     duration = r.time[contact[-1]] - r.time[contact[0]]
     assert duration == pytest.approx(2 * 1000.0 / C, rel=0.05)
-    mean = np.abs(fx[contact[0]:contact[-1] + 1]).mean()
+    mean = np.abs(fx[contact[0] : contact[-1] + 1]).mean()
     assert mean == pytest.approx(RO * C * v0 * A, rel=0.05)
     assert r.final_v[:, 0].mean() == pytest.approx(v0, rel=0.02)  # elastic rebound
 
@@ -72,8 +93,7 @@ def test_field_states_written_as_vtk(tmp_path):
     the deformed points and their displacement."""
     from crashlite.results.vtk import read_points
 
-    m = _bar(tmp_path, extra=["*INITIAL_VELOCITY", "0", "0,0,100.0", "*DATABASE_BINARY_D3PLOT", "2.5e-4"],
-             end=1e-3)
+    m = _bar(tmp_path, extra=["*INITIAL_VELOCITY", "0", "0,0,100.0", "*DATABASE_BINARY_D3PLOT", "2.5e-4"], end=1e-3)
     r = run(m, out=tmp_path / "out")
     assert len(r.states_time) == 5  # t = 0, 0.25, 0.5, 0.75, 1.0 ms
     files = sorted((tmp_path / "out" / "states").glob("state_*.vtk"))

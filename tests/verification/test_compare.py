@@ -33,8 +33,10 @@ K = 672.0  # N/mm per spring; four springs: crush 300 mm
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
     root = tmp_path_factory.mktemp("runs")
-    out = {name: write_and_run(root / name, k, extra) for name, k, extra in
-           (("soft", K, False), ("stiff", 2 * K, False), ("bumper", K, True))}
+    out = {
+        name: write_and_run(root / name, k, extra)
+        for name, k, extra in (("soft", K, False), ("stiff", 2 * K, False), ("bumper", K, True))
+    }
     out["root"] = root
     return out
 
@@ -60,8 +62,7 @@ def _scaled_ascii(src: Path, dst: Path, factor: float = 1.0, shift: float = 0.0,
 def test_identical_runs_rate_1_with_zero_deviations(runs):
     deck, out = runs["soft"]
     c = compare_paths(out, out, decks=(deck, deck))
-    assert {p.group for p in c.pairs} == {"energy", "part", "section", "wall", "node_displacement",
-                                          "node_acceleration"}
+    assert {p.group for p in c.pairs} == {"energy", "part", "section", "wall", "node_displacement", "node_acceleration"}
     for p in c.pairs:
         assert p.deviation["max_abs_difference"] == 0.0, p.name
         assert p.deviation["peak_deviation_percent"] in (0.0, None), p.name
@@ -81,8 +82,7 @@ def test_twice_the_stiffness_gives_the_closed_form_deviations(runs):
     k_total = 4 * K
     assert abs(wall.deviation["peak_ref"]) == pytest.approx(V0 * math.sqrt(MASS * k_total), rel=2e-3)
     assert wall.deviation["peak_deviation_percent"] == pytest.approx(100 * (root2 - 1), abs=0.3)
-    assert wall.deviation["time_of_peak_cmp"] / wall.deviation["time_of_peak_ref"] == pytest.approx(1 / root2,
-                                                                                                    rel=0.02)
+    assert wall.deviation["time_of_peak_cmp"] / wall.deviation["time_of_peak_ref"] == pytest.approx(1 / root2, rel=0.02)
     (sec,) = c.group("section")
     assert sec.deviation["peak_deviation_percent"] == pytest.approx(100 * (root2 - 1), abs=0.3)
     p = c.pulse
@@ -132,13 +132,16 @@ def test_every_quantity_of_two_lsdyna_ascii_folders(runs, tmp_path):
     ref = _scaled_ascii(out, tmp_path / "detailed", 1.0, nodes=True)
     cmp = _scaled_ascii(out, tmp_path / "simplified", 1.1, nodes=True)
     for folder, seconds in ((ref, 20880), (cmp, 40)):
-        (folder / "d3hsp").write_text(f" number of discrete elements . . . . . .   4\n Problem cycle      =  1000\n"
-                                      f" Elapsed time {seconds} seconds for 1000 cycles using  1 SMP thread\n")
+        (folder / "d3hsp").write_text(
+            f" number of discrete elements . . . . . .   4\n Problem cycle      =  1000\n"
+            f" Elapsed time {seconds} seconds for 1000 cycles using  1 SMP thread\n"
+        )
     c = compare_paths(ref, cmp, Options(times=[0.04, 0.08]))
-    assert {p.group for p in c.pairs} == {"energy", "part", "section", "wall", "node_displacement",
-                                          "node_acceleration"}
-    assert [p.name for p in c.group("node_acceleration")] == ["node 1 x-acceleration CFC 60",
-                                                              "node 5 x-acceleration CFC 60"]
+    assert {p.group for p in c.pairs} == {"energy", "part", "section", "wall", "node_displacement", "node_acceleration"}
+    assert [p.name for p in c.group("node_acceleration")] == [
+        "node 1 x-acceleration CFC 60",
+        "node 5 x-acceleration CFC 60",
+    ]
     for p in c.pairs:
         assert p.deviation["peak_deviation_percent"] in (None, pytest.approx(10.0, abs=0.02)), p.name  # magnitudes
         for k, ref_key in (("value", "value_ref"), ("integral", "integral_ref")):
@@ -146,7 +149,8 @@ def test_every_quantity_of_two_lsdyna_ascii_folders(runs, tmp_path):
             assert v is None or v == pytest.approx(10.0 * np.sign(p.deviation[ref_key]), abs=0.02), (p.name, k, v)
     (wall,) = c.group("wall")
     assert wall.rating.overall == pytest.approx(
-        iso_rating(wall.t_ref, wall.y_ref, wall.t_ref, 1.1 * wall.y_ref).overall, abs=1e-5)  # 5 digits
+        iso_rating(wall.t_ref, wall.y_ref, wall.t_ref, 1.1 * wall.y_ref).overall, abs=1e-5
+    )  # 5 digits
     assert [f.time for f in c.fields] == [0.04, 0.08]
     for f in c.fields:
         assert f.ids.tolist() == [1, 5]
@@ -188,15 +192,38 @@ def test_extra_entities_are_listed(runs):
     assert c.mismatches["part"]["only_cmp"]["ids"] == ["bumper"]
     assert c.mismatches["node"]["only_cmp"]["ids"] == [9]
     assert c.mismatches["field node"]["only_cmp"]["ids"] == [9, 10]
-    assert [p.name for p in c.group("part")] == ["crash box L (part 1) internal energy",
-                                                 "part set 7 (parts 1, 2) internal energy"]
+    assert [p.name for p in c.group("part")] == [
+        "crash box L (part 1) internal energy",
+        "part set 7 (parts 1, 2) internal energy",
+    ]
 
 
 def test_cli_writes_the_report(runs, tmp_path, capsys):
     (da, a), (dc, cc) = runs["soft"], runs["bumper"]
-    rc = main(["compare", str(a), str(cc), "-o", str(tmp_path / "rep"), "--deck-ref", str(da), "--deck-cmp",
-               str(dc), "--names", "detailed", "simplified", "--parts", "crash box L", "set:7", "--time", "0.02",
-               "0.04", "--view", "side"])
+    rc = main(
+        [
+            "compare",
+            str(a),
+            str(cc),
+            "-o",
+            str(tmp_path / "rep"),
+            "--deck-ref",
+            str(da),
+            "--deck-cmp",
+            str(dc),
+            "--names",
+            "detailed",
+            "simplified",
+            "--parts",
+            "crash box L",
+            "set:7",
+            "--time",
+            "0.02",
+            "0.04",
+            "--view",
+            "side",
+        ]
+    )
     assert rc == 0
     printed = capsys.readouterr().out
     assert "curve pairs" in printed and "index.html" in printed
@@ -209,7 +236,8 @@ def test_cli_writes_the_report(runs, tmp_path, capsys):
         assert row["wall_time"] > 0 and row["setup_time"] > 0 and row["compile_time"] >= 0
         assert row["total_wall_time"] == pytest.approx(row["wall_time"] + row["setup_time"], rel=1e-9)
     assert s["timing"][1]["wall_reduction_percent"] == pytest.approx(
-        100 * (1 - s["timing"][1]["wall_time"] / s["timing"][0]["wall_time"]), rel=1e-12)
+        100 * (1 - s["timing"][1]["wall_time"] / s["timing"][0]["wall_time"]), rel=1e-12
+    )
     assert s["reference"]["controls"]["CONTROL_TIMESTEP"]["tssfac"] == 0.5
     html = (tmp_path / "rep" / "index.html").read_text()
     assert html.count("data:image/png;base64,") >= 10 and "Time accounting" in html and "start-up" in html

@@ -38,11 +38,17 @@ def runs(tmp_path_factory):
     near = np.flatnonzero(np.isclose(xyz[:, 0], X + 100.0))
     m.sets[("NODE", 1)] = id_list("SET_NODE_LIST_TITLE", 1, ids[front], title="front")
     m.curves[1] = record("DEFINE_CURVE", lcid=1, rows={"a1": np.array([0.0, 1.0]), "o1": np.array([1.0, 1.0])})
-    m.keywords += [record("LOAD_NODE_SET", rows={"nsid": np.array([1]), "dof": np.array([2]),
-                                                 "lcid": np.array([1]), "sf": np.array([F / len(front)])}),
-                   record("CONTROL_TERMINATION", endtim=END),
-                   record("DATABASE_HISTORY_NODE_ID", rows={"id": ids[[front[0], near[0]]],
-                                                            "heading": np.array(["front", "near"], object)})]
+    m.keywords += [
+        record(
+            "LOAD_NODE_SET",
+            rows={"nsid": np.array([1]), "dof": np.array([2]), "lcid": np.array([1]), "sf": np.array([F / len(front)])},
+        ),
+        record("CONTROL_TERMINATION", endtim=END),
+        record(
+            "DATABASE_HISTORY_NODE_ID",
+            rows={"id": ids[[front[0], near[0]]], "heading": np.array(["front", "near"], object)},
+        ),
+    ]
     out = {"full": run(write_deck(m, d / "full.k")[0], out=d / "full", output_dt=END / 400)}
     cut = cut_behind(m, x=X)
     mass = replaced_mass(cut)
@@ -100,11 +106,19 @@ def waves(tmp_path_factory):
     front = np.flatnonzero(np.isclose(xyz[:, 0], L))
     m.sets[("NODE", 1)] = id_list("SET_NODE_LIST_TITLE", 1, ids[front], title="front")
     m.curves[1] = record("DEFINE_CURVE", lcid=1, rows={"a1": np.array([0.0, 1.0]), "o1": np.array([1.0, 1.0])})
-    m.keywords += [record("LOAD_NODE_SET", rows={"nsid": np.array([1]), "dof": np.array([1]),
-                                                 "lcid": np.array([1]), "sf": np.array([-F_W / len(front)])}),
-                   record("CONTROL_TERMINATION", endtim=END_W),
-                   record("DATABASE_HISTORY_NODE_ID", rows={"id": ids[front[:1]],
-                                                            "heading": np.array(["front"], object)})]
+    m.keywords += [
+        record(
+            "LOAD_NODE_SET",
+            rows={
+                "nsid": np.array([1]),
+                "dof": np.array([1]),
+                "lcid": np.array([1]),
+                "sf": np.array([-F_W / len(front)]),
+            },
+        ),
+        record("CONTROL_TERMINATION", endtim=END_W),
+        record("DATABASE_HISTORY_NODE_ID", rows={"id": ids[front[:1]], "heading": np.array(["front"], object)}),
+    ]
     out = {"full": run(write_deck(m, d / "full.k")[0], out=d / "full", output_dt=END_W / 200)}
     cut = cut_behind(m, x=X)
     cond, mass = relieved_condensation(cut), replaced_mass(cut)

@@ -116,13 +116,12 @@ def test_bars_meeting_head_on_exchange_velocities(tmp_path, kind, card1):
     assert va == pytest.approx(-v, rel=0.05) and vb == pytest.approx(v, rel=0.05)
     fx = res.contact_force[:, 0, 0]
     if kind == "SINGLE_SURFACE":  # every node is a slave: the forces on them cancel (as in LS-DYNA's rcforc)
-        assert np.abs(fx).max() < 1e-9 * RHO * c * v * side ** 2
+        assert np.abs(fx).max() < 1e-9 * RHO * c * v * side**2
         return _energy_ok(res)
     on = res.time[np.abs(fx) > 0.02 * np.abs(fx).max()]
     assert on[-1] - on[0] == pytest.approx(t_c, rel=0.05)
     # force while in contact: σ·A with σ = ρ c V
-    assert np.median(np.abs(fx[np.abs(fx) > 0.5 * np.abs(fx).max()])) == pytest.approx(RHO * c * v * side ** 2,
-                                                                                      rel=0.05)
+    assert np.median(np.abs(fx[np.abs(fx) > 0.5 * np.abs(fx).max()])) == pytest.approx(RHO * c * v * side**2, rel=0.05)
     _energy_ok(res)
 
 
@@ -156,7 +155,7 @@ def _slide(tmp_path, fs, fd, dc, v0=500.0, acc=1.0e5, m=1e-4):
 def test_friction_stops_a_sliding_mass_after_v0_squared_over_2_mu_g(tmp_path):
     mu, v0, acc, m = 0.3, 500.0, 1.0e5, 1e-4
     res, (dist, dy, _), v = _slide(tmp_path, mu, mu, 0.0, v0, acc, m)
-    assert dist == pytest.approx(v0 ** 2 / (2 * mu * acc), rel=0.03)
+    assert dist == pytest.approx(v0**2 / (2 * mu * acc), rel=0.03)
     # stopped: what is left is the stick oscillation on the tangential penalty spring, whose speed
     # is at most μ·acc/ω (the spring let go at μ·m·acc, ω² = k/m)
     k = _shell_k(5.0, E / 100 / (3 * (1 - 2 * NU)))
@@ -173,9 +172,9 @@ def test_friction_decays_from_static_to_dynamic_with_the_sliding_speed(tmp_path)
     fs, fd, dc, v0, acc, m = 0.5, 0.2, 0.005, 500.0, 1.0e5, 1e-4
     res, (dist, _, _), v = _slide(tmp_path, fs, fd, dc, v0, acc, m)
     ref = quad(lambda u: u / ((fd + (fs - fd) * math.exp(-dc * u)) * acc), 0.0, v0)[0]
-    assert ref > 1.2 * v0 ** 2 / (2 * fs * acc)  # well apart from the static-only answer
+    assert ref > 1.2 * v0**2 / (2 * fs * acc)  # well apart from the static-only answer
     assert dist == pytest.approx(ref, rel=0.03)
-    assert res.sliding[-1] == pytest.approx(0.5 * m * v0 ** 2, rel=0.03)  # all the motion dissipated
+    assert res.sliding[-1] == pytest.approx(0.5 * m * v0**2, rel=0.03)  # all the motion dissipated
 
 
 def test_single_surface_keeps_two_plates_apart(tmp_path):
@@ -230,8 +229,11 @@ def test_thread_count_does_not_change_the_result(tmp_path, two_threads):
     assert np.array_equal(one.final_x, two.final_x) and np.array_equal(one.contact_force, two.contact_force)
 
 
-@pytest.mark.parametrize("far,large", [(0.0, 50), (1e12, 50), (1e30, 50), (0.0, 1)],
-                         ids=["compact", "node 1e12 away", "node 1e30 away", "crowded"])
+@pytest.mark.parametrize(
+    "far,large",
+    [(0.0, 50), (1e12, 50), (1e30, 50), (0.0, 1)],
+    ids=["compact", "node 1e12 away", "node 1e30 away", "crowded"],
+)
 def test_bucket_search_finds_every_pair_within_reach(far, large):
     """Every (node, segment) pair whose grown box holds the node, and no
     other, in segment order; a node flung far away (a diverging or escaping
@@ -255,7 +257,7 @@ def test_bucket_search_finds_every_pair_within_reach(far, large):
     hi = np.max(x[seg], axis=1) + grow[:, None]
     for i, nd in enumerate(snode):
         inside = np.flatnonzero(np.all((x[nd] >= lo) & (x[nd] <= hi), axis=1))
-        assert cand[cptr[i]:cptr[i + 1]].tolist() == inside.tolist()
+        assert cand[cptr[i] : cptr[i + 1]].tolist() == inside.tolist()
     assert cptr[18] == cptr[17] or far == 0.0  # the far node has none
     assert (np.diff(cptr).max() > CAP) == (large == 1)
 
@@ -281,7 +283,7 @@ def test_solid_surface_is_the_exterior_faces(tmp_path):
     nrm = np.cross(x[surf.seg[:, 2]] - x[surf.seg[:, 0]], x[surf.seg[:, 3]] - x[surf.seg[:, 1]])
     assert np.all(np.einsum("ij,ij->i", nrm, c - [15.0, 5.0, 5.0]) > 0)
     # K·A²/V, depth half the element length normal to the face
-    assert np.allclose(surf.k[:2], 0.1 * K_BULK * 100.0 ** 2 / 1000.0)
+    assert np.allclose(surf.k[:2], 0.1 * K_BULK * 100.0**2 / 1000.0)
     assert np.allclose(np.sort(surf.depth)[-2:], 5.0)
 
 
@@ -295,11 +297,14 @@ def test_undefined_part_set_names_the_card_and_field(tmp_path):
     assert "CONTACT_AUTOMATIC_SINGLE_SURFACE" in msg and "SSID" in msg and "99" in msg
 
 
-@pytest.mark.parametrize("card_a, extra, field", [
-    ("2", [], "SOFT"),
-    ("0,0.1,0,0,0,0,0,0\n0,0,0,0,0,0,0,0\n0,3", [], "IGNORE"),  # 0, 1, 2 run
-    (None, ["*CONTROL_CONTACT", "0.1,0,1,0,4"], "PENOPT"),
-])
+@pytest.mark.parametrize(
+    "card_a, extra, field",
+    [
+        ("2", [], "SOFT"),
+        ("0,0.1,0,0,0,0,0,0\n0,0,0,0,0,0,0,0\n0,3", [], "IGNORE"),  # 0, 1, 2 run
+        (None, ["*CONTROL_CONTACT", "0.1,0,1,0,4"], "PENOPT"),
+    ],
+)
 def test_options_not_run_are_refused(tmp_path, card_a, extra, field):
     d = Deck()
     d.plate(1, 2, 2, 10.0, 10.0)
@@ -320,7 +325,7 @@ def test_soft_constraint_stiffness_from_the_masses_and_the_initial_step(tmp_path
     dt0 = 0.9 * s.groups[0].critical_dt(SimpleNamespace(x=s.x0))  # the shells' initial step × TSSFAC
     assert g.c.soft == 1 and g.c.dt0 == pytest.approx(dt0, rel=1e-12)
     m_seg = s.mass[0:25].reshape(5, 5)[1:4, 1:4].mean()  # the plate nodes round the centre
-    k = 0.5 * 2.0 * (m * m_seg / (m + m_seg)) / dt0 ** 2
+    k = 0.5 * 2.0 * (m * m_seg / (m + m_seg)) / dt0**2
     assert k > 2 * k0  # the soft constraint governs here
     from crashlite.solver.loop import integrate
 
@@ -369,21 +374,25 @@ def test_contact_damping_vdc_against_the_spring_dashpot_solution(tmp_path):
 
     def released(_, y):
         return k * y[0] + c * y[1] if y[0] > 0 or y[1] < 0 else 1.0
+
     released.terminal, released.direction = True, -1
     sol = solve_ivp(rhs, (0, end), [0.0, v0], events=released, rtol=1e-10, atol=1e-12, max_step=1e-7)
     e_ref = -sol.y_events[0][0][1] / v0
     assert 0.3 < e_ref < 0.8  # damping matters
     assert res.final_v[node - 1, 2] / v0 == pytest.approx(e_ref, rel=0.03)
     # the energy lost is in the interface (positive sliding energy)
-    assert res.sliding[-1] == pytest.approx(0.5 * m * v0 ** 2 * (1 - e_ref ** 2), rel=0.05)
+    assert res.sliding[-1] == pytest.approx(0.5 * m * v0**2 * (1 - e_ref**2), rel=0.05)
 
 
-@pytest.mark.parametrize("z, card2, card3, rebounds", [
-    (1.6, "", "1.0,1.0,0.0,3.0", True),  # MST = 3: the plate acts 1.5 thick each side
-    (1.6, "", "", False),  # its own 1 mm: not reached in the time
-    (0.6, "0,0,0,0,0,0,0,5e-5", "", False),  # DT: dead before the mass arrives
-    (0.6, "0,0,0,0,0,0,1e-3", "", False),  # BT: born after the end
-])
+@pytest.mark.parametrize(
+    "z, card2, card3, rebounds",
+    [
+        (1.6, "", "1.0,1.0,0.0,3.0", True),  # MST = 3: the plate acts 1.5 thick each side
+        (1.6, "", "", False),  # its own 1 mm: not reached in the time
+        (0.6, "0,0,0,0,0,0,0,5e-5", "", False),  # DT: dead before the mass arrives
+        (0.6, "0,0,0,0,0,0,1e-3", "", False),  # BT: born after the end
+    ],
+)
 def test_thickness_override_and_birth_death_times(tmp_path, z, card2, card3, rebounds):
     d = Deck()
     d.fix(d.plate(1, 4, 4, 20.0, 20.0))
@@ -458,8 +467,6 @@ def test_a_node_inside_a_solid_is_not_pushed_out_through_its_face(tmp_path, star
     assert np.max(np.abs(total - total[0])) < 0.01 * total[0]
 
 
-
-
 def _column(tmp_path, fail):
     """A rigid plate (6 x 6 mm, its nodes against the faces: nodes to
     surface) at 10 m/s on a column of three 10 mm hexahedra fixed at the
@@ -474,9 +481,23 @@ def _column(tmp_path, fail):
         d.elem += 1
         a, b = col[k], col[k + 1]
         d.lines += ["*ELEMENT_SOLID", f"{d.elem},{pid},{a[0]},{a[1]},{a[2]},{a[3]},{b[0]},{b[1]},{b[2]},{b[3]}"]
-    d.lines += ["*PART", "soft top", "1,1,1", "*SECTION_SOLID", "1,1", "*MAT_PIECEWISE_LINEAR_PLASTICITY",
-                f"1,{RHO},{E},0.0,50.0,0.0,{fail}", "0,0,0,0",
-                "*PART", "steel", "2,2,2", "*SECTION_SOLID", "2,1", "*MAT_ELASTIC", f"2,{RHO},{E},0.0"]
+    d.lines += [
+        "*PART",
+        "soft top",
+        "1,1,1",
+        "*SECTION_SOLID",
+        "1,1",
+        "*MAT_PIECEWISE_LINEAR_PLASTICITY",
+        f"1,{RHO},{E},0.0,50.0,0.0,{fail}",
+        "0,0,0,0",
+        "*PART",
+        "steel",
+        "2,2,2",
+        "*SECTION_SOLID",
+        "2,1",
+        "*MAT_ELASTIC",
+        f"2,{RHO},{E},0.0",
+    ]
     plate = d.plate(3, 1, 1, 6.0, 6.0, z=30.6, x0=2.0, y0=2.0, thick=1.0, mat=(4.9e-5, 210000.0, 0.3), rigid=True)
     d.fix(col[0])
     d.velocity(plate, (0.0, 0.0, -10000.0))
@@ -506,14 +527,16 @@ def test_the_solid_behind_a_deleted_one_still_bears(tmp_path, fail):
     assert np.max(np.abs(total - total[0])) < 0.02 * total[0]
 
 
-@pytest.mark.parametrize("control, sst, kind, want", [
-    ([], "", "SINGLE_SURFACE", 0.8),  # 40 % of the 2 mm edge, not the 2 mm shell
-    (["*CONTROL_CONTACT", "0.1", "0,0,0,0,4,1"], "", "SINGLE_SURFACE", 2.0),  # SSTHK = 1: the shell's
-    ([], "0,0,1.5", "SINGLE_SURFACE", 1.5),  # SST given: no limit
-    ([], "", "SURFACE_TO_SURFACE", 2.0),  # the rule is single surface's only
-])
-def test_single_surface_shell_thickness_is_at_most_40_percent_of_the_shortest_edge(tmp_path, control, sst, kind,
-                                                                                    want):
+@pytest.mark.parametrize(
+    "control, sst, kind, want",
+    [
+        ([], "", "SINGLE_SURFACE", 0.8),  # 40 % of the 2 mm edge, not the 2 mm shell
+        (["*CONTROL_CONTACT", "0.1", "0,0,0,0,4,1"], "", "SINGLE_SURFACE", 2.0),  # SSTHK = 1: the shell's
+        ([], "0,0,1.5", "SINGLE_SURFACE", 1.5),  # SST given: no limit
+        ([], "", "SURFACE_TO_SURFACE", 2.0),  # the rule is single surface's only
+    ],
+)
+def test_single_surface_shell_thickness_is_at_most_40_percent_of_the_shortest_edge(tmp_path, control, sst, kind, want):
     """LS-DYNA: for single-surface contact with SSTHK = 0 and no SST, a
     shell's contact thickness is limited to 40 % of its shortest edge."""
     d = Deck()

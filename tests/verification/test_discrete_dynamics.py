@@ -12,16 +12,29 @@ M, K = 0.1, 50.0  # t, N/mm -> ω = sqrt(K/M) = 22.36 rad/s (period 0.281 s)
 
 
 def _deck(tmp_path, springs, extra="", v0=1000.0, end=0.6, mass=M):
-    text = "\n".join([
-        "*KEYWORD", "*NODE", "1,0,0,0,7,7", "2,100,0,0", "3,200,0,0",
-        "*ELEMENT_MASS", f"10,2,{mass}",
-        "*ELEMENT_DISCRETE", *springs,
-        "*INITIAL_VELOCITY_NODE", f"2,{v0},0,0",
-        "*CONTROL_TERMINATION", f"{end}",
-        # small steps: the tests check accuracy, not stability
-        "" if "*CONTROL_TIMESTEP" in extra else "*CONTROL_TIMESTEP\n,0.02",
-        "*DATABASE_HISTORY_NODE", "2",
-        extra, "*END"])
+    text = "\n".join(
+        [
+            "*KEYWORD",
+            "*NODE",
+            "1,0,0,0,7,7",
+            "2,100,0,0",
+            "3,200,0,0",
+            "*ELEMENT_MASS",
+            f"10,2,{mass}",
+            "*ELEMENT_DISCRETE",
+            *springs,
+            "*INITIAL_VELOCITY_NODE",
+            f"2,{v0},0,0",
+            "*CONTROL_TERMINATION",
+            f"{end}",
+            # small steps: the tests check accuracy, not stability
+            "" if "*CONTROL_TIMESTEP" in extra else "*CONTROL_TIMESTEP\n,0.02",
+            "*DATABASE_HISTORY_NODE",
+            "2",
+            extra,
+            "*END",
+        ]
+    )
     p = tmp_path / "sm.k"
     p.write_text(text)
     return read_deck(p)
@@ -66,8 +79,7 @@ def test_viscous_damper_decays_exponentially(tmp_path):
 def test_nonlinear_curve_spring_stops_mass_at_energy_balance(tmp_path):
     """Force = 2000 N after 1 mm (then flat): the mass stops after
     x = E0 / F (energy absorbed by a constant force)."""
-    curve = ["*DEFINE_CURVE", "5", "-1000.0,-2000.0", "-1.0,-2000.0", "0.0,0.0", "1.0,2000.0",
-             "1000.0,2000.0"]
+    curve = ["*DEFINE_CURVE", "5", "-1000.0,-2000.0", "-1.0,-2000.0", "0.0,0.0", "1.0,2000.0", "1000.0,2000.0"]
     parts = _parts(["*MAT_SPRING_NONLINEAR_ELASTIC", "1,5"]) + curve
     # compressive: node 2 is moved towards node 1 (velocity -1000)
     m = _deck(tmp_path, ["1,1,1,2"], "\n".join(parts), v0=-1000.0, end=0.08)
@@ -92,9 +104,28 @@ def test_mass_stops_on_rigid_wall_and_wall_takes_its_energy(tmp_path):
 
 
 def test_unsupported_content_is_refused_with_the_keyword(tmp_path):
-    text = "\n".join(["*KEYWORD", "*NODE", "1,0,0,0", "2,1,0,0", "3,1,1,0",
-                      "*ELEMENT_SHELL", "1,1,1,2,3", "*PART", "p", "1,1,1", "*SECTION_SHELL", "1,2", "1.0",
-                      "*MAT_ELASTIC", "1,1e-9,1.0,0.3", "*DAMPING_GLOBAL", "0,0.1", "*END"])
+    text = "\n".join(
+        [
+            "*KEYWORD",
+            "*NODE",
+            "1,0,0,0",
+            "2,1,0,0",
+            "3,1,1,0",
+            "*ELEMENT_SHELL",
+            "1,1,1,2,3",
+            "*PART",
+            "p",
+            "1,1,1",
+            "*SECTION_SHELL",
+            "1,2",
+            "1.0",
+            "*MAT_ELASTIC",
+            "1,1e-9,1.0,0.3",
+            "*DAMPING_GLOBAL",
+            "0,0.1",
+            "*END",
+        ]
+    )
     p = tmp_path / "shell.k"
     p.write_text(text)
     with pytest.raises(SetupError) as e:
@@ -106,11 +137,29 @@ def test_results_identical_on_one_and_two_threads(tmp_path, two_threads):
     import numba
 
     springs = [f"{i},1,{a},{b}" for i, (a, b) in enumerate([(1, 2), (2, 3), (1, 3)], start=1)]
-    text = "\n".join(["*KEYWORD", "*NODE", "1,0,0,0,7,7", "2,100,0,0", "3,200,30,0",
-                      "*ELEMENT_MASS", "10,2,0.1", "11,3,0.2", "*ELEMENT_DISCRETE", *springs,
-                      "*INITIAL_VELOCITY_NODE", "2,1000,200,0", "3,-300,0,500",
-                      "*CONTROL_TERMINATION", "0.05", "*DATABASE_HISTORY_NODE", "2,3",
-                      *_parts(["*MAT_SPRING_ELASTIC", "1,50.0"]), "*END"])
+    text = "\n".join(
+        [
+            "*KEYWORD",
+            "*NODE",
+            "1,0,0,0,7,7",
+            "2,100,0,0",
+            "3,200,30,0",
+            "*ELEMENT_MASS",
+            "10,2,0.1",
+            "11,3,0.2",
+            "*ELEMENT_DISCRETE",
+            *springs,
+            "*INITIAL_VELOCITY_NODE",
+            "2,1000,200,0",
+            "3,-300,0,500",
+            "*CONTROL_TERMINATION",
+            "0.05",
+            "*DATABASE_HISTORY_NODE",
+            "2,3",
+            *_parts(["*MAT_SPRING_ELASTIC", "1,50.0"]),
+            "*END",
+        ]
+    )
     p = tmp_path / "three.k"
     p.write_text(text)
     model = read_deck(p)
@@ -156,12 +205,33 @@ def test_inelastic_spring_crushes_then_releases_its_elastic_energy(tmp_path):
 
 
 def _wall_deck(tmp_path, wall_lines, v, end=0.02):
-    text = "\n".join(["*KEYWORD", "*NODE", "1,0,0,0,7,7", "2,100,0,0",
-                      "*ELEMENT_MASS", f"10,2,{M}", "*ELEMENT_DISCRETE", "1,1,1,2",
-                      "*INITIAL_VELOCITY_NODE", f"2,{v[0]},{v[1]},{v[2]}",
-                      "*CONTROL_TERMINATION", f"{end}", "*DATABASE_HISTORY_NODE", "2",
-                      "*CONTROL_TIMESTEP", "0.0,0.9,0,0.0,0.0,9", "*DEFINE_CURVE", "9", "0.0,1e-5", "1.0,1e-5",
-                      *wall_lines, *_parts(["*MAT_SPRING_ELASTIC", "1,1e-9"]), "*END"])
+    text = "\n".join(
+        [
+            "*KEYWORD",
+            "*NODE",
+            "1,0,0,0,7,7",
+            "2,100,0,0",
+            "*ELEMENT_MASS",
+            f"10,2,{M}",
+            "*ELEMENT_DISCRETE",
+            "1,1,1,2",
+            "*INITIAL_VELOCITY_NODE",
+            f"2,{v[0]},{v[1]},{v[2]}",
+            "*CONTROL_TERMINATION",
+            f"{end}",
+            "*DATABASE_HISTORY_NODE",
+            "2",
+            "*CONTROL_TIMESTEP",
+            "0.0,0.9,0,0.0,0.0,9",
+            "*DEFINE_CURVE",
+            "9",
+            "0.0,1e-5",
+            "1.0,1e-5",
+            *wall_lines,
+            *_parts(["*MAT_SPRING_ELASTIC", "1,1e-9"]),
+            "*END",
+        ]
+    )
     p = tmp_path / "wall.k"
     p.write_text(text)
     return read_deck(p)
@@ -190,17 +260,26 @@ def test_stationary_wall_friction(tmp_path, fric, vt):
     assert r.final_v[1, 2] == pytest.approx(vt, rel=1e-9, abs=1e-9)
 
 
-@pytest.mark.parametrize("vad,curve,expected", [
-    (0, ["0.0,500.0", "1.0,500.0"], lambda t: 500.0 * t),  # constant velocity
-    (1, ["0.0,2.0e4", "1.0,2.0e4"], lambda t: 0.5 * 2.0e4 * t**2),  # constant acceleration
-    (2, ["0.0,0.0", "0.02,10.0", "1.0,10.0"], lambda t: np.minimum(10.0 * t / 0.02, 10.0)),  # ramp
-])
+@pytest.mark.parametrize(
+    "vad,curve,expected",
+    [
+        (0, ["0.0,500.0", "1.0,500.0"], lambda t: 500.0 * t),  # constant velocity
+        (1, ["0.0,2.0e4", "1.0,2.0e4"], lambda t: 0.5 * 2.0e4 * t**2),  # constant acceleration
+        (2, ["0.0,0.0", "0.02,10.0", "1.0,10.0"], lambda t: np.minimum(10.0 * t / 0.02, 10.0)),  # ramp
+    ],
+)
 def test_prescribed_motion(tmp_path, vad, curve, expected):
     """Node 2 driven along x against a spring to the fixed node 1: its
     displacement follows the prescription and the work put in equals the
     kinetic plus spring energy."""
-    extra = ["*BOUNDARY_PRESCRIBED_MOTION_NODE", f"2,1,{vad},7", "*DEFINE_CURVE", "7", *curve,
-             *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"])]
+    extra = [
+        "*BOUNDARY_PRESCRIBED_MOTION_NODE",
+        f"2,1,{vad},7",
+        "*DEFINE_CURVE",
+        "7",
+        *curve,
+        *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"]),
+    ]
     m = _deck(tmp_path, ["1,1,1,2"], "\n".join(extra), v0=0.0, end=0.04)
     r = run(m, output_dt=4e-3)  # states every few cycles
     u = r.node_displacement[:, 0, 0]
@@ -213,9 +292,21 @@ def test_prescribed_motion(tmp_path, vad, curve, expected):
 def test_gravity_free_fall(tmp_path):
     """*LOAD_BODY_Z of 9810 mm/s² pulls the mass down: z = -g t²/2; the work
     of gravity is its kinetic energy."""
-    extra = ["*LOAD_BODY_Z", "3", "*DEFINE_CURVE", "3", "0.0,9810.0", "1.0,9810.0",
-             *_parts(["*MAT_SPRING_ELASTIC", "1,1e-9"]), "*CONTROL_TIMESTEP", "0.0,0.9,0,0.0,0.0,9",
-             "*DEFINE_CURVE", "9", "0.0,1e-4", "1.0,1e-4"]
+    extra = [
+        "*LOAD_BODY_Z",
+        "3",
+        "*DEFINE_CURVE",
+        "3",
+        "0.0,9810.0",
+        "1.0,9810.0",
+        *_parts(["*MAT_SPRING_ELASTIC", "1,1e-9"]),
+        "*CONTROL_TIMESTEP",
+        "0.0,0.9,0,0.0,0.0,9",
+        "*DEFINE_CURVE",
+        "9",
+        "0.0,1e-4",
+        "1.0,1e-4",
+    ]
     m = _deck(tmp_path, ["1,1,1,2"], "\n".join(extra), v0=0.0, end=0.1)
     r = run(m, output_dt=1e-3)
     z = r.node_displacement[:, 0, 2]
@@ -239,8 +330,16 @@ def test_damped_oscillator_logarithmic_decrement(tmp_path):
     """Spring and damper in parallel: successive peaks fall by
     δ = 2π ζ / sqrt(1 - ζ²) with ζ = c / (2 sqrt(k m))."""
     c = 0.5
-    extra = ["*PART", "damper", "2,2,2", "*SECTION_DISCRETE", "2,0", "*MAT_DAMPER_VISCOUS", f"2,{c}",
-             *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"])]
+    extra = [
+        "*PART",
+        "damper",
+        "2,2,2",
+        "*SECTION_DISCRETE",
+        "2,0",
+        "*MAT_DAMPER_VISCOUS",
+        f"2,{c}",
+        *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"]),
+    ]
     m = _deck(tmp_path, ["1,1,1,2", "2,2,1,2"], "\n".join(extra), end=1.2)
     r = run(m, output_dt=2e-4)
     u = r.node_displacement[:, 0, 0]
@@ -298,8 +397,12 @@ def test_finite_wall_only_over_its_rectangle(tmp_path, corner, stops):
     """A 100 x 100 finite wall at x = 150 catches the mass when its
     rectangle (corner at the tail point) lies in the mass's path."""
     c = [float(v) for v in corner.split(",")]
-    wall = ["*RIGIDWALL_PLANAR_FINITE", "0", f"150,{c[1]},{c[2]},149,{c[1]},{c[2]}",
-            f"150,{c[1]},{c[2] + 1},100,100"]  # edge l along z, so m = n x l is +y
+    wall = [
+        "*RIGIDWALL_PLANAR_FINITE",
+        "0",
+        f"150,{c[1]},{c[2]},149,{c[1]},{c[2]}",
+        f"150,{c[1]},{c[2] + 1},100,100",
+    ]  # edge l along z, so m = n x l is +y
     r = run(_wall_deck(tmp_path, wall, (1000.0, 0.0, 0.0), end=0.1), output_dt=1e-3)
     x = r.node_displacement[:, 0, 0]
     if stops:
@@ -326,8 +429,15 @@ def test_spc_reaction_balances_the_spring_load(tmp_path):
     minus the spring force, at every state; spcforc reads back by name."""
     from crashlite.results import load
 
-    extra = ["*BOUNDARY_PRESCRIBED_MOTION_NODE", "2,1,0,7", "*DEFINE_CURVE", "7", "0.0,500.0", "1.0,500.0",
-             *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"])]
+    extra = [
+        "*BOUNDARY_PRESCRIBED_MOTION_NODE",
+        "2,1,0,7",
+        "*DEFINE_CURVE",
+        "7",
+        "0.0,500.0",
+        "1.0,500.0",
+        *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"]),
+    ]
     m = _deck(tmp_path, ["1,1,1,2"], "\n".join(extra), v0=0.0, end=0.04)
     r = run(m, out=tmp_path / "out", output_dt=4e-3)
     assert r.spc_nodes.tolist() == [1]
@@ -353,7 +463,8 @@ def test_glstat_ascii_written_and_read_back(tmp_path):
         " time...........................   0.00000E+00\n"
         " kinetic energy.................   2.50000E+06\n"
         " time...........................   1.00000E-03\n"
-        " kinetic energy.................   2.40000E+06\n")
+        " kinetic energy.................   2.40000E+06\n"
+    )
     from crashlite.results import load
 
     h = load(tmp_path / "dyna")
@@ -365,8 +476,18 @@ def test_part_internal_energy_matsum(tmp_path):
     ½ k_i δ_i², and they add up to the global internal energy."""
     from crashlite.results import load
 
-    extra = ["*PART", "soft", "2,2,2", "*SECTION_DISCRETE", "2,0", "*MAT_SPRING_ELASTIC", f"2,{2 * K}",
-             *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"]), "*ELEMENT_MASS", "11,3,0.05"]
+    extra = [
+        "*PART",
+        "soft",
+        "2,2,2",
+        "*SECTION_DISCRETE",
+        "2,0",
+        "*MAT_SPRING_ELASTIC",
+        f"2,{2 * K}",
+        *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"]),
+        "*ELEMENT_MASS",
+        "11,3,0.05",
+    ]
     m = _deck(tmp_path, ["1,1,1,2", "2,2,2,3"], "\n".join(extra), end=0.05)
     r = run(m, out=tmp_path / "out", output_dt=1e-3)
     assert r.part_ids.tolist() == [1, 2]
@@ -378,19 +499,42 @@ def test_part_internal_energy_matsum(tmp_path):
     np.testing.assert_array_equal(h.read("matsum", "internal_energy"), r.part_internal)
 
 
-@pytest.mark.parametrize("section", [
-    ["*DATABASE_CROSS_SECTION_PLANE_ID", "7,plane", "0,150,0,0,151,0,0"],
-    ["*DATABASE_CROSS_SECTION_SET_ID", "7,set", "8,0,0,0,0,9", "*SET_NODE_LIST", "8", "3",
-     "*SET_DISCRETE_LIST", "9", "2"],
-])
+@pytest.mark.parametrize(
+    "section",
+    [
+        ["*DATABASE_CROSS_SECTION_PLANE_ID", "7,plane", "0,150,0,0,151,0,0"],
+        [
+            "*DATABASE_CROSS_SECTION_SET_ID",
+            "7,set",
+            "8,0,0,0,0,9",
+            "*SET_NODE_LIST",
+            "8",
+            "3",
+            "*SET_DISCRETE_LIST",
+            "9",
+            "2",
+        ],
+    ],
+)
 def test_section_force_through_the_cut_spring(tmp_path, section):
     """A section between nodes 2 and 3 cuts the second spring: secforc is
     its axial force along +x (tension positive, as LS-DYNA), plane or set
     alike."""
     from crashlite.results import load
 
-    extra = ["*PART", "second", "2,2,2", "*SECTION_DISCRETE", "2,0", "*MAT_SPRING_ELASTIC", f"2,{2 * K}",
-             *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"]), "*ELEMENT_MASS", "11,3,0.05", *section]
+    extra = [
+        "*PART",
+        "second",
+        "2,2,2",
+        "*SECTION_DISCRETE",
+        "2,0",
+        "*MAT_SPRING_ELASTIC",
+        f"2,{2 * K}",
+        *_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"]),
+        "*ELEMENT_MASS",
+        "11,3,0.05",
+        *section,
+    ]
     m = _deck(tmp_path, ["1,1,1,2", "2,2,2,3"], "\n".join(extra), end=0.05)
     r = run(m, out=tmp_path / "out", output_dt=1e-3)
     assert r.section_ids.tolist() == [7]
@@ -407,10 +551,24 @@ def test_general_nonlinear_spring_unloads_on_its_shifted_curve(tmp_path):
     prescribed displacement 0 -> 10 -> 9.6 -> 12 mm; forces match the rule
     along the path and the stored energy is its integral (2700 N·mm)."""
     path = ["0.0,0.0", "0.4,10.0", "0.5,9.6", "0.7,12.0"]
-    extra = ["*BOUNDARY_PRESCRIBED_MOTION_NODE", "2,1,2,7", "*DEFINE_CURVE", "7", *path,
-             *_parts(["*MAT_SPRING_GENERAL_NONLINEAR", "1,5,6,0.0,150.0,-150.0"]),
-             "*DEFINE_CURVE", "5", "-100.0,-10000.0", "0.0,0.0", "2.0,200.0", "100.0,1180.0",
-             "*DEFINE_CURVE", "6", "-100.0,-50000.0", "100.0,50000.0"]
+    extra = [
+        "*BOUNDARY_PRESCRIBED_MOTION_NODE",
+        "2,1,2,7",
+        "*DEFINE_CURVE",
+        "7",
+        *path,
+        *_parts(["*MAT_SPRING_GENERAL_NONLINEAR", "1,5,6,0.0,150.0,-150.0"]),
+        "*DEFINE_CURVE",
+        "5",
+        "-100.0,-10000.0",
+        "0.0,0.0",
+        "2.0,200.0",
+        "100.0,1180.0",
+        "*DEFINE_CURVE",
+        "6",
+        "-100.0,-50000.0",
+        "100.0,50000.0",
+    ]
     m = _deck(tmp_path, ["1,1,1,2"], "\n".join(extra), v0=0.0, end=0.7)
     r = run(m, output_dt=5e-3)
     delta, force = r.discrete_elong[:, 0], r.discrete_force[:, 0]
@@ -424,4 +582,3 @@ def test_general_nonlinear_spring_unloads_on_its_shifted_curve(tmp_path):
     assert delta[i] == pytest.approx(9.6, abs=0.01) and force[i] == pytest.approx(80.0, abs=3.0)  # unloaded
     assert force[-1] == pytest.approx(300.0, rel=1e-3)  # back on the loading curve
     assert r.internal[-1] == pytest.approx(2700.0, rel=5e-3)
-

@@ -36,7 +36,7 @@ def _extension(force: float, twin: bool) -> float:
     """Static extension of the tube: the thin length (the replaced part of
     it elastic in the twin) and the thick length in series."""
     s_thin, s_thick = force / (4 * B * T_THIN), force / (4 * B * T_THICK)
-    thin = (X_CUT * _strain(s_thin, not twin) + (X_THICK - X_CUT) * _strain(s_thin))
+    thin = X_CUT * _strain(s_thin, not twin) + (X_THICK - X_CUT) * _strain(s_thin)
     return thin + (L - X_THICK) * _strain(s_thick)
 
 
@@ -51,20 +51,35 @@ def _model(force: float):
     ids = m.nodes.ids
     rear, front = np.flatnonzero(np.isclose(xyz[:, 0], 0.0)), np.flatnonzero(np.isclose(xyz[:, 0], L))
     s = np.linspace(0.0, 1.0, 41)
-    m.curves[1] = record("DEFINE_CURVE", lcid=1, rows={"a1": np.r_[RAMP * s, END], "o1": np.r_[0.5 - 0.5 * np.cos(
-        np.pi * s), 1.0]})
+    m.curves[1] = record(
+        "DEFINE_CURVE", lcid=1, rows={"a1": np.r_[RAMP * s, END], "o1": np.r_[0.5 - 0.5 * np.cos(np.pi * s), 1.0]}
+    )
     # the front ring held along the axis only, and across where symmetry holds it (mid-side nodes): free to
     # contract, so the walls carry the uniaxial stress of the closed form up to the clamp
     y, z = xyz[front, 1], xyz[front, 2]
     one = np.ones(len(front), np.int64)
     m.keywords += [
-        record("BOUNDARY_SPC_NODE", rows={"nid": ids[front], "dofx": one, "dofy": np.isclose(y, 0.0).astype(int),
-                                          "dofz": np.isclose(z, 0.0).astype(int)}),
-        record("LOAD_NODE_POINT", rows={"nid": ids[rear], "dof": np.ones(len(rear), np.int64),
-                                        "lcid": np.ones(len(rear), np.int64),
-                                        "sf": np.full(len(rear), -force / len(rear))}),
+        record(
+            "BOUNDARY_SPC_NODE",
+            rows={
+                "nid": ids[front],
+                "dofx": one,
+                "dofy": np.isclose(y, 0.0).astype(int),
+                "dofz": np.isclose(z, 0.0).astype(int),
+            },
+        ),
+        record(
+            "LOAD_NODE_POINT",
+            rows={
+                "nid": ids[rear],
+                "dof": np.ones(len(rear), np.int64),
+                "lcid": np.ones(len(rear), np.int64),
+                "sf": np.full(len(rear), -force / len(rear)),
+            },
+        ),
         record("CONTROL_TERMINATION", endtim=END),
-        record("DATABASE_HISTORY_NODE_ID", rows={"id": ids[rear[:1]], "heading": np.array(["rear"], object)})]
+        record("DATABASE_HISTORY_NODE_ID", rows={"id": ids[rear[:1]], "heading": np.array(["rear"], object)}),
+    ]
     return m
 
 

@@ -28,8 +28,18 @@ C_BAR = math.sqrt(E / RHO)
 def _deck(tmp_path, nodes, elems, timestep="", end=1e-6):
     lines = ["*KEYWORD", "*NODE"] + [f"{i + 1},{x},{y},0" for i, (x, y) in enumerate(nodes)]
     lines += ["*ELEMENT_SHELL"] + [f"{k + 1},1," + ",".join(str(n) for n in e) for k, e in enumerate(elems)]
-    lines += ["*PART", "p", "1,1,1", "*SECTION_SHELL", "1,2", "1.0,1.0,1.0,1.0", "*MAT_ELASTIC",
-              f"1,{RHO},{E},{NU}", "*CONTROL_TERMINATION", f"{end}"]
+    lines += [
+        "*PART",
+        "p",
+        "1,1,1",
+        "*SECTION_SHELL",
+        "1,2",
+        "1.0,1.0,1.0,1.0",
+        "*MAT_ELASTIC",
+        f"1,{RHO},{E},{NU}",
+        "*CONTROL_TERMINATION",
+        f"{end}",
+    ]
     if timestep:
         lines += ["*CONTROL_TIMESTEP", timestep]
     lines.append("*END")
@@ -105,8 +115,20 @@ def test_solid_step_is_volume_over_largest_face_at_the_dilatational_wave_speed(t
 
     corners = [(0, 0, 0), (10, 0, 0), (10, 20, 0), (0, 20, 0), (0, 0, 5), (10, 0, 5), (10, 20, 5), (0, 20, 5)]
     lines = ["*KEYWORD", "*NODE"] + [f"{i + 1},{x},{y},{z}" for i, (x, y, z) in enumerate(corners)]
-    lines += ["*ELEMENT_SOLID", "1,1,1,2,3,4,5,6,7,8", "*PART", "p", "1,1,1", "*SECTION_SOLID", "1,1",
-              "*MAT_ELASTIC", f"1,{RHO},{E},{NU}", "*CONTROL_TERMINATION", "1e-6", "*END"]
+    lines += [
+        "*ELEMENT_SOLID",
+        "1,1,1,2,3,4,5,6,7,8",
+        "*PART",
+        "p",
+        "1,1,1",
+        "*SECTION_SOLID",
+        "1,1",
+        "*MAT_ELASTIC",
+        f"1,{RHO},{E},{NU}",
+        "*CONTROL_TERMINATION",
+        "1e-6",
+        "*END",
+    ]
     path = tmp_path / "brick.k"
     path.write_text("\n".join(lines) + "\n")
     model = read_deck(path)
@@ -118,9 +140,27 @@ def test_solid_step_is_volume_over_largest_face_at_the_dilatational_wave_speed(t
 def test_spring_step_is_the_two_mass_oscillators(tmp_path):
     """A linear spring k between masses m1, m2: Δt = 2·sqrt(m1·m2 / (k(m1 + m2))), × TSSFAC."""
     k, m1, m2 = 1.0e4, 2.0e-3, 5.0e-3
-    lines = ["*KEYWORD", "*NODE", "1,0,0,0", "2,10,0,0", "*ELEMENT_DISCRETE", "1,1,1,2",
-             "*PART", "s", "1,1,1", "*SECTION_DISCRETE", "1,0", "*MAT_SPRING_ELASTIC", f"1,{k}",
-             "*ELEMENT_MASS", f"1,1,{m1}", f"2,2,{m2}", "*CONTROL_TERMINATION", "1e-4", "*END"]
+    lines = [
+        "*KEYWORD",
+        "*NODE",
+        "1,0,0,0",
+        "2,10,0,0",
+        "*ELEMENT_DISCRETE",
+        "1,1,1,2",
+        "*PART",
+        "s",
+        "1,1,1",
+        "*SECTION_DISCRETE",
+        "1,0",
+        "*MAT_SPRING_ELASTIC",
+        f"1,{k}",
+        "*ELEMENT_MASS",
+        f"1,1,{m1}",
+        f"2,2,{m2}",
+        "*CONTROL_TERMINATION",
+        "1e-4",
+        "*END",
+    ]
     path = tmp_path / "spring.k"
     path.write_text("\n".join(lines) + "\n")
     r = run(read_deck(path), output_dt=1e-5)
@@ -132,9 +172,25 @@ BEAM_A, BEAM_I = 100.0, 100.0 * 100.0 / 12.0  # a solid 10 mm x 10 mm square
 
 def _one_beam(tmp_path, length, end):
     """Run one free ELFORM 2 beam of ``length`` (the square section) to ``end``."""
-    lines = ["*KEYWORD", "*NODE", "1,0,0,0", f"2,{length},0,0", "*ELEMENT_BEAM", "1,1,1,2", "*PART", "b", "1,1,1",
-             "*SECTION_BEAM", "1,2", f"{BEAM_A},{BEAM_I},{BEAM_I},{2 * BEAM_I}", "*MAT_ELASTIC", f"1,{RHO},{E},{NU}",
-             "*CONTROL_TERMINATION", f"{end}", "*END"]
+    lines = [
+        "*KEYWORD",
+        "*NODE",
+        "1,0,0,0",
+        f"2,{length},0,0",
+        "*ELEMENT_BEAM",
+        "1,1,1,2",
+        "*PART",
+        "b",
+        "1,1,1",
+        "*SECTION_BEAM",
+        "1,2",
+        f"{BEAM_A},{BEAM_I},{BEAM_I},{2 * BEAM_I}",
+        "*MAT_ELASTIC",
+        f"1,{RHO},{E},{NU}",
+        "*CONTROL_TERMINATION",
+        f"{end}",
+        "*END",
+    ]
     path = tmp_path / "beam.k"
     path.write_text("\n".join(lines) + "\n")
     return run(read_deck(path), output_dt=end / 10)

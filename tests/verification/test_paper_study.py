@@ -15,8 +15,15 @@ from crashlite.vehicle.workflow import paper_study
 
 @pytest.fixture(scope="module")
 def study(tmp_path_factory):
-    return paper_study(tmp_path_factory.mktemp("paper"), mesh_size=60.0, barrier_size=100.0, usncap_end=0.01,
-                       odb_end=0.01, variants=False, say=lambda *a: None)
+    return paper_study(
+        tmp_path_factory.mktemp("paper"),
+        mesh_size=60.0,
+        barrier_size=100.0,
+        usncap_end=0.01,
+        odb_end=0.01,
+        variants=False,
+        say=lambda *a: None,
+    )
 
 
 @pytest.mark.slow
@@ -36,21 +43,28 @@ def test_one_surrogate_takes_the_mean_shares_of_both_load_cases(study):
 
 @pytest.mark.slow
 def test_each_run_conserves_energy_and_the_barriers_take_their_part(study):
-    assert set(study.runs) == {"usncap full", "usncap simplified", "odb full car, detailed barrier",
-                               "odb simplified car, simplified barrier"}
+    assert set(study.runs) == {
+        "usncap full",
+        "usncap simplified",
+        "odb full car, detailed barrier",
+        "odb simplified car, simplified barrier",
+    }
     for name, run in study.runs.items():
         r = Results.load(run["results"])
         assert np.all(np.abs(r.energy_ratio - 1.0) < 0.02), name
         assert r.kinetic[-1] < 0.99 * r.kinetic[0], name  # decelerating
-    for name, word in (("odb full car, detailed barrier", "detailed ODB"),
-                       ("odb simplified car, simplified barrier", "simplified ODB")):
+    for name, word in (
+        ("odb full car, detailed barrier", "detailed ODB"),
+        ("odb simplified car, simplified barrier", "simplified ODB"),
+    ):
         r = Results.load(study.runs[name]["results"])
         from crashlite import read_deck
 
         m = read_deck(study.runs[name]["deck"])
         # (the surrogate's nodal rigid bodies report under IDs that are no *PART)
-        barrier = [k for k, p in enumerate(r.part_ids)
-                   if str(m.parts.get(int(p), {}).get("heading", "")).startswith(word)]
+        barrier = [
+            k for k, p in enumerate(r.part_ids) if str(m.parts.get(int(p), {}).get("heading", "")).startswith(word)
+        ]
         assert barrier and r.part_internal[-1, barrier].sum() > 0.2 * r.internal[-1], name
 
 
@@ -60,9 +74,11 @@ def test_summary_pairs_the_runs_and_reports_their_time_reductions(study):
     loop = {k: v["loop_time_s"] for k, v in s["runs"].items()}
     t = s["time"]
     assert t["us_ncap"]["vehicle_reduction_percent"] == pytest.approx(
-        100.0 * (1.0 - loop["usncap simplified"] / loop["usncap full"]))
+        100.0 * (1.0 - loop["usncap simplified"] / loop["usncap full"])
+    )
     assert t["odb"]["combined_reduction_percent"] == pytest.approx(
-        100.0 * (1.0 - loop["odb simplified car, simplified barrier"] / loop["odb full car, detailed barrier"]))
+        100.0 * (1.0 - loop["odb simplified car, simplified barrier"] / loop["odb full car, detailed barrier"])
+    )
     assert "barrier_reduction_percent" not in t["odb"]  # no single-simplification runs asked for
     odb = s["verification"]["Euro NCAP ODB"]
     assert odb["names"] == ["full + detailed barrier", "simplified + simplified barrier"]

@@ -32,22 +32,55 @@ def _strip(tmp_path, solid: bool) -> str:
     held = [nid[0, j] for j in range(len(corners))]
     pulled = [nid[4, j] for j in range(len(corners))]
     if solid:
-        lines += ["*ELEMENT_SOLID"] + [f"{100 + i},{1 + i // 3}," + ",".join(str(nid[k, j]) for k, j in (
-            (i, 0), (i + 1, 0), (i + 1, 1), (i, 1), (i, 2), (i + 1, 2), (i + 1, 3), (i, 3))) for i in range(4)]
+        lines += ["*ELEMENT_SOLID"] + [
+            f"{100 + i},{1 + i // 3},"
+            + ",".join(
+                str(nid[k, j])
+                for k, j in ((i, 0), (i + 1, 0), (i + 1, 1), (i, 1), (i, 2), (i + 1, 2), (i + 1, 3), (i, 3))
+            )
+            for i in range(4)
+        ]
         lines += ["*PART", "bar", "1,1,1", "*PART", "strong", "2,1,2", "*SECTION_SOLID", "1,1"]
     else:
-        lines += ["*ELEMENT_SHELL"] + [f"{100 + i},{1 + i // 3},{nid[i, 0]},{nid[i + 1, 0]},{nid[i + 1, 1]},{nid[i, 1]}"
-                                       for i in range(4)]
-        lines += ["*PART", "strip", "1,1,1", "*PART", "strong", "2,1,2", "*SECTION_SHELL", "1,2,1.0,3",
-                  "1.0,1.0,1.0,1.0"]
+        lines += ["*ELEMENT_SHELL"] + [
+            f"{100 + i},{1 + i // 3},{nid[i, 0]},{nid[i + 1, 0]},{nid[i + 1, 1]},{nid[i, 1]}" for i in range(4)
+        ]
+        lines += [
+            "*PART",
+            "strip",
+            "1,1,1",
+            "*PART",
+            "strong",
+            "2,1,2",
+            "*SECTION_SHELL",
+            "1,2,1.0,3",
+            "1.0,1.0,1.0,1.0",
+        ]
     for mid, sy in ((1, SY), (2, 2 * SY)):  # *MAT_PIECEWISE_LINEAR_PLASTICITY with ETAN
         lines += ["*MAT_PIECEWISE_LINEAR_PLASTICITY", f"{mid},7.85e-9,{E!r},0.3,{sy!r},{ET!r}", "0.0,0.0", "", ""]
     lines += [
-              "*SET_NODE_LIST", "1", *[",".join(map(str, held))], "*SET_NODE_LIST", "2", *[",".join(map(str, pulled))],
-              "*BOUNDARY_SPC_SET", "1,0,1,0,0,0,0,0", "*BOUNDARY_SPC_NODE", f"{nid[0, 0]},0,0,1,1,0,0,0",
-              "*DEFINE_CURVE", "5", "0.0,0.0", f"{RAMP!r},1000.0", "1.0,1000.0",
-              "*BOUNDARY_PRESCRIBED_MOTION_SET", "2,1,0,5,1.0",
-              "*CONTROL_TERMINATION", repr(END), "*DATABASE_BINARY_D3PLOT", repr(END / 2)]
+        "*SET_NODE_LIST",
+        "1",
+        *[",".join(map(str, held))],
+        "*SET_NODE_LIST",
+        "2",
+        *[",".join(map(str, pulled))],
+        "*BOUNDARY_SPC_SET",
+        "1,0,1,0,0,0,0,0",
+        "*BOUNDARY_SPC_NODE",
+        f"{nid[0, 0]},0,0,1,1,0,0,0",
+        "*DEFINE_CURVE",
+        "5",
+        "0.0,0.0",
+        f"{RAMP!r},1000.0",
+        "1.0,1000.0",
+        "*BOUNDARY_PRESCRIBED_MOTION_SET",
+        "2,1,0,5,1.0",
+        "*CONTROL_TERMINATION",
+        repr(END),
+        "*DATABASE_BINARY_D3PLOT",
+        repr(END / 2),
+    ]
     # one solid through the section: its corner nodes carry 1/8 of an element, and the bulk mode of
     # such a bar is unstable at 0.9 x V/A_max / c for ν = 0.3 (critical factor 0.73)
     lines += ["*CONTROL_TIMESTEP", "0.0,0.7", "*END"] if solid else ["*END"]
@@ -77,8 +110,8 @@ def test_uniaxial_tension_ends_with_the_plastic_strain(tmp_path, solid):
     energy = getattr(r, f"{kind}_internal_energy")
     volume = L / 4 * 10.0 * (10.0 if solid else 1.0)
     plastic = (SY + sigma) / 2 * (sigma - SY) / H
-    assert energy[:3] == pytest.approx(volume * (sigma ** 2 / (2 * E) + plastic), rel=0.05)
-    assert energy[3] == pytest.approx(volume * sigma ** 2 / (2 * E), rel=0.1)
+    assert energy[:3] == pytest.approx(volume * (sigma**2 / (2 * E) + plastic), rel=0.05)
+    assert energy[3] == pytest.approx(volume * sigma**2 / (2 * E), rel=0.1)
     assert energy.sum() == pytest.approx(r.internal[-1], rel=1e-9)
     assert np.array_equal(saved[f"{kind}_internal_energy"], energy)
     if not solid:
@@ -86,7 +119,7 @@ def test_uniaxial_tension_ends_with_the_plastic_strain(tmp_path, solid):
     # the last field state for ParaView carries it as cell data
     lines = sorted((tmp_path / "run" / "states").glob("state_*.vtk"))[-1].read_text().splitlines()
     k = lines.index("SCALARS plastic_strain double 1")
-    assert [float(c) for c in lines[k + 2:k + 6]] == pytest.approx(eps.tolist(), rel=1e-8)
+    assert [float(c) for c in lines[k + 2 : k + 6]] == pytest.approx(eps.tolist(), rel=1e-8)
 
 
 def test_passenger_cell_summary_takes_the_cell_assemblies_only(tmp_path):
@@ -96,8 +129,15 @@ def test_passenger_cell_summary_takes_the_cell_assemblies_only(tmp_path):
     from crashlite.vehicle.connection.interface import assembly_parts, cell_plastic_strain, part_plastic_strain
 
     deck = _strip(tmp_path, False)
-    text = open(deck).read().replace("*END", "*SET_PART_LIST_TITLE\nassembly floor left\n11\n1\n"
-                                             "*SET_PART_LIST_TITLE\nassembly engine and gearbox\n12\n2\n*END")
+    text = (
+        open(deck)
+        .read()
+        .replace(
+            "*END",
+            "*SET_PART_LIST_TITLE\nassembly floor left\n11\n1\n"
+            "*SET_PART_LIST_TITLE\nassembly engine and gearbox\n12\n2\n*END",
+        )
+    )
     open(deck, "w").write(text)
     r = run(deck, out=tmp_path / "run", quiet=True)
     model = read_deck(deck)

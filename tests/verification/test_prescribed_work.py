@@ -18,24 +18,62 @@ X = 10.0  # mm, end of the ramp
 T = 0.01  # s, duration of the ramp
 
 
-def _deck(tmp_path, m2: float, vad: int, curve: list[str], end: float = 2 * T, dof: int = 1,
-          body: bool = False) -> str:
+def _deck(tmp_path, m2: float, vad: int, curve: list[str], end: float = 2 * T, dof: int = 1, body: bool = False) -> str:
     mass = [f"2,2,{m2!r}"] if m2 > 0 else []
     if body:  # node 2 is the centre of a rigid part (its own body of mass m2): drive the part
         motion = ["*BOUNDARY_PRESCRIBED_MOTION_RIGID", f"2,{dof},{vad},5,1.0"]
         # a 2 x 2 mm plate, 1 mm thick, centred on node 2 (an extra node of the part)
-        rigid = ["*PART", "plate", "2,2,2", "*SECTION_SHELL", "2", "1.0,1.0,1.0,1.0",
-                 "*MAT_RIGID", f"2,{m2 / 4.0!r},210000.0,0.3", "*ELEMENT_SHELL", "1,2,3,4,5,6",
-                 "*NODE", "3,99,-1,0", "4,101,-1,0", "5,101,1,0", "6,99,1,0",
-                 "*CONSTRAINED_EXTRA_NODES_NODE", "2,2"]
+        rigid = [
+            "*PART",
+            "plate",
+            "2,2,2",
+            "*SECTION_SHELL",
+            "2",
+            "1.0,1.0,1.0,1.0",
+            "*MAT_RIGID",
+            f"2,{m2 / 4.0!r},210000.0,0.3",
+            "*ELEMENT_SHELL",
+            "1,2,3,4,5,6",
+            "*NODE",
+            "3,99,-1,0",
+            "4,101,-1,0",
+            "5,101,1,0",
+            "6,99,1,0",
+            "*CONSTRAINED_EXTRA_NODES_NODE",
+            "2,2",
+        ]
         mass = []
     else:
         motion = ["*BOUNDARY_PRESCRIBED_MOTION_NODE", f"2,{dof},{vad},5,1.0"]
         rigid = []
-    lines = ["*KEYWORD", "*NODE", "1,0,0,0", "2,100,0,0", "*ELEMENT_MASS", "1,1,1.0", *mass,
-             "*ELEMENT_DISCRETE", "7,1,1,2", "*PART", "spring", "1,1,1", "*SECTION_DISCRETE", "1,0",
-             "*MAT_SPRING_ELASTIC", f"1,{K!r}", "*BOUNDARY_SPC_NODE", "1,0,1,1,1,1,1,1",
-             "*DEFINE_CURVE", "5", *curve, *motion, *rigid, "*CONTROL_TERMINATION", repr(end), "*END"]
+    lines = [
+        "*KEYWORD",
+        "*NODE",
+        "1,0,0,0",
+        "2,100,0,0",
+        "*ELEMENT_MASS",
+        "1,1,1.0",
+        *mass,
+        "*ELEMENT_DISCRETE",
+        "7,1,1,2",
+        "*PART",
+        "spring",
+        "1,1,1",
+        "*SECTION_DISCRETE",
+        "1,0",
+        "*MAT_SPRING_ELASTIC",
+        f"1,{K!r}",
+        "*BOUNDARY_SPC_NODE",
+        "1,0,1,1,1,1,1,1",
+        "*DEFINE_CURVE",
+        "5",
+        *curve,
+        *motion,
+        *rigid,
+        "*CONTROL_TERMINATION",
+        repr(end),
+        "*END",
+    ]
     p = tmp_path / f"d{vad}_{m2:g}_{int(body)}.k"
     p.write_text("\n".join(lines) + "\n")
     return str(p)

@@ -87,9 +87,19 @@ def test_time_in_milliseconds():
     assert r_ms.n_samples == N
 
 
-@pytest.mark.parametrize("score, name", [(1.0, "excellent"), (0.9401, "excellent"), (0.94, "good"),
-                                         (0.81, "good"), (0.80, "fair"), (0.59, "fair"), (0.58, "poor"),
-                                         (0.0, "poor")])
+@pytest.mark.parametrize(
+    "score, name",
+    [
+        (1.0, "excellent"),
+        (0.9401, "excellent"),
+        (0.94, "good"),
+        (0.81, "good"),
+        (0.80, "fair"),
+        (0.59, "fair"),
+        (0.58, "poor"),
+        (0.0, "poor"),
+    ],
+)
 def test_grades(score, name):
     assert grade(score) == name
 

@@ -17,12 +17,32 @@ _MASS = np.array([0.01, 0.01, 0.02, 0.02, 0.04, 0.04])
 def _body_deck(tmp_path, extra=(), w=(0.0, 0.0, 0.0), end=0.2, v=(0.0, 0.0, 0.0), members="1,2,3,4,5,6"):
     nodes = [f"{i + 1},{p[0]},{p[1]},{p[2]}" for i, p in enumerate(_PTS)]
     masses = [f"{i + 101},{i + 1},{m}" for i, m in enumerate(_MASS)]
-    vel = [f"{i + 1},{v[0] + np.cross(w, p)[0]},{v[1] + np.cross(w, p)[1]},{v[2] + np.cross(w, p)[2]}"
-           for i, p in enumerate(_PTS)]
-    text = "\n".join(["*KEYWORD", "*NODE", *nodes, "*ELEMENT_MASS", *masses,
-                      "*SET_NODE_LIST", "1", members, "*CONSTRAINED_NODAL_RIGID_BODY", "1000,0,1",
-                      "*INITIAL_VELOCITY_NODE", *vel, "*CONTROL_TERMINATION", f"{end}",
-                      "*DATABASE_HISTORY_NODE", "1,3,5", *extra, "*END"])
+    vel = [
+        f"{i + 1},{v[0] + np.cross(w, p)[0]},{v[1] + np.cross(w, p)[1]},{v[2] + np.cross(w, p)[2]}"
+        for i, p in enumerate(_PTS)
+    ]
+    text = "\n".join(
+        [
+            "*KEYWORD",
+            "*NODE",
+            *nodes,
+            "*ELEMENT_MASS",
+            *masses,
+            "*SET_NODE_LIST",
+            "1",
+            members,
+            "*CONSTRAINED_NODAL_RIGID_BODY",
+            "1000,0,1",
+            "*INITIAL_VELOCITY_NODE",
+            *vel,
+            "*CONTROL_TERMINATION",
+            f"{end}",
+            "*DATABASE_HISTORY_NODE",
+            "1,3,5",
+            *extra,
+            "*END",
+        ]
+    )
     p = tmp_path / "body.k"
     p.write_text(text)
     return read_deck(p)
@@ -43,8 +63,12 @@ def test_torque_free_spin_keeps_momentum_energy_and_shape(tmp_path):
     turns: angular momentum is conserved exactly, energy to 1e-6, node
     distances to round-off."""
     w = np.array([20.0, 3.0, 1.0])
-    m = _body_deck(tmp_path, w=w, end=10 * 2 * np.pi / 20.0, extra=["*CONTROL_TIMESTEP", "0.0,0.9,0,0.0,0.0,9",
-                                                  "*DEFINE_CURVE", "9", "0.0,2e-4", "1.0,2e-4"])
+    m = _body_deck(
+        tmp_path,
+        w=w,
+        end=10 * 2 * np.pi / 20.0,
+        extra=["*CONTROL_TIMESTEP", "0.0,0.9,0,0.0,0.0,9", "*DEFINE_CURVE", "9", "0.0,2e-4", "1.0,2e-4"],
+    )
     r = run(m, output_dt=1e-2)
     e0 = r.kinetic[0]
     assert np.max(np.abs(r.kinetic / e0 - 1.0)) < 1e-6
@@ -63,9 +87,21 @@ def test_torque_free_spin_keeps_momentum_energy_and_shape(tmp_path):
 def test_rigid_body_on_a_spring_oscillates_with_its_total_mass(tmp_path):
     """A rigid body (0.14 t) held by a spring to a fixed node: ω = sqrt(k / M)."""
     k = 100.0
-    extra = ["*NODE", "50,-300,0,0,7,7", "*ELEMENT_DISCRETE", "1,1,50,2",
-             "*PART", "spring", "1,1,1", "*SECTION_DISCRETE", "1,0", "*MAT_SPRING_ELASTIC", f"1,{k}",
-             "*CONTROL_TIMESTEP", ",0.05"]
+    extra = [
+        "*NODE",
+        "50,-300,0,0,7,7",
+        "*ELEMENT_DISCRETE",
+        "1,1,50,2",
+        "*PART",
+        "spring",
+        "1,1,1",
+        "*SECTION_DISCRETE",
+        "1,0",
+        "*MAT_SPRING_ELASTIC",
+        f"1,{k}",
+        "*CONTROL_TIMESTEP",
+        ",0.05",
+    ]
     m = _body_deck(tmp_path, extra, v=(100.0, 0.0, 0.0), end=0.3)
     r = run(m, output_dt=1e-3)
     omega = math.sqrt(k / _MASS.sum())
@@ -86,8 +122,18 @@ def test_rotation_matrix():
 def test_element_inertia_adds_to_the_body(tmp_path):
     """*ELEMENT_INERTIA on a body node adds its mass and tensor (the
     surrogate's mass at the centre of gravity)."""
-    extra = ["*NODE", "7,0,0,0", "*ELEMENT_INERTIA", "200,7,0", "5.0,0.0,0.0,6.0,0.0,7.0,0.5",
-             "*SET_NODE_LIST", "2", "1,2,3,4,5,6,7", "*CONSTRAINED_NODAL_RIGID_BODY", "2000,0,2"]
+    extra = [
+        "*NODE",
+        "7,0,0,0",
+        "*ELEMENT_INERTIA",
+        "200,7,0",
+        "5.0,0.0,0.0,6.0,0.0,7.0,0.5",
+        "*SET_NODE_LIST",
+        "2",
+        "1,2,3,4,5,6,7",
+        "*CONSTRAINED_NODAL_RIGID_BODY",
+        "2000,0,2",
+    ]
     m = _body_deck(tmp_path, extra)
     from crashlite.solver import build
 
@@ -99,8 +145,9 @@ def test_element_inertia_adds_to_the_body(tmp_path):
 
 
 def _without_first_body(m):
-    m.keywords = [k for k in m.keywords if not (getattr(k, "keyword", "") == "CONSTRAINED_NODAL_RIGID_BODY"
-                                                 and k["pid"] == 1000)]
+    m.keywords = [
+        k for k in m.keywords if not (getattr(k, "keyword", "") == "CONSTRAINED_NODAL_RIGID_BODY" and k["pid"] == 1000)
+    ]
     return m
 
 
@@ -130,8 +177,7 @@ def test_off_centre_hit_turns_the_body_about_the_contact_point(tmp_path):
     contact point leaves the angular momentum about that point and the
     frictionless tangential momentum unchanged, stops the point's normal
     approach, and dissipates energy (plastic impact)."""
-    extra = ["*NODE", "7,105,50,0", "*ELEMENT_MASS", "107,7,1e-6", "*RIGIDWALL_PLANAR", "0",
-             "110,0,0,109,0,0"]
+    extra = ["*NODE", "7,105,50,0", "*ELEMENT_MASS", "107,7,1e-6", "*RIGIDWALL_PLANAR", "0", "110,0,0,109,0,0"]
     v0 = 100.0
     m = _body_deck(tmp_path, extra, v=(v0, 0, 0), end=0.0502, members="1,2,3,4,5,6,7")
     r = run(m, output_dt=1e-4)
@@ -189,14 +235,38 @@ def _strip_with_root_body(tmp_path, end):
     nx, ny, h = 10, 4, 10.0
     ids = np.arange((nx + 1) * (ny + 1)).reshape(nx + 1, ny + 1) + 1
     nodes = [f"{ids[i, j]},{i * h},{j * h},0.0" for i in range(nx + 1) for j in range(ny + 1)]
-    shells = [f"{k + 1},1,{ids[i, j]},{ids[i + 1, j]},{ids[i + 1, j + 1]},{ids[i, j + 1]}"
-              for k, (i, j) in enumerate((i, j) for i in range(nx) for j in range(ny))]
+    shells = [
+        f"{k + 1},1,{ids[i, j]},{ids[i + 1, j]},{ids[i + 1, j + 1]},{ids[i, j + 1]}"
+        for k, (i, j) in enumerate((i, j) for i in range(nx) for j in range(ny))
+    ]
     vel = [f"{ids[i, j]},0.0,0.0,{1000.0 * (i / nx) ** 2}" for i in range(1, nx + 1) for j in range(ny + 1)]
-    text = "\n".join(["*KEYWORD", "*NODE", *nodes, "*ELEMENT_SHELL", *shells, "*PART", "strip", "1,1,1",
-                      "*SECTION_SHELL", "1,2,0.8333,3", "1.0,1.0,1.0,1.0", "*MAT_ELASTIC", "1,7.85e-9,210000.0,0.3",
-                      "*SET_NODE_LIST", "1", ",".join(str(i) for i in ids[0]),
-                      "*CONSTRAINED_NODAL_RIGID_BODY", "1000,0,1", "*INITIAL_VELOCITY_NODE", *vel,
-                      "*CONTROL_TERMINATION", f"{end}", "*END"])
+    text = "\n".join(
+        [
+            "*KEYWORD",
+            "*NODE",
+            *nodes,
+            "*ELEMENT_SHELL",
+            *shells,
+            "*PART",
+            "strip",
+            "1,1,1",
+            "*SECTION_SHELL",
+            "1,2,0.8333,3",
+            "1.0,1.0,1.0,1.0",
+            "*MAT_ELASTIC",
+            "1,7.85e-9,210000.0,0.3",
+            "*SET_NODE_LIST",
+            "1",
+            ",".join(str(i) for i in ids[0]),
+            "*CONSTRAINED_NODAL_RIGID_BODY",
+            "1000,0,1",
+            "*INITIAL_VELOCITY_NODE",
+            *vel,
+            "*CONTROL_TERMINATION",
+            f"{end}",
+            "*END",
+        ]
+    )
     p = tmp_path / "strip.k"
     p.write_text(text)
     return read_deck(p)

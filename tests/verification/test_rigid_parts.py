@@ -13,16 +13,51 @@ RO = 7.85e-9
 def _plate_deck(tmp_path, extra=(), mat="1,7.85e-9,210000.0,0.3"):
     """A rigid 100 x 100 x 2 shell plate (part 1, 0.157 kg), moving +x at
     1000 mm/s, pushing a 50 N/mm spring grounded at node 100."""
-    text = "\n".join([
-        "*KEYWORD", "*NODE", "1,0,0,0", "2,0,100,0", "3,0,100,100", "4,0,0,100", "100,-200,50,50,7,7",
-        "*ELEMENT_SHELL", "1,1,1,2,3,4", "*PART", "plate", "1,1,1", "*SECTION_SHELL", "1,2", "2.0",
-        "*MAT_RIGID", mat,
-        "*NODE", "5,0,50,50", "*ELEMENT_DISCRETE", "10,2,100,5",
-        "*PART", "spring", "2,2,2", "*SECTION_DISCRETE", "2,0", "*MAT_SPRING_ELASTIC", "2,50.0",
-        "*CONSTRAINED_EXTRA_NODES_NODE", "1,5",
-        "*INITIAL_VELOCITY", "0", "-1000.0,0.0,0.0",
-        "*CONTROL_TERMINATION", "0.02", "*CONTROL_TIMESTEP", ",0.02",
-        "*DATABASE_HISTORY_NODE", "1,3", *extra, "*END"])
+    text = "\n".join(
+        [
+            "*KEYWORD",
+            "*NODE",
+            "1,0,0,0",
+            "2,0,100,0",
+            "3,0,100,100",
+            "4,0,0,100",
+            "100,-200,50,50,7,7",
+            "*ELEMENT_SHELL",
+            "1,1,1,2,3,4",
+            "*PART",
+            "plate",
+            "1,1,1",
+            "*SECTION_SHELL",
+            "1,2",
+            "2.0",
+            "*MAT_RIGID",
+            mat,
+            "*NODE",
+            "5,0,50,50",
+            "*ELEMENT_DISCRETE",
+            "10,2,100,5",
+            "*PART",
+            "spring",
+            "2,2,2",
+            "*SECTION_DISCRETE",
+            "2,0",
+            "*MAT_SPRING_ELASTIC",
+            "2,50.0",
+            "*CONSTRAINED_EXTRA_NODES_NODE",
+            "1,5",
+            "*INITIAL_VELOCITY",
+            "0",
+            "-1000.0,0.0,0.0",
+            "*CONTROL_TERMINATION",
+            "0.02",
+            "*CONTROL_TIMESTEP",
+            ",0.02",
+            "*DATABASE_HISTORY_NODE",
+            "1,3",
+            *extra,
+            "*END",
+        ]
+    )
     p = tmp_path / "plate.k"
     p.write_text(text)
     return read_deck(p)
@@ -51,9 +86,22 @@ def test_con1_holds_translations(tmp_path):
 def test_merged_rigid_parts_move_together(tmp_path):
     """*CONSTRAINED_RIGID_BODIES: a second rigid plate (part 3) merged into
     part 1: one body of twice the mass, CoG between the plates."""
-    extra = ["*NODE", "11,0,0,200", "12,0,100,200", "13,0,100,300", "14,0,0,300",
-             "*ELEMENT_SHELL", "2,3,11,12,13,14", "*PART", "plate 2", "3,1,1",
-             "*CONSTRAINED_RIGID_BODIES", "1,3", "*DATABASE_HISTORY_NODE", "11"]
+    extra = [
+        "*NODE",
+        "11,0,0,200",
+        "12,0,100,200",
+        "13,0,100,300",
+        "14,0,0,300",
+        "*ELEMENT_SHELL",
+        "2,3,11,12,13,14",
+        "*PART",
+        "plate 2",
+        "3,1,1",
+        "*CONSTRAINED_RIGID_BODIES",
+        "1,3",
+        "*DATABASE_HISTORY_NODE",
+        "11",
+    ]
     m = _plate_deck(tmp_path, extra)
     r = run(m, output_dt=1e-4)
     plate_mass = RO * 100 * 100 * 2
@@ -81,11 +129,14 @@ def test_prescribed_motion_of_a_rigid_part(tmp_path):
     np.testing.assert_allclose(r.discrete_force[:, 0], -50.0 * 500.0 * r.time, rtol=1e-6, atol=1e-3)
 
 
-@pytest.mark.parametrize("card2,extra,turns", [
-    ("0.0,0.0,0.0", [], True),  # free: the off-centre spring turns the plate about z
-    ("1.0,0.0,3.0", [], False),  # CON2 = 3: z rotation held
-    ("-1.0,5.0,1.0", ["*DEFINE_COORDINATE_VECTOR", "5,1,1,0,-1,1,0"], False),  # local z (= global z) held
-])
+@pytest.mark.parametrize(
+    "card2,extra,turns",
+    [
+        ("0.0,0.0,0.0", [], True),  # free: the off-centre spring turns the plate about z
+        ("1.0,0.0,3.0", [], False),  # CON2 = 3: z rotation held
+        ("-1.0,5.0,1.0", ["*DEFINE_COORDINATE_VECTOR", "5,1,1,0,-1,1,0"], False),  # local z (= global z) held
+    ],
+)
 def test_rotation_constraints(tmp_path, card2, extra, turns):
     """A second spring pushes the plate 40 mm off its centre: without constraint
     the plate turns about z; with the z rotation held (global CON2 or a

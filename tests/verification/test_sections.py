@@ -13,16 +13,50 @@ def test_section_moment_of_two_offset_springs(tmp_path):
     their summed force (tension positive, as LS-DYNA's secforc) and the
     moment Mz = -Σ (y - ȳ)·Fx about the centroid of the cut ends, balanced
     by the turning of the body."""
-    text = "\n".join([
-        "*KEYWORD", "*NODE", "1,0,50,0,7,7", "2,0,-50,0,7,7", "3,100,50,0", "4,100,-50,0",
-        "*ELEMENT_MASS", "10,3,0.05", "11,4,0.05",
-        "*SET_NODE_LIST", "1", "3,4", "*CONSTRAINED_NODAL_RIGID_BODY", "100,0,1",
-        "*ELEMENT_DISCRETE", "1,1,1,3", "2,2,2,4",
-        "*PART", "soft", "1,1,1", "*PART", "stiff", "2,1,2", "*SECTION_DISCRETE", "1,0",
-        "*MAT_SPRING_ELASTIC", "1,50.0", "*MAT_SPRING_ELASTIC", "2,150.0",
-        "*INITIAL_VELOCITY_NODE", "3,1000.0,0,0", "4,1000.0,0,0",
-        "*DATABASE_CROSS_SECTION_PLANE_ID", "5,mid", "0,50,0,0,51,0,0",
-        "*CONTROL_TERMINATION", "0.02", "*CONTROL_TIMESTEP", ",0.1", "*END"])
+    text = "\n".join(
+        [
+            "*KEYWORD",
+            "*NODE",
+            "1,0,50,0,7,7",
+            "2,0,-50,0,7,7",
+            "3,100,50,0",
+            "4,100,-50,0",
+            "*ELEMENT_MASS",
+            "10,3,0.05",
+            "11,4,0.05",
+            "*SET_NODE_LIST",
+            "1",
+            "3,4",
+            "*CONSTRAINED_NODAL_RIGID_BODY",
+            "100,0,1",
+            "*ELEMENT_DISCRETE",
+            "1,1,1,3",
+            "2,2,2,4",
+            "*PART",
+            "soft",
+            "1,1,1",
+            "*PART",
+            "stiff",
+            "2,1,2",
+            "*SECTION_DISCRETE",
+            "1,0",
+            "*MAT_SPRING_ELASTIC",
+            "1,50.0",
+            "*MAT_SPRING_ELASTIC",
+            "2,150.0",
+            "*INITIAL_VELOCITY_NODE",
+            "3,1000.0,0,0",
+            "4,1000.0,0,0",
+            "*DATABASE_CROSS_SECTION_PLANE_ID",
+            "5,mid",
+            "0,50,0,0,51,0,0",
+            "*CONTROL_TERMINATION",
+            "0.02",
+            "*CONTROL_TIMESTEP",
+            ",0.1",
+            "*END",
+        ]
+    )
     p = tmp_path / "two.k"
     p.write_text(text)
     r = run(read_deck(p), output_dt=1e-3)
@@ -52,11 +86,25 @@ def _solid_bar(tmp_path, extra, end, name="bar.k"):
     from _solid_driver import brick_mesh
 
     x, conn = brick_mesh(20, 2, 2, 5.0, 5.0, 5.0)
-    lines = ["*KEYWORD", "*NODE"] + [f"{i + 1},{float(p[0])!r},{float(p[1])!r},{float(p[2])!r}"
-                                     for i, p in enumerate(x)]
+    lines = ["*KEYWORD", "*NODE"] + [
+        f"{i + 1},{float(p[0])!r},{float(p[1])!r},{float(p[2])!r}" for i, p in enumerate(x)
+    ]
     lines += ["*ELEMENT_SOLID"] + [f"{e + 1},1," + ",".join(str(int(n) + 1) for n in row) for e, row in enumerate(conn)]
-    lines += ["*PART", "bar", "1,1,1,0,1", "*SECTION_SOLID", "1,1", "*MAT_ELASTIC", f"1,{RHO},{E},0.3",
-              "*HOURGLASS", "1,4,0.1", extra.strip(), "*CONTROL_TERMINATION", f"{end!r},", "*END"]
+    lines += [
+        "*PART",
+        "bar",
+        "1,1,1,0,1",
+        "*SECTION_SOLID",
+        "1,1",
+        "*MAT_ELASTIC",
+        f"1,{RHO},{E},0.3",
+        "*HOURGLASS",
+        "1,4,0.1",
+        extra.strip(),
+        "*CONTROL_TERMINATION",
+        f"{end!r},",
+        "*END",
+    ]
     p = tmp_path / name
     p.write_text("\n".join(lines) + "\n")
     return p, x, conn
@@ -68,7 +116,7 @@ def _ids(mask):
 
 def _set(kind, sid, ids):
     ids = ids.split(",")
-    return f"*SET_{kind}_LIST\n{sid}\n" + "\n".join(",".join(ids[k:k + 8]) for k in range(0, len(ids), 8))
+    return f"*SET_{kind}_LIST\n{sid}\n" + "\n".join(",".join(ids[k : k + 8]) for k in range(0, len(ids), 8))
 
 
 def _ramp(lcid, amp, t_ramp, t_end):
@@ -90,12 +138,25 @@ def test_section_through_a_solid_bar_under_a_static_pull(tmp_path):
     layer = np.isclose(x[:, 0], 55.0)
     before = np.all(np.isin(conn, np.flatnonzero((x[:, 0] >= 50.0) & (x[:, 0] <= 55.0))), axis=1)
     T, T_end = 2e-4, 3e-4  # the bar's axial period 4L/c is 77 µs
-    extra = "\n".join([_set("NODE", 1, _ids(clamp)), "*BOUNDARY_SPC_SET", "1,0,1,1,1",
-                       _set("NODE", 2, _ids(pull)), _ramp(1, 0.05, T, T_end),
-                       "*BOUNDARY_PRESCRIBED_MOTION_SET", "2,1,2,1,1.0",
-                       "*DATABASE_CROSS_SECTION_PLANE_ID", "7,mid", "0,52.5,0,0,60.0,0,0",
-                       _set("NODE", 3, _ids(layer)), _set("SOLID", 4, _ids(before)),
-                       "*DATABASE_CROSS_SECTION_SET_ID", "8,set", "3,4"])
+    extra = "\n".join(
+        [
+            _set("NODE", 1, _ids(clamp)),
+            "*BOUNDARY_SPC_SET",
+            "1,0,1,1,1",
+            _set("NODE", 2, _ids(pull)),
+            _ramp(1, 0.05, T, T_end),
+            "*BOUNDARY_PRESCRIBED_MOTION_SET",
+            "2,1,2,1,1.0",
+            "*DATABASE_CROSS_SECTION_PLANE_ID",
+            "7,mid",
+            "0,52.5,0,0,60.0,0,0",
+            _set("NODE", 3, _ids(layer)),
+            _set("SOLID", 4, _ids(before)),
+            "*DATABASE_CROSS_SECTION_SET_ID",
+            "8,set",
+            "3,4",
+        ]
+    )
     p, _, _ = _solid_bar(tmp_path, extra, T_end)
     s = setup.build(read_deck(p))
     assert [len(sec.corners["solid"][0]) for sec in s.sections] == [16, 16]  # 4 elements x 4 corners
@@ -120,9 +181,18 @@ def test_section_force_of_a_solid_bar_is_the_inertia_beyond_the_cut(tmp_path):
     x, conn = brick_mesh(20, 2, 2, 5.0, 5.0, 5.0)
     beyond = x[:, 0] > 52.5
     ids = _ids(beyond).split(",")
-    extra = "\n".join([_set("NODE", 1, _ids(x[:, 0] < 50.0)), "*INITIAL_VELOCITY", "1", "1000.0,0,0",
-                       "*DATABASE_CROSS_SECTION_PLANE", "0,52.5,0,0,60.0,0,0",
-                       "*DATABASE_HISTORY_NODE"] + [",".join(ids[k:k + 8]) for k in range(0, len(ids), 8)])
+    extra = "\n".join(
+        [
+            _set("NODE", 1, _ids(x[:, 0] < 50.0)),
+            "*INITIAL_VELOCITY",
+            "1",
+            "1000.0,0,0",
+            "*DATABASE_CROSS_SECTION_PLANE",
+            "0,52.5,0,0,60.0,0,0",
+            "*DATABASE_HISTORY_NODE",
+        ]
+        + [",".join(ids[k : k + 8]) for k in range(0, len(ids), 8)]
+    )
     p, _, _ = _solid_bar(tmp_path, extra, 4e-5, name="free.k")
     s = setup.build(read_deck(p))
     r = integrate(s, 1e-6)
@@ -174,5 +244,4 @@ def test_section_through_a_shell_cantilever_force_and_moment(tmp_path):
     my = r.section_moment[:, 0, 1]
     assert my[hold].mean() == pytest.approx(force * (L - 60.0), rel=0.02)
     np.testing.assert_allclose(r.section_force[:, 1], f, rtol=0, atol=1e-9 * np.abs(f).max())
-    np.testing.assert_allclose(r.section_moment[:, 1], r.section_moment[:, 0], rtol=0,
-                               atol=1e-9 * np.abs(my).max())
+    np.testing.assert_allclose(r.section_moment[:, 1], r.section_moment[:, 0], rtol=0, atol=1e-9 * np.abs(my).max())

@@ -117,9 +117,11 @@ def test_a_shell_giving_its_own_thickness_needs_none_from_the_section(tmp_path):
 
 def test_a_beam_section_without_area_is_named(tmp_path):
     deck = tmp_path / "beam.k"
-    deck.write_text("*KEYWORD\n*NODE\n1,0,0,0\n2,100,0,0\n3,200,0,0\n*ELEMENT_BEAM\n1,1,1,2\n2,1,2,3\n"
-                    "*PART\nbar\n1,1,1\n*SECTION_BEAM\n1,2\n0.0,1.0,1.0,2.0\n*MAT_ELASTIC\n"
-                    "1,7.85e-9,210000.0,0.3\n*CONTROL_TERMINATION\n1e-5\n*END\n")
+    deck.write_text(
+        "*KEYWORD\n*NODE\n1,0,0,0\n2,100,0,0\n3,200,0,0\n*ELEMENT_BEAM\n1,1,1,2\n2,1,2,3\n"
+        "*PART\nbar\n1,1,1\n*SECTION_BEAM\n1,2\n0.0,1.0,1.0,2.0\n*MAT_ELASTIC\n"
+        "1,7.85e-9,210000.0,0.3\n*CONTROL_TERMINATION\n1e-5\n*END\n"
+    )
     (p,) = _refused(str(deck))
     assert (p.keyword, p.field, p.line) == ("SECTION_BEAM", "A", 14)
     assert "area 0 <= 0" in p.message and "2 beam(s)" in p.message
@@ -160,9 +162,16 @@ def test_an_inverted_solid_is_named(tmp_path):
     assert build(read_deck(str(deck))).mass.sum() == pytest.approx(7.85e-9 * 1000.0)
 
 
-@pytest.mark.parametrize("material, field", [("1,0.0,210000.0,0.3", "RO"), ("1,-7.85e-9,210000.0,0.3", "RO"),
-                                             ("1,7.85e-9,0.0,0.3", "E"), ("1,7.85e-9,-210000.0,0.3", "E"),
-                                             ("1,7.85e-9,210000.0,0.5", "PR")])
+@pytest.mark.parametrize(
+    "material, field",
+    [
+        ("1,0.0,210000.0,0.3", "RO"),
+        ("1,-7.85e-9,210000.0,0.3", "RO"),
+        ("1,7.85e-9,0.0,0.3", "E"),
+        ("1,7.85e-9,-210000.0,0.3", "E"),
+        ("1,7.85e-9,210000.0,0.5", "PR"),
+    ],
+)
 def test_a_material_without_density_or_stiffness_names_its_field(tmp_path, material, field):
     deck = tmp_path / "shell.k"
     deck.write_text(SHELL.format(t="1.0,1.0,1.0,1.0").replace("1,7.85e-9,210000.0,0.3", material))
@@ -176,9 +185,11 @@ def test_an_initial_velocity_faster_than_sound_is_refused(tmp_path, speed):
     set off faster is no crash (at 1e30 the run went on for three steps to
     an energy ratio of 1e300 and exit 0)."""
     deck = tmp_path / "shell.k"
-    deck.write_text(SHELL.format(t="1.0,1.0,1.0,1.0").replace("*CONTROL_TERMINATION",
-                                                              f"*INITIAL_VELOCITY_NODE\n3,{speed},0,0\n"
-                                                              "*CONTROL_TERMINATION"))
+    deck.write_text(
+        SHELL.format(t="1.0,1.0,1.0,1.0").replace(
+            "*CONTROL_TERMINATION", f"*INITIAL_VELOCITY_NODE\n3,{speed},0,0\n*CONTROL_TERMINATION"
+        )
+    )
     (p,) = _refused(str(deck))
     assert p.keyword == "INITIAL_VELOCITY_NODE" and p.line == 17  # the keyword line: rows keep none
     assert "node 3" in p.message and "faster than sound" in p.message
@@ -186,9 +197,11 @@ def test_an_initial_velocity_faster_than_sound_is_refused(tmp_path, speed):
 
 def test_a_crash_speed_is_not_refused(tmp_path):
     deck = tmp_path / "shell.k"
-    deck.write_text(SHELL.format(t="1.0,1.0,1.0,1.0").replace("*CONTROL_TERMINATION",
-                                                              "*INITIAL_VELOCITY\n0\n17800.0,0,0\n"
-                                                              "*CONTROL_TERMINATION"))
+    deck.write_text(
+        SHELL.format(t="1.0,1.0,1.0,1.0").replace(
+            "*CONTROL_TERMINATION", "*INITIAL_VELOCITY\n0\n17800.0,0,0\n*CONTROL_TERMINATION"
+        )
+    )
     s = build(read_deck(str(deck)))
     assert s.v0[:, 0] == pytest.approx(17800.0)
 
@@ -208,9 +221,31 @@ def test_a_zero_length_spring_without_orientation_is_named(tmp_path):
     undefined (the run took one step four times the end time, energy
     ratio 2.3, exit 0)."""
     deck = tmp_path / "zero.k"
-    deck.write_text("\n".join(["*KEYWORD", "*NODE", "1,0,0,0", "2,0,0,0", "*ELEMENT_DISCRETE", "7,1,1,2",
-                                "*PART", "s", "1,1,1", "*SECTION_DISCRETE", "1,0", "*MAT_SPRING_ELASTIC", "1,100",
-                                "*ELEMENT_MASS", "1,1,0.001", "2,2,0.001", "*CONTROL_TERMINATION", "1e-3", "*END"]))
+    deck.write_text(
+        "\n".join(
+            [
+                "*KEYWORD",
+                "*NODE",
+                "1,0,0,0",
+                "2,0,0,0",
+                "*ELEMENT_DISCRETE",
+                "7,1,1,2",
+                "*PART",
+                "s",
+                "1,1,1",
+                "*SECTION_DISCRETE",
+                "1,0",
+                "*MAT_SPRING_ELASTIC",
+                "1,100",
+                "*ELEMENT_MASS",
+                "1,1,0.001",
+                "2,2,0.001",
+                "*CONTROL_TERMINATION",
+                "1e-3",
+                "*END",
+            ]
+        )
+    )
     (p,) = _refused(str(deck))
     assert (p.keyword, p.field) == ("ELEMENT_DISCRETE", "VID")
     assert "discrete element 7" in p.message and "nodes 1 and 2" in p.message
@@ -218,9 +253,32 @@ def test_a_zero_length_spring_without_orientation_is_named(tmp_path):
 
 def test_a_zero_length_spring_with_an_orientation_runs(tmp_path):
     deck = tmp_path / "zero.k"
-    deck.write_text("\n".join(["*KEYWORD", "*NODE", "1,0,0,0", "2,0,0,0", "*ELEMENT_DISCRETE", "7,1,1,2,3",
-                                "*PART", "s", "1,1,1", "*SECTION_DISCRETE", "1,0", "*MAT_SPRING_ELASTIC", "1,100",
-                                "*DEFINE_SD_ORIENTATION", "3,0,1.0,0,0", "*ELEMENT_MASS", "1,1,0.001", "2,2,0.001",
-                                "*CONTROL_TERMINATION", "1e-3", "*END"]))
+    deck.write_text(
+        "\n".join(
+            [
+                "*KEYWORD",
+                "*NODE",
+                "1,0,0,0",
+                "2,0,0,0",
+                "*ELEMENT_DISCRETE",
+                "7,1,1,2,3",
+                "*PART",
+                "s",
+                "1,1,1",
+                "*SECTION_DISCRETE",
+                "1,0",
+                "*MAT_SPRING_ELASTIC",
+                "1,100",
+                "*DEFINE_SD_ORIENTATION",
+                "3,0,1.0,0,0",
+                "*ELEMENT_MASS",
+                "1,1,0.001",
+                "2,2,0.001",
+                "*CONTROL_TERMINATION",
+                "1e-3",
+                "*END",
+            ]
+        )
+    )
     s = build(read_deck(str(deck)))
     assert s.discrete.length0[0] == 0.0

@@ -39,11 +39,14 @@ def _cmat():
     return np.array([[c1, c1 * NU, 0], [c1 * NU, c1, 0], [0, 0, E / (2 * (1 + NU))]])
 
 
-DISTORTED = np.array([[0, 0, 0], [4.0, 0, 0], [10, 0, 0], [0, 5, 0], [6.5, 4.2, 0], [10, 6, 0],
-                      [0, 10, 0], [3.5, 10, 0], [10, 10, 0]], float)
+DISTORTED = np.array(
+    [[0, 0, 0], [4.0, 0, 0], [10, 0, 0], [0, 5, 0], [6.5, 4.2, 0], [10, 6, 0], [0, 10, 0], [3.5, 10, 0], [10, 10, 0]],
+    float,
+)
 PATCH = np.array([[1, 2, 5, 4], [2, 3, 6, 5], [4, 5, 8, 7], [5, 6, 9, 8]])
-TRIANGLES = np.array([[1, 2, 5, 5], [1, 5, 4, 4], [2, 3, 6, 6], [2, 6, 5, 5], [4, 5, 8, 8], [4, 8, 7, 7],
-                      [5, 6, 9, 9], [5, 9, 8, 8]])
+TRIANGLES = np.array(
+    [[1, 2, 5, 5], [1, 5, 4, 4], [2, 3, 6, 6], [2, 6, 5, 5], [4, 5, 8, 8], [4, 8, 7, 7], [5, 6, 9, 9], [5, 9, 8, 8]]
+)
 
 
 @pytest.mark.parametrize("conn", [PATCH, TRIANGLES], ids=["quads", "triangles"])
@@ -137,8 +140,14 @@ def test_large_rigid_rotation_and_translation_give_no_stress(tmp_path, bwc):
     at round-off."""
     xyz = np.array([[0, 0, 0.3], [10, 0, -0.3], [10, 8, 0.3], [0, 8, -0.3], [20, 0, 0], [20, 8, 0], [15, 14, 0]], float)
     quads = np.array([[1, 2, 3, 4], [2, 5, 6, 3], [3, 6, 7, 7]])
-    g, model = _group(tmp_path, xyz, quads, section="1,2,0.8333,3\n1.0", extra=f"*CONTROL_SHELL\n20.0,0,-1,1,2,{bwc}\n",
-                      hourglass="1,4,0.1")
+    g, model = _group(
+        tmp_path,
+        xyz,
+        quads,
+        section="1,2,0.8333,3\n1.0",
+        extra=f"*CONTROL_SHELL\n20.0,0,-1,1,2,{bwc}\n",
+        hourglass="1,4,0.1",
+    )
     assert g.s.bwc == bwc and g.s.istupd == 1
     axis = np.array([1.0, 2.0, 2.0]) / 3.0
     nsteps, dt = 500, 1e-6
@@ -183,8 +192,9 @@ def test_forces_bit_identical_on_one_and_two_threads(tmp_path, two_threads):
             for v, w in motion:
                 x = x + 1e-6 * v
                 f, m = _step(g, x, v, w, 1e-6)
-            out.append((f, m, g.st.sig.copy(), g.st.epsp.copy(), g.st.energy.copy(), g.critical_dt(
-                SimpleNamespace(x=x))))
+            out.append(
+                (f, m, g.st.sig.copy(), g.st.epsp.copy(), g.st.energy.copy(), g.critical_dt(SimpleNamespace(x=x)))
+            )
     finally:
         numba.set_num_threads(threads)
     assert out[0][3].max() > 0.0  # plastic flow happened
@@ -196,13 +206,14 @@ def test_lumped_mass_rotary_inertia_and_time_step(tmp_path):
     """Mass ρ t A + MAREA·A shared by the nodes; rotary inertia m A/8;
     Δt = A / longest side / c (quads), 2A / longest side / c (triangles),
     c = sqrt(E/(ρ(1−ν²)))."""
-    g, model = _group(tmp_path, DISTORTED, np.vstack([PATCH[:3], TRIANGLES[6:]]),
-                      section="1,2,0.8333,2\n1.2,1.2,1.2,1.2,0,2e-9")
+    g, model = _group(
+        tmp_path, DISTORTED, np.vstack([PATCH[:3], TRIANGLES[6:]]), section="1,2,0.8333,2\n1.2,1.2,1.2,1.2,0,2e-9"
+    )
     area = g.s.area0
     mass, inertia = g.lumped(len(model.nodes))
     assert mass.sum() == pytest.approx(((RHO * 1.2 + 2e-9) * area).sum(), rel=1e-12)
     nn = np.where(g.s.tri == 1, 3, 4)
-    assert inertia.sum() == pytest.approx(((RHO * 1.2 + 2e-9) * area ** 2 / 8.0).sum(), rel=1e-12)
+    assert inertia.sum() == pytest.approx(((RHO * 1.2 + 2e-9) * area**2 / 8.0).sum(), rel=1e-12)
     assert np.all(nn[g.s.tri == 1] == 3)
     x = model.nodes.xyz
     c = np.sqrt(E / (RHO * (1 - NU**2)))

@@ -24,8 +24,15 @@ def _hist(nids):
 
 def _write(tmp_path, xyz, quads, t, nu, extra, end, name="shells.k"):
     p = tmp_path / name
-    p.write_text(deck_text(xyz, quads, f"1,2,0.8333,2\n{t},{t},{t},{t}", f"*MAT_ELASTIC\n1,{RHO},{E},{nu}",
-                           extra + f"*CONTROL_TERMINATION\n{end!r},\n"))
+    p.write_text(
+        deck_text(
+            xyz,
+            quads,
+            f"1,2,0.8333,2\n{t},{t},{t},{t}",
+            f"*MAT_ELASTIC\n1,{RHO},{E},{nu}",
+            extra + f"*CONTROL_TERMINATION\n{end!r},\n",
+        )
+    )
     return p
 
 
@@ -39,10 +46,12 @@ def test_strip_striking_a_rigid_wall(tmp_path):
     nid = np.arange(1, len(xyz) + 1)
     c = math.sqrt(E / (RHO * (1 - nu**2)))
     t2 = 2 * L / c
-    extra = (_spc(nid, "0,1,1,1,1,1")
-             + f"*INITIAL_VELOCITY\n0\n{-v0},0,0\n"
-             + "*RIGIDWALL_PLANAR\n0,0,0,0,0,1e20,1\n-1e-9,0,0,1,0,0,0,0\n"
-             + "*DATABASE_RWFORC\n1e-7\n")
+    extra = (
+        _spc(nid, "0,1,1,1,1,1")
+        + f"*INITIAL_VELOCITY\n0\n{-v0},0,0\n"
+        + "*RIGIDWALL_PLANAR\n0,0,0,0,0,1e20,1\n-1e-9,0,0,1,0,0,0,0\n"
+        + "*DATABASE_RWFORC\n1e-7\n"
+    )
     res, g, s, _ = run_deck(_write(tmp_path, xyz, quads, t, nu, extra, 1.6 * t2), output_dt=2.5e-7)
     tt, fw = res.time, res.wall_force[:, 0, 0]
     plateau = RHO * c * v0 * w * t
@@ -107,14 +116,25 @@ def _roll_up(tmp_path, hourglass):
     xyz, quads = grid(nx, ny, L, b)
     clamp = [j * (nx + 1) + 1 for j in range(ny + 1)]
     tip = [j * (nx + 1) + nx + 1 for j in range(ny + 1)]
-    curve = "*DEFINE_CURVE\n1\n" + "".join(f"{float(s * ramp)!r},{float(0.5 - 0.5 * math.cos(math.pi * s))!r}\n"
-                                          for s in np.linspace(0, 1, 41)) + f"{2 * ramp},1.0\n"
+    curve = (
+        "*DEFINE_CURVE\n1\n"
+        + "".join(f"{float(s * ramp)!r},{float(0.5 - 0.5 * math.cos(math.pi * s))!r}\n" for s in np.linspace(0, 1, 41))
+        + f"{2 * ramp},1.0\n"
+    )
     share = [0.5 if j in (0, ny) else 1.0 for j in range(ny + 1)]  # the edge nodes carry half a width
     loads = "*LOAD_NODE_POINT\n" + "".join(f"{n},6,1,{-m_full * w / ny!r}\n" for n, w in zip(tip, share))
     extra = _spc(clamp) + _spc(tip, "0,0,0,1,0,1") + loads + curve + _hist(tip[:8])
     p = tmp_path / "roll.k"
-    p.write_text(deck_text(xyz, quads, f"1,2,0.8333,2\n{t},{t},{t},{t}", f"*MAT_ELASTIC\n1,{RHO},{E},0.0",
-                           extra + f"*CONTROL_TERMINATION\n{1.1 * ramp!r},\n", hourglass=hourglass))
+    p.write_text(
+        deck_text(
+            xyz,
+            quads,
+            f"1,2,0.8333,2\n{t},{t},{t},{t}",
+            f"*MAT_ELASTIC\n1,{RHO},{E},0.0",
+            extra + f"*CONTROL_TERMINATION\n{1.1 * ramp!r},\n",
+            hourglass=hourglass,
+        )
+    )
     res, _, _, _ = run_deck(p, output_dt=ramp / 200)
     return res, L, ramp, m_full**2 * L / (2 * ei)
 
@@ -139,8 +159,11 @@ def test_strip_rolled_into_a_circle_by_an_end_moment(tmp_path):
     _check_roll_up(*_roll_up(tmp_path, "1,1,0.1"))
 
 
-@pytest.mark.xfail(strict=True, reason="known defect: with stiffness hourglass control and no damping, an in-plane "
-                   "mode of the nodes of the curled strip grows once it is past the half circle")
+@pytest.mark.xfail(
+    strict=True,
+    reason="known defect: with stiffness hourglass control and no damping, an in-plane "
+    "mode of the nodes of the curled strip grows once it is past the half circle",
+)
 def test_strip_rolled_into_a_circle_with_stiffness_hourglass_control(tmp_path):
     _check_roll_up(*_roll_up(tmp_path, "1,4,0.1"))
 
@@ -153,9 +176,11 @@ def test_nodal_load_errors_name_the_card(tmp_path):
     from crashlite.solver.setup import SetupError, build
 
     p = tmp_path / "bad.k"
-    p.write_text("*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n*ELEMENT_MASS\n1,1,1.0\n2,2,1.0\n"
-                 "*CONTROL_TERMINATION\n1.0\n*DEFINE_CURVE\n1\n0,0\n1,1\n"
-                 "*LOAD_NODE_POINT\n1,5,1,1.0\n2,4,1,1.0\n*END\n")
+    p.write_text(
+        "*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n*ELEMENT_MASS\n1,1,1.0\n2,2,1.0\n"
+        "*CONTROL_TERMINATION\n1.0\n*DEFINE_CURVE\n1\n0,0\n1,1\n"
+        "*LOAD_NODE_POINT\n1,5,1,1.0\n2,4,1,1.0\n*END\n"
+    )
     with pytest.raises(SetupError) as e:
         build(read_deck(p))
     msg = str(e.value)
@@ -179,17 +204,42 @@ def test_membrane_hourglass_stiffness_is_belytschko_tsays(tmp_path):
 
     e, rho, size, t, qm, v = 2.0e5, 7.85e-9, 10.0, 1.0, 0.1, 100.0
     h = [1, -1, 1, -1]
-    lines = ["*KEYWORD", "*NODE", "1,0,0,0", f"2,{size},0,0", f"3,{size},{size},0", f"4,0,{size},0",
-             "*ELEMENT_SHELL", "1,1,1,2,3,4", "*PART", "p", "1,1,1,0,1", "*SECTION_SHELL", "1,2,1,2",
-             f"{t},{t},{t},{t}", "*MAT_ELASTIC", f"1,{rho},{e},0.0", "*HOURGLASS", f"1,4,{qm}",
-             "*INITIAL_VELOCITY_NODE", *[f"{i + 1},{v * h[i]},0,0" for i in range(4)],
-             "*BOUNDARY_SPC_NODE", *[f"{i + 1},0,0,0,1,1,1,1" for i in range(4)],
-             "*DATABASE_HISTORY_NODE", "1,2,3,4", "*CONTROL_TERMINATION", "2e-4", "*END"]
+    lines = [
+        "*KEYWORD",
+        "*NODE",
+        "1,0,0,0",
+        f"2,{size},0,0",
+        f"3,{size},{size},0",
+        f"4,0,{size},0",
+        "*ELEMENT_SHELL",
+        "1,1,1,2,3,4",
+        "*PART",
+        "p",
+        "1,1,1,0,1",
+        "*SECTION_SHELL",
+        "1,2,1,2",
+        f"{t},{t},{t},{t}",
+        "*MAT_ELASTIC",
+        f"1,{rho},{e},0.0",
+        "*HOURGLASS",
+        f"1,4,{qm}",
+        "*INITIAL_VELOCITY_NODE",
+        *[f"{i + 1},{v * h[i]},0,0" for i in range(4)],
+        "*BOUNDARY_SPC_NODE",
+        *[f"{i + 1},0,0,0,1,1,1,1" for i in range(4)],
+        "*DATABASE_HISTORY_NODE",
+        "1,2,3,4",
+        "*CONTROL_TERMINATION",
+        "2e-4",
+        "*END",
+    ]
     path = tmp_path / "hourglass.k"
     path.write_text("\n".join(lines) + "\n")
     r = run(read_deck(path), output_dt=1e-7)
     u = r.node_displacement[:, :, 0]
-    np.testing.assert_allclose(u * np.array(h)[None, :], np.broadcast_to(u[:, :1], u.shape), rtol=1e-3, atol=1e-9)  # the mode
+    np.testing.assert_allclose(
+        u * np.array(h)[None, :], np.broadcast_to(u[:, :1], u.shape), rtol=1e-3, atol=1e-9
+    )  # the mode
     omega = math.sqrt(qm * e / (4 * rho * size * size))
     dt = float(r.time_step[2])
     omega_h = 2.0 / dt * math.asin(0.5 * omega * dt)

@@ -72,8 +72,7 @@ def test_patch_linear_velocity_gives_uniform_stress_and_interior_equilibrium(tmp
     xn = x + 0.5 * dt * v  # the forces act at t(n+1): Σ_a b_a ⊗ x_a = V·I there
     vol = g.st.vol.sum()
     sig_total = _sym(g.st.sig[0] + g.st.sv[0])
-    assert np.einsum("ij,ij->", f, xn @ GRAD.T) == pytest.approx(-vol * np.einsum("ij,ij->", sig_total, GRAD),
-                                                                 rel=1e-9)
+    assert np.einsum("ij,ij->", f, xn @ GRAD.T) == pytest.approx(-vol * np.einsum("ij,ij->", sig_total, GRAD), rel=1e-9)
     assert np.abs(f.sum(axis=0)).max() < 1e-9 * fscale
     assert np.abs(np.cross(xn, f).sum(axis=0)).max() < 1e-9 * fscale * 20.0
 
@@ -193,8 +192,15 @@ def _uniaxial_stress(tmp_path, material, strain, t_load, extra="", unload=False)
         xs = d.st.x
         lx, ly = xs[far, 0].mean(), xs[np.isclose(x[:, 1], 10.0), 1].mean()
         area = ly * xs[np.isclose(x[:, 2], 10.0), 2].mean()
-        rows.append((math.log(lx / 10.0), math.log(ly / 10.0), g.st.sig[0].copy(), d.reaction[far, 0].sum() / area,
-                     d.balance(v_n)))
+        rows.append(
+            (
+                math.log(lx / 10.0),
+                math.log(ly / 10.0),
+                g.st.sig[0].copy(),
+                d.reaction[far, 0].sum() / area,
+                d.balance(v_n),
+            )
+        )
 
     dr.run(t_load * (2.0 if unload else 1.0), rec)
     return g, rows
@@ -217,7 +223,7 @@ def test_elastic_cube_in_uniaxial_stress_gives_young_modulus_and_poisson_ratio(t
 def _curve_points():
     """MAT_024 yield curve: σy = 250 + 400·εp^0.4 MPa sampled to εp = 0.5."""
     ep = np.concatenate([[0.0], np.geomspace(1e-3, 0.5, 14)])
-    return ep, 250.0 + 400.0 * ep ** 0.4
+    return ep, 250.0 + 400.0 * ep**0.4
 
 
 def test_mat024_uniaxial_stress_follows_its_curve(tmp_path):
@@ -296,10 +302,15 @@ def _honeycomb(bulk=0.0, mu=0.05, aopt="2.0", a=(1.0, 0.0, 0.0), d=(0.0, 1.0, 0.
     """*MAT_HONEYCOMB crushing along a = x (AOPT 2), weak across, with its
     curves (LCA 2, LCB = LCC = LCS 3)."""
     wk = 0.05 * HC_EAAU
-    mat = (f"*MAT_HONEYCOMB\n1,{HC_RHO},{HC_E},0.3,{HC_SIGY},{HC_VF},{mu},{bulk}\n2,3,3,3\n"
-           f"{HC_EAAU},{wk},{wk},{wk},{wk},{wk},{aopt},1\n0,0,0,{a[0]},{a[1]},{a[2]}\n{d[0]},{d[1]},{d[2]},0,0")
-    curves = ("*DEFINE_CURVE\n2\n" + "\n".join(f"{p},{s}" for p, s in HC_CURVE)
-              + f"\n*DEFINE_CURVE\n3\n0.0,{HC_WEAK}\n1.0,{HC_WEAK}")
+    mat = (
+        f"*MAT_HONEYCOMB\n1,{HC_RHO},{HC_E},0.3,{HC_SIGY},{HC_VF},{mu},{bulk}\n2,3,3,3\n"
+        f"{HC_EAAU},{wk},{wk},{wk},{wk},{wk},{aopt},1\n0,0,0,{a[0]},{a[1]},{a[2]}\n{d[0]},{d[1]},{d[2]},0,0"
+    )
+    curves = (
+        "*DEFINE_CURVE\n2\n"
+        + "\n".join(f"{p},{s}" for p, s in HC_CURVE)
+        + f"\n*DEFINE_CURVE\n3\n0.0,{HC_WEAK}\n1.0,{HC_WEAK}"
+    )
     return mat, curves
 
 
@@ -312,14 +323,22 @@ def _crush_block(tmp_path, speed, depth, ihq=1):
     mat, curves = _honeycomb()
     g, _, _ = group_from_deck(tmp_path, deck_text(x, conn, mat, hourglass=f"1,{ihq},0.1", extra=curves))
     front = np.flatnonzero(np.isclose(x[:, 0], 20.0))
-    dr = Driver(g, x, fixed=np.stack(sym, axis=1),
-                driven=[(front, 0, lambda t: -speed * min(t / 2e-4, 1.0))])
+    dr = Driver(g, x, fixed=np.stack(sym, axis=1), driven=[(front, 0, lambda t: -speed * min(t / 2e-4, 1.0))])
     back = sym[0]
     rows = []
-    dr.run(depth / speed + 1e-4, lambda d, vn: rows.append(
-        (20.0 - d.st.x[front, 0].mean(), d.reaction[back, 0].sum() / 400.0, g.st.sig.copy(), g.st.sv.copy(),
-         *d.balance(vn))),
-        every=5)
+    dr.run(
+        depth / speed + 1e-4,
+        lambda d, vn: rows.append(
+            (
+                20.0 - d.st.x[front, 0].mean(),
+                d.reaction[back, 0].sum() / 400.0,
+                g.st.sig.copy(),
+                g.st.sv.copy(),
+                *d.balance(vn),
+            )
+        ),
+        every=5,
+    )
     return g, rows
 
 
@@ -353,8 +372,10 @@ def test_honeycomb_block_crushes_on_its_curve_then_stiffens_at_compaction(tmp_pa
     (l0, s0), (l1, s1) = compacted[0], compacted[-1]
     assert s1 > 50.0 * HC_CURVE[-1, 1] and (s1 - s0) / (l0 - l1) == pytest.approx(HC_E, rel=0.05)
     sig = rows[-1][2]
-    mises = np.sqrt(0.5 * ((sig[:, 0] - sig[:, 1]) ** 2 + (sig[:, 1] - sig[:, 2]) ** 2 + (sig[:, 2] - sig[:, 0]) ** 2)
-                    + 3.0 * (sig[:, 3:] ** 2).sum(axis=1))
+    mises = np.sqrt(
+        0.5 * ((sig[:, 0] - sig[:, 1]) ** 2 + (sig[:, 1] - sig[:, 2]) ** 2 + (sig[:, 2] - sig[:, 0]) ** 2)
+        + 3.0 * (sig[:, 3:] ** 2).sum(axis=1)
+    )
     np.testing.assert_allclose(mises, HC_SIGY, rtol=1e-6)
     assert g.hourglass.sum() < 0.01 * g.energy.sum()
 
@@ -382,14 +403,17 @@ def test_crushable_foam_follows_its_curve_and_unloads_elastically(tmp_path):
 
     dr = Driver(g, x, fixed=np.stack(sym, axis=1), driven=[(far, 0, vel)])
     rows = []
-    dr.run(t_load + math.log(1.1) / rate, lambda d, vn: rows.append(
-        (d.st.t, d.st.x[far, 0].mean(), g.st.sig[0, 0], g.st.sig[0, 1], *d.balance(vn))))
+    dr.run(
+        t_load + math.log(1.1) / rate,
+        lambda d, vn: rows.append((d.st.t, d.st.x[far, 0].mean(), g.st.sig[0, 0], g.st.sig[0, 1], *d.balance(vn))),
+    )
     t, length, sxx, syy, err, scale = (np.array(a) for a in zip(*rows))
     assert np.abs(syy).max() < 0.01 * np.abs(sxx).max()  # PR = 0: only the bulk viscosity's pressure acts across
     loading = (t < t_load) & (length < 9.85)
     assert loading.sum() > 100
-    np.testing.assert_allclose(-sxx[loading], np.interp(1.0 - length[loading] / 10.0, [0.0, 0.3, 0.6, 0.8],
-                                                        [0.1, 0.12, 0.3, 2.0]), rtol=0.01)
+    np.testing.assert_allclose(
+        -sxx[loading], np.interp(1.0 - length[loading] / 10.0, [0.0, 0.3, 0.6, 0.8], [0.1, 0.12, 0.3, 2.0]), rtol=0.01
+    )
     k = np.argmin(length)  # the turning point
     s0, l0 = sxx[k], length[k]
     elastic = (t > t[k]) & (s0 + 10.0 * np.log(length / l0) < 0.01)
@@ -515,7 +539,9 @@ def test_erode_deletes_a_solid_whose_step_falls_below_dtmin(tmp_path):
     mass kept, about 1/32) is deleted and the step is the other element's
     again."""
     x, conn = brick_mesh(2, 1, 1, 10.0, 10.0, 10.0)
-    text = deck_text(x, conn, STEEL, extra=ERODE).replace("*CONTROL_TERMINATION\n1.0", "*CONTROL_TERMINATION\n1.0,0,0.05")
+    text = deck_text(x, conn, STEEL, extra=ERODE).replace(
+        "*CONTROL_TERMINATION\n1.0", "*CONTROL_TERMINATION\n1.0,0,0.05"
+    )
     g, _, _ = group_from_deck(tmp_path, text)
     st = SimpleNamespace(x=x.copy(), v=np.zeros_like(x), dt=1e-7, t=0.0, f=np.zeros_like(x))
     g.forces(st)

@@ -42,9 +42,18 @@ block
 
 CUBE = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], float)
 # a distorted hexahedron: the patch test must hold for any trilinear shape
-DISTORTED = CUBE * [10.0, 8.0, 6.0] + np.array([[0, 0, 0], [1.5, 0.4, 0], [0.7, -0.8, 0.3], [-0.6, 0.9, -0.2],
-                                                 [0.3, 0.2, 0.8], [1.1, -0.5, 0.6], [-0.4, 0.6, -0.7],
-                                                 [0.5, 0.1, 0.4]])
+DISTORTED = CUBE * [10.0, 8.0, 6.0] + np.array(
+    [
+        [0, 0, 0],
+        [1.5, 0.4, 0],
+        [0.7, -0.8, 0.3],
+        [-0.6, 0.9, -0.2],
+        [0.3, 0.2, 0.8],
+        [1.1, -0.5, 0.6],
+        [-0.4, 0.6, -0.7],
+        [0.5, 0.1, 0.4],
+    ]
+)
 
 
 def _group(model):
@@ -114,10 +123,33 @@ def _bar_deck(tmp_path, n=20, h=5.0, v0=1000.0, end=6e-5, bq0=False):
     for k in range(n):
         c = [ids[k, 0], ids[k + 1, 0], ids[k + 1, 1], ids[k, 1], ids[k, 3], ids[k + 1, 3], ids[k + 1, 2], ids[k, 2]]
         lines.append(f"{k + 1},1," + ",".join(map(str, c)))
-    lines += ["*PART", "bar", "1,1,1", "*SECTION_SOLID", "1,1", "*MAT_ELASTIC", f"1,{RHO},{E},{NU}",
-              "*SET_NODE_LIST", "1"] + [",".join(map(str, range(i, min(i + 8, nid + 1)))) for i in range(1, nid + 1, 8)]
-    lines += ["*BOUNDARY_SPC_SET", "1,0,0,1,1", "*INITIAL_VELOCITY", "1", f"{-v0},0,0",
-              "*RIGIDWALL_PLANAR", "0", "0,0,0,1,0,0", "*CONTROL_TERMINATION", f"{end}"] + (["*CONTROL_BULK_VISCOSITY", "0.0,0.0"] if bq0 else []) + ["*END"]
+    lines += [
+        "*PART",
+        "bar",
+        "1,1,1",
+        "*SECTION_SOLID",
+        "1,1",
+        "*MAT_ELASTIC",
+        f"1,{RHO},{E},{NU}",
+        "*SET_NODE_LIST",
+        "1",
+    ] + [",".join(map(str, range(i, min(i + 8, nid + 1)))) for i in range(1, nid + 1, 8)]
+    lines += (
+        [
+            "*BOUNDARY_SPC_SET",
+            "1,0,0,1,1",
+            "*INITIAL_VELOCITY",
+            "1",
+            f"{-v0},0,0",
+            "*RIGIDWALL_PLANAR",
+            "0",
+            "0,0,0,1,0,0",
+            "*CONTROL_TERMINATION",
+            f"{end}",
+        ]
+        + (["*CONTROL_BULK_VISCOSITY", "0.0,0.0"] if bq0 else [])
+        + ["*END"]
+    )
     p = tmp_path / "bar.k"
     p.write_text("\n".join(lines))
     return read_deck(p)

@@ -51,8 +51,7 @@ def test_lap_shear_welds_fail_at_the_predicted_pull(tmp_path, z):
     reaches 2·SS (within 5 %), then both fail and the plates part; up to
     then the strain, hourglass and kinetic energy are the work of the pull
     (within 2 %)."""
-    cards = ("*CONSTRAINED_SPOTWELD\n{a[1][9]},{b[1][1]},5000.0,500.0,2.0,2.0\n"
-             "{a[3][9]},{b[3][1]},5000.0,500.0,2.0,2.0")
+    cards = "*CONSTRAINED_SPOTWELD\n{a[1][9]},{b[1][1]},5000.0,500.0,2.0,2.0\n{a[3][9]},{b[3][1]},5000.0,500.0,2.0,2.0"
     # 0.3 mm: the 1 mm offset sheets, point-loaded at the weld nodes, yield to the pull through their
     # (IHQ 4) hourglass modes as much as through strain, so the reaction reaches 2·SS only past 0.1 mm
     path, a, b = _lap_joint(tmp_path, cards, umax=0.3, z=z)
@@ -92,8 +91,11 @@ def _free_pair(tmp_path, welds: str, name="free.k", tssfac=0.2, end=2e-4):
     a = P.plate(1, 0, 20, 4, 0, 20, 4)
     b = P.plate(2, 10, 30, 4, 0, 20, 4, z=1.0)
     P.add(welds.format(a=a, b=b))
-    rows = [f"{a[j, i]},{1000.0 - 50.0 * (5.0 * j - 10.0)!r},{50.0 * (5.0 * i - 10.0)!r},500.0"
-            for j in range(5) for i in range(5)]
+    rows = [
+        f"{a[j, i]},{1000.0 - 50.0 * (5.0 * j - 10.0)!r},{50.0 * (5.0 * i - 10.0)!r},500.0"
+        for j in range(5)
+        for i in range(5)
+    ]
     P.add("*INITIAL_VELOCITY_NODE\n" + "\n".join(rows))
     P.add(f"*CONTROL_TIMESTEP\n0.0,{tssfac}")
     P.history([a[1, 3], b[1, 1], a[3, 3], b[3, 1]])
@@ -125,8 +127,9 @@ def test_welded_plates_in_free_flight_keep_momentum_and_energy(tmp_path):
 def test_weld_fails_at_its_time(tmp_path):
     """TF = 50 µs: the weld lets go at the first step at or after TF (a
     step is < 1 µs), the other (TF default) holds."""
-    path, a, b = _free_pair(tmp_path, "*CONSTRAINED_SPOTWELD\n{a[1][3]},{b[1][1]},0,0,0,0,5e-5\n"
-                                      "{a[3][3]},{b[3][1]}", tssfac=0.9, end=1e-4)
+    path, a, b = _free_pair(
+        tmp_path, "*CONSTRAINED_SPOTWELD\n{a[1][3]},{b[1][1]},0,0,0,0,5e-5\n{a[3][3]},{b[3][1]}", tssfac=0.9, end=1e-4
+    )
     s, r = _run(path, 5e-6)
     w = _welds(s)
     assert len(w.log) == 1 and w.log[0][0] == 1 and w.log[0][2] == "time"
@@ -138,8 +141,7 @@ def test_generalized_weld_holds_a_node_set_until_tfail(tmp_path):
     """*CONSTRAINED_GENERALIZED_WELD_SPOT on a set of four nodes (two of
     each plate): they move as one rigid body (distances kept) until TFAIL,
     the momentum is kept to round-off throughout."""
-    welds = ("*SET_NODE_LIST\n5\n{a[1][3]},{b[1][1]},{a[3][3]},{b[3][1]}\n"
-             "*CONSTRAINED_GENERALIZED_WELD_SPOT\n5\n1e-4")
+    welds = "*SET_NODE_LIST\n5\n{a[1][3]},{b[1][1]},{a[3][3]},{b[3][1]}\n*CONSTRAINED_GENERALIZED_WELD_SPOT\n5\n1e-4"
     path, a, b = _free_pair(tmp_path, welds, end=1.5e-4)
     s, r = _run(path, 5e-6)
     w = _welds(s)
@@ -154,10 +156,14 @@ def test_generalized_weld_holds_a_node_set_until_tfail(tmp_path):
 
 
 def test_generalized_weld_of_one_node_is_refused(tmp_path):
-    path, a, b = _free_pair(tmp_path, "*SET_NODE_LIST\n5\n{a[1][3]}\n*CONSTRAINED_GENERALIZED_WELD_SPOT\n5\n1e20",
-                              name="bad.k")
-    with pytest.raises(SetupError, match=r"bad.k:\d+: \*CONSTRAINED_GENERALIZED_WELD_SPOT, field NSID: a generalized "
-                                         r"spot weld needs at least 2 defined nodes; \*SET_NODE 5 has 1"):
+    path, a, b = _free_pair(
+        tmp_path, "*SET_NODE_LIST\n5\n{a[1][3]}\n*CONSTRAINED_GENERALIZED_WELD_SPOT\n5\n1e20", name="bad.k"
+    )
+    with pytest.raises(
+        SetupError,
+        match=r"bad.k:\d+: \*CONSTRAINED_GENERALIZED_WELD_SPOT, field NSID: a generalized "
+        r"spot weld needs at least 2 defined nodes; \*SET_NODE 5 has 1",
+    ):
         setup.build(read_deck(path))
 
 
@@ -173,8 +179,10 @@ def test_welds_and_ties_bit_identical_on_one_and_two_threads(tmp_path, two_threa
     fixed order)."""
     import numba
 
-    welds = _TWO + ("\n*NODE\n9001,22.5,7.5,1.5\n*ELEMENT_MASS\n9001,9001,1e-6\n*SET_NODE_LIST\n9\n9001\n"
-                    "*CONTACT_TIED_NODES_TO_SURFACE\n9,2,4,3\n0,0\n0,0")
+    welds = _TWO + (
+        "\n*NODE\n9001,22.5,7.5,1.5\n*ELEMENT_MASS\n9001,9001,1e-6\n*SET_NODE_LIST\n9\n9001\n"
+        "*CONTACT_TIED_NODES_TO_SURFACE\n9,2,4,3\n0,0\n0,0"
+    )
     path, a, b = _free_pair(tmp_path, welds, tssfac=0.9, end=1e-4)
     out = []
     before = numba.get_num_threads()

@@ -84,7 +84,7 @@ def study(tmp_path):
 
 
 def _states(cfg):
-    with sqlite3.connect(cfg.storage[len("sqlite:///"):], timeout=30) as c:
+    with sqlite3.connect(cfg.storage[len("sqlite:///") :], timeout=30) as c:
         return c.execute("select number, state from trials order by number").fetchall()
 
 
@@ -94,15 +94,14 @@ def _starts(cfg):
     for f in (cfg.directory / "designs").glob(".*.starts"):
         for line in f.read_text().splitlines():
             host, pid, t = line.split()
-            out.append((float(t), f.name[1:-len(".starts")], int(pid)))
+            out.append((float(t), f.name[1 : -len(".starts")], int(pid)))
     return sorted(out)
 
 
 def _children():
     """Child processes of this one, less multiprocessing's resource
     tracker (it lives as long as this process)."""
-    return [p for p in psutil.Process().children(recursive=True)
-            if "resource_tracker" not in " ".join(p.cmdline())]
+    return [p for p in psutil.Process().children(recursive=True) if "resource_tracker" not in " ".join(p.cmdline())]
 
 
 @pytest.mark.slow
@@ -149,13 +148,18 @@ def test_killed_worker_loses_nothing_and_rerun_runs_nothing(study):
 def test_killed_session_resumes_without_rerunning_finished_designs(study):
     cfg = load_study(study)
     env = {**os.environ, "PYTHONUNBUFFERED": "1"}
-    proc = subprocess.Popen([sys.executable, "-m", "crashlite.cli", "study", "run", str(study), "--workers", "2"],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env, start_new_session=True)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "crashlite.cli", "study", "run", str(study), "--workers", "2"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        env=env,
+        start_new_session=True,
+    )
     try:
         deadline = time.time() + 180
         done = []
         while time.time() < deadline and proc.poll() is None:
-            if Path(cfg.storage[len("sqlite:///"):]).is_file():
+            if Path(cfg.storage[len("sqlite:///") :]).is_file():
                 try:
                     done = [n for n, st in _states(cfg) if st == "COMPLETE"]
                 except sqlite3.OperationalError:  # tables not made yet

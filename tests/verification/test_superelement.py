@@ -16,13 +16,27 @@ SMALL_STEP = "*CONTROL_TIMESTEP\n,0.02"
 
 def _deck(tmp_path, matrix, nodes, masses, velocities, end=0.6, dmig="se.dmig", stif="KSE", extra=""):
     write_dmig(tmp_path / "se.dmig", {"KSE": matrix})
-    text = "\n".join([
-        "*KEYWORD", "*NODE", *nodes,
-        "*ELEMENT_MASS", *masses,
-        "*ELEMENT_DIRECT_MATRIX_INPUT", "77,1", dmig, f",,{stif}",
-        "*INITIAL_VELOCITY_NODE", *velocities,
-        "*CONTROL_TERMINATION", f"{end}",
-        "*DATABASE_HISTORY_NODE", "1,2", extra, "*END"])
+    text = "\n".join(
+        [
+            "*KEYWORD",
+            "*NODE",
+            *nodes,
+            "*ELEMENT_MASS",
+            *masses,
+            "*ELEMENT_DIRECT_MATRIX_INPUT",
+            "77,1",
+            dmig,
+            f",,{stif}",
+            "*INITIAL_VELOCITY_NODE",
+            *velocities,
+            "*CONTROL_TERMINATION",
+            f"{end}",
+            "*DATABASE_HISTORY_NODE",
+            "1,2",
+            extra,
+            "*END",
+        ]
+    )
     p = tmp_path / "se.k"
     p.write_text(text)
     return read_deck(p)
@@ -40,8 +54,14 @@ def test_superelement_spring_against_the_closed_form(tmp_path):
     the superelement's own (its node's mass halved) times TSSFAC (small
     here: the test checks accuracy, not stability)."""
     dofs = np.array([[1, 1], [2, 1]])
-    m = _deck(tmp_path, (dofs, K * np.array([[1.0, -1.0], [-1.0, 1.0]])), ["1,0,0,0,7,7", "2,100,0,0"],
-              [f"10,2,{M}"], ["2,1000,0,0"], extra=SMALL_STEP)
+    m = _deck(
+        tmp_path,
+        (dofs, K * np.array([[1.0, -1.0], [-1.0, 1.0]])),
+        ["1,0,0,0,7,7", "2,100,0,0"],
+        [f"10,2,{M}"],
+        ["2,1000,0,0"],
+        extra=SMALL_STEP,
+    )
     r = run(m, output_dt=1e-4)
     w = math.sqrt(K / M)
     ux = r.node_displacement[:, 1, 0]
@@ -52,8 +72,14 @@ def test_superelement_spring_against_the_closed_form(tmp_path):
     e0 = 0.5 * M * 1000.0**2
     assert np.max(np.abs(r.kinetic + r.internal - e0)) < 5e-3 * e0
     # at the default TSSFAC (ω·dt = 1.27 < 2) the motion stays bounded over 20 periods
-    m = _deck(tmp_path, (dofs, K * np.array([[1.0, -1.0], [-1.0, 1.0]])), ["1,0,0,0,7,7", "2,100,0,0"],
-              [f"10,2,{M}"], ["2,1000,0,0"], end=20 * 2 * math.pi / w)
+    m = _deck(
+        tmp_path,
+        (dofs, K * np.array([[1.0, -1.0], [-1.0, 1.0]])),
+        ["1,0,0,0,7,7", "2,100,0,0"],
+        [f"10,2,{M}"],
+        ["2,1000,0,0"],
+        end=20 * 2 * math.pi / w,
+    )
     r = run(m, output_dt=1e-3)
     assert np.abs(r.node_displacement[:, 1, 0]).max() < 1.5 * 1000.0 / w
 
@@ -67,9 +93,15 @@ def test_superelement_in_3d_moves_rigidly_for_free(tmp_path):
     dofs = np.array([[i, c] for i in (1, 2) for c in (1, 2, 3)])
     v_rel, v_common = 500.0, np.array([2.0, -2.0, 1.0]) / 3.0 * 4000.0  # v_common ⟂ n
     va, vb = v_common - 0.5 * v_rel * n, v_common + 0.5 * v_rel * n
-    m = _deck(tmp_path, (dofs, _spring(K, n)), ["1,0,0,0", f"2,{100 * n[0]},{100 * n[1]},{100 * n[2]}"],
-              [f"10,1,{M}", f"11,2,{M}"],
-              [f"1,{va[0]},{va[1]},{va[2]}", f"2,{vb[0]},{vb[1]},{vb[2]}"], end=0.3, extra=SMALL_STEP)
+    m = _deck(
+        tmp_path,
+        (dofs, _spring(K, n)),
+        ["1,0,0,0", f"2,{100 * n[0]},{100 * n[1]},{100 * n[2]}"],
+        [f"10,1,{M}", f"11,2,{M}"],
+        [f"1,{va[0]},{va[1]},{va[2]}", f"2,{vb[0]},{vb[1]},{vb[2]}"],
+        end=0.3,
+        extra=SMALL_STEP,
+    )
     r = run(m, output_dt=1e-4)
     w = math.sqrt(2.0 * K / M)
     d = (r.node_displacement[:, 1] - r.node_displacement[:, 0]) @ n

@@ -38,8 +38,14 @@ def test_strip_tied_end_to_end_is_as_stiff_as_one_strip(tmp_path, mstyp):
     b = P.plate(2, 50, 100, 10, 0, w, 2)
     P.node_set(1, b[:, 0])
     last = [e for e in P.elems if e[0] in (1010, 1020)]  # the two elements at the end of the first strip
-    P.add({3: "", 2: "*SET_PART_LIST\n5\n1", 1: "*SET_SHELL_LIST\n5\n" + ",".join(str(e[0]) for e in last),
-           0: "*SET_SEGMENT\n5\n" + "\n".join(",".join(str(int(n)) for n in e[2]) for e in last)}[mstyp])
+    P.add(
+        {
+            3: "",
+            2: "*SET_PART_LIST\n5\n1",
+            1: "*SET_SHELL_LIST\n5\n" + ",".join(str(e[0]) for e in last),
+            0: "*SET_SEGMENT\n5\n" + "\n".join(",".join(str(int(n)) for n in e[2]) for e in last),
+        }[mstyp]
+    )
     P.add(f"*CONTACT_TIED_NODES_TO_SURFACE\n1,{1 if mstyp == 3 else 5},4,{mstyp}\n0,0\n0,0")
     P.spc(a[:, 0])
     P.spc(np.setdiff1d(np.concatenate([a.ravel(), b.ravel()]), a[:, 0]), "0,0,1,1,1,1")  # in-plane
@@ -69,8 +75,10 @@ def _plate_with_mass(tmp_path, tied: bool):
     for j in range(9):
         for i in range(9):
             x, y = 5.0 * i, 5.0 * j
-            rows.append(f"{a[j, i]},{500.0 + 2000.0 * math.cos(math.pi * x / 40)!r},"
-                        f"{1000.0 * math.sin(math.pi * y / 40)!r},300.0")
+            rows.append(
+                f"{a[j, i]},{500.0 + 2000.0 * math.cos(math.pi * x / 40)!r},"
+                f"{1000.0 * math.sin(math.pi * y / 40)!r},300.0"
+            )
     P.add("*INITIAL_VELOCITY_NODE\n" + "\n".join(rows))
     P.history([9001, a[3, 3], a[3, 4], a[4, 4], a[4, 3]])
     P.add("*CONTROL_TIMESTEP\n0.0,0.2")  # small steps: the energy measured at the outputs is accurate
@@ -102,9 +110,10 @@ def test_mass_tied_to_a_plate_moves_with_it(tmp_path):
     assert np.abs(total - total[0]).max() < 0.01 * total[0]
 
 
-@pytest.mark.parametrize("kind, carries", [("SHELL_EDGE_TO_SURFACE_OFFSET", True),
-                                           ("SHELL_EDGE_TO_SURFACE", True),
-                                           ("NODES_TO_SURFACE_OFFSET", False)])
+@pytest.mark.parametrize(
+    "kind, carries",
+    [("SHELL_EDGE_TO_SURFACE_OFFSET", True), ("SHELL_EDGE_TO_SURFACE", True), ("NODES_TO_SURFACE_OFFSET", False)],
+)
 def test_cantilever_of_two_tied_plates(tmp_path, kind, carries):
     """A 100 x 10 x 4 mm cantilever (ν = 0) made of two plates: the first
     (x 0..60) clamped, the second (x 50..100) lying on it 4 mm up, its edge
@@ -153,15 +162,38 @@ def test_offset_tie_on_a_solid_follows_its_spin(tmp_path):
     x -= 5.0
     omega = 2000.0
     t_end = 0.5 * math.pi / omega
-    lines = ["*KEYWORD", "*NODE"] + [f"{i + 1},{float(p[0])!r},{float(p[1])!r},{float(p[2])!r}"
-                                     for i, p in enumerate(x)]
+    lines = ["*KEYWORD", "*NODE"] + [
+        f"{i + 1},{float(p[0])!r},{float(p[1])!r},{float(p[2])!r}" for i, p in enumerate(x)
+    ]
     lines += ["900,7.0,0.0,0.0", "*ELEMENT_MASS", "900,900,1e-8", "*ELEMENT_SOLID"]
     lines += [f"{e + 1},1," + ",".join(str(int(n) + 1) for n in row) for e, row in enumerate(conn)]
-    lines += ["*PART", "block", "1,1,1", "*SECTION_SOLID", "1,1", "*MAT_ELASTIC", f"1,{RHO},{E},0.3",
-              "*SET_NODE_LIST", "1", "900", "*CONTACT_TIED_NODES_TO_SURFACE_OFFSET", "1,1,4,3", "0,0",
-              "1,1,4.0",  # SST: a 4 mm slave thickness reaches 0.6·4 = 2.4 mm
-              "*SET_NODE_GENERATE", "2", "1,900", "*INITIAL_VELOCITY_GENERATION", f"2,3,{omega},0,0,0",
-              "0,0,0,0,0,1", "*DATABASE_HISTORY_NODE", "900", "*CONTROL_TERMINATION", f"{t_end!r},", "*END"]
+    lines += [
+        "*PART",
+        "block",
+        "1,1,1",
+        "*SECTION_SOLID",
+        "1,1",
+        "*MAT_ELASTIC",
+        f"1,{RHO},{E},0.3",
+        "*SET_NODE_LIST",
+        "1",
+        "900",
+        "*CONTACT_TIED_NODES_TO_SURFACE_OFFSET",
+        "1,1,4,3",
+        "0,0",
+        "1,1,4.0",  # SST: a 4 mm slave thickness reaches 0.6·4 = 2.4 mm
+        "*SET_NODE_GENERATE",
+        "2",
+        "1,900",
+        "*INITIAL_VELOCITY_GENERATION",
+        f"2,3,{omega},0,0,0",
+        "0,0,0,0,0,1",
+        "*DATABASE_HISTORY_NODE",
+        "900",
+        "*CONTROL_TERMINATION",
+        f"{t_end!r},",
+        "*END",
+    ]
     p = tmp_path / "spin.k"
     p.write_text("\n".join(lines) + "\n")
     s, r = _run(p, t_end / 50)
@@ -187,8 +219,11 @@ def test_far_slave_node_is_left_free_and_reported(tmp_path):
     """A slave node 5 mm off a 1 mm plate (beyond 0.6·(t_s + t_m) and 5 %
     of the segment) is not tied: listed with a warning naming the card,
     and it keeps its own mass and motion."""
-    p = _lap(tmp_path, "*NODE\n9001,5.0,5.0,5.0\n9002,5.0,5.0,0.4\n*ELEMENT_MASS\n1,9001,1e-6\n2,9002,1e-6\n"
-                       "*SET_NODE_LIST\n7\n9001,9002\n*CONTACT_TIED_NODES_TO_SURFACE\n7,1,4,3\n0,0\n0,0")
+    p = _lap(
+        tmp_path,
+        "*NODE\n9001,5.0,5.0,5.0\n9002,5.0,5.0,0.4\n*ELEMENT_MASS\n1,9001,1e-6\n2,9002,1e-6\n"
+        "*SET_NODE_LIST\n7\n9001,9002\n*CONTACT_TIED_NODES_TO_SURFACE\n7,1,4,3\n0,0\n0,0",
+    )
     model = read_deck(p)
     s = setup.build(model)
     (tie,) = _ties(s)
@@ -201,15 +236,21 @@ def test_far_slave_node_is_left_free_and_reported(tmp_path):
 
 def test_undefined_slave_set_is_a_setup_error(tmp_path):
     p = _lap(tmp_path, "*CONTACT_TIED_NODES_TO_SURFACE\n99,1,4,3\n0,0\n0,0")
-    with pytest.raises(SetupError, match=r"bad.k:\d+: \*CONTACT_TIED_NODES_TO_SURFACE, field SSID: "
-                                         r"\*SET_NODE 99 is not defined"):
+    with pytest.raises(
+        SetupError,
+        match=r"bad.k:\d+: \*CONTACT_TIED_NODES_TO_SURFACE, field SSID: "
+        r"\*SET_NODE 99 is not defined",
+    ):
         setup.build(read_deck(p))
 
 
 def test_undefined_master_part_is_a_setup_error(tmp_path):
     p = _lap(tmp_path, "*SET_NODE_LIST\n1\n1001\n*CONTACT_TIED_SHELL_EDGE_TO_SURFACE_OFFSET\n1,5,4,3\n0,0\n0,0")
-    with pytest.raises(SetupError, match=r"\*CONTACT_TIED_SHELL_EDGE_TO_SURFACE_OFFSET, field MSID: part 5 is not "
-                                         "defined"):
+    with pytest.raises(
+        SetupError,
+        match=r"\*CONTACT_TIED_SHELL_EDGE_TO_SURFACE_OFFSET, field MSID: part 5 is not "
+        "defined",
+    ):
         setup.build(read_deck(p))
 
 

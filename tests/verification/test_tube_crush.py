@@ -76,14 +76,24 @@ def tube(c, length, n_side, n_len, amp, trig):
 def crush(tmp_path_factory):
     n_side, n_len = int(round(C / H_EL)), int(round(LENGTH / H_EL))
     xyz, quads, nr = tube(C, LENGTH, n_side, n_len, 0.3 * T, 2 * H_FOLD)
-    extra = ("*BOUNDARY_SPC_NODE\n" + "".join(f"{n},0,1,1,1,1,1,1\n" for n in range(1, nr + 1))
-             + f"*RIGIDWALL_PLANAR_MOVING\n0\n0,0,{LENGTH + 0.01},0,0,{LENGTH - 1.0},1.0\n{M_WALL},{V0}\n"
-             + "*CONTACT_AUTOMATIC_SINGLE_SURFACE\n0,0,0\n\n\n"
-             + f"*CONTROL_TERMINATION\n{(CRUSH + 1.0) / (0.95 * V0)!r},\n")
+    extra = (
+        "*BOUNDARY_SPC_NODE\n"
+        + "".join(f"{n},0,1,1,1,1,1,1\n" for n in range(1, nr + 1))
+        + f"*RIGIDWALL_PLANAR_MOVING\n0\n0,0,{LENGTH + 0.01},0,0,{LENGTH - 1.0},1.0\n{M_WALL},{V0}\n"
+        + "*CONTACT_AUTOMATIC_SINGLE_SURFACE\n0,0,0\n\n\n"
+        + f"*CONTROL_TERMINATION\n{(CRUSH + 1.0) / (0.95 * V0)!r},\n"
+    )
     path = tmp_path_factory.mktemp("tube") / "tube.k"
-    path.write_text(deck_text(xyz, quads, f"1,2,0.8333,5\n{T},{T},{T},{T}",
-                              f"*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,{RHO},{E},{NU},{SIGY},1.0\n0,0,0,0\n", extra,
-                              hourglass=HOURGLASS))
+    path.write_text(
+        deck_text(
+            xyz,
+            quads,
+            f"1,2,0.8333,5\n{T},{T},{T},{T}",
+            f"*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,{RHO},{E},{NU},{SIGY},1.0\n0,0,0,0\n",
+            extra,
+            hourglass=HOURGLASS,
+        )
+    )
     res, g, s, _ = run_deck(path, output_dt=2e-5)
     assert not res.info["stopped"], res.info["stopped"]
     vw = res.wall_velocity[:, 0]

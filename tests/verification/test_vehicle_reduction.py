@@ -133,8 +133,10 @@ def test_simplified_car_follows_the_full_car(study):
     assert abs(f["crash_box_internal_energy_deviation_percent"]) < 2.0
     # the verdict table (no elastic twin in this study: the paper's 5 % bounds the largest intrusion)
     assert f["firewall_intrusion_bound_percent"] == 5.0
-    assert [v["figure"] for v in f["verdict"]][:2] == ["energy ratings, lowest",
-                                                      "crash-box internal energy deviation [%]"]
+    assert [v["figure"] for v in f["verdict"]][:2] == [
+        "energy ratings, lowest",
+        "crash-box internal energy deviation [%]",
+    ]
     assert f["verdict"][1]["passed"] is True
     # each run's hourglass energy at its end, against its internal energy (issue 30: <= 10 %)
     assert set(f["hourglass_share_percent"]) == {"full", "simplified"}
@@ -155,9 +157,12 @@ def test_simplified_car_follows_the_full_car(study):
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="known defect (issue 31): since the shells' stiffness hourglass control is "
-                   "LS-DYNA's (2026-12-04, 16 times softer), the firewall intrusion field deviates 36 % at its worst "
-                   "node and 6.5 % on average (12.1 % and 2.9 % before)")
+@pytest.mark.xfail(
+    strict=True,
+    reason="known defect (issue 31): since the shells' stiffness hourglass control is "
+    "LS-DYNA's (2026-12-04, 16 times softer), the firewall intrusion field deviates 36 % at its worst "
+    "node and 6.5 % on average (12.1 % and 2.9 % before)",
+)
 def test_simplified_car_firewall_intrusion(study):
     """The firewall intrusion field of the simplified car within 25 % of
     the full car's largest intrusion at every node and 6 % on average (the

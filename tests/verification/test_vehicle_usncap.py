@@ -44,7 +44,7 @@ def test_front_structure_takes_the_load(crash):
     front = sum(ie.get(n, 0.0) for n in ("bumper beam", "crash box left", "crash box right"))
     assert front > 0.5 * sum(ie.values())
     f = r.wall_force[:, 0, 0]  # force of the car on the wall, +x
-    assert f.min() >= 0.0 and f[len(f) // 2:].mean() > 50e3
+    assert f.min() >= 0.0 and f[len(f) // 2 :].mean() > 50e3
     ids = list(r.history_nodes)
     assert set(v.history.values()) <= set(ids)
     k = ids.index(v.history["rear seat left"])

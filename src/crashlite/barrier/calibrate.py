@@ -34,9 +34,13 @@ if TYPE_CHECKING:
     from .cases import Case
 
 # (name, lower, upper) of each multiplier on the starting curves
-PARAMETERS = (("main block plateau", 0.6, 1.6), ("main block compaction onset", 0.8, 1.15),
-              ("main block densified force", 0.25, 4.0), ("bumper plateau", 0.4, 2.0),
-              ("bumper peak", 0.4, 2.0))
+PARAMETERS = (
+    ("main block plateau", 0.6, 1.6),
+    ("main block compaction onset", 0.8, 1.15),
+    ("main block densified force", 0.25, 4.0),
+    ("bumper plateau", 0.4, 2.0),
+    ("bumper peak", 0.4, 2.0),
+)
 
 
 def adjusted(spec: ODBSpec, x: Iterable[float]) -> ODBSpec:
@@ -45,8 +49,9 @@ def adjusted(spec: ODBSpec, x: Iterable[float]) -> ODBSpec:
     m = [float(np.clip(v, lo, hi)) for v, (_, lo, hi) in zip(x, PARAMETERS)]
     mc, bc = spec.main.curve, spec.bumper.curve
     compaction = min(mc.compaction * m[1], mc.full - 0.02)
-    main = replace(mc, plateau=mc.plateau * m[0], peak=mc.peak * m[0], compaction=compaction,
-                   full_factor=mc.full_factor * m[2])
+    main = replace(
+        mc, plateau=mc.plateau * m[0], peak=mc.peak * m[0], compaction=compaction, full_factor=mc.full_factor * m[2]
+    )
     plateau = bc.plateau * m[3]
     bumper = replace(bc, plateau=plateau, peak=max(bc.peak * m[4], plateau))
     return replace(spec, main=replace(spec.main, curve=main), bumper=replace(spec.bumper, curve=bumper))
@@ -66,18 +71,31 @@ class Calibration:
     reference: str  # name of the reference case
 
     def summary(self) -> dict:
-        return {"reference": self.reference, "multipliers": self.multipliers, "runs": self.runs,
-                "wall_time_s": self.wall_time, "matched_until_ms": self.until * 1e3,
-                "misfit_start": self.misfit_start, "misfit": self.misfit,
-                "curves": {b.name: asdict(b.curve) for b in (self.spec.main, self.spec.bumper)}}
+        return {
+            "reference": self.reference,
+            "multipliers": self.multipliers,
+            "runs": self.runs,
+            "wall_time_s": self.wall_time,
+            "matched_until_ms": self.until * 1e3,
+            "misfit_start": self.misfit_start,
+            "misfit": self.misfit,
+            "curves": {b.name: asdict(b.curve) for b in (self.spec.main, self.spec.bumper)},
+        }
 
     def write_curves(self, path: Path | str) -> Path:
         """curves.json in the format of ``characterise.read_curves``."""
         p = Path(path)
         p.parent.mkdir(parents=True, exist_ok=True)
-        data = {b.name: {"block": b.name, "depth_mm": b.depth, "curve": asdict(b.curve),
-                         "calibrated_against": self.reference, "misfit": self.misfit}
-                for b in (self.spec.main, self.spec.bumper)}
+        data = {
+            b.name: {
+                "block": b.name,
+                "depth_mm": b.depth,
+                "curve": asdict(b.curve),
+                "calibrated_against": self.reference,
+                "misfit": self.misfit,
+            }
+            for b in (self.spec.main, self.spec.bumper)
+        }
         p.write_text(json.dumps(data, indent=2) + "\n")
         return p
 
@@ -93,8 +111,15 @@ def misfit(reference: Case, case: Case, until: float) -> float:
     return float(np.sqrt(np.mean((f - f_ref) ** 2)) / np.mean(np.abs(f_ref)))
 
 
-def calibrate_curves(reference: Case, spec: ODBSpec, impactor: Impactor, end_time: float, directory: Path | str,
-                     max_runs: int = 80, progress: bool = False) -> Calibration:
+def calibrate_curves(
+    reference: Case,
+    spec: ODBSpec,
+    impactor: Impactor,
+    end_time: float,
+    directory: Path | str,
+    max_runs: int = 80,
+    progress: bool = False,
+) -> Calibration:
     """Adjust ``spec``'s curves so that the simplified barrier under
     ``impactor`` at the reference case's overlap matches ``reference`` (a
     ``cases.Case`` of the detailed barrier) over its crush phase."""
@@ -111,8 +136,9 @@ def calibrate_curves(reference: Case, spec: ODBSpec, impactor: Impactor, end_tim
 
     def objective(x) -> float:
         s = adjusted(spec, x)
-        case = run_case("simplified", reference.overlap, folder, simplified_barrier(s), s, impactor, end,
-                        counts=False, save=False)
+        case = run_case(
+            "simplified", reference.overlap, folder, simplified_barrier(s), s, impactor, end, counts=False, save=False
+        )
         value = misfit(reference, case, until)
         history.append((np.array(x), value))
         if progress:
@@ -121,9 +147,21 @@ def calibrate_curves(reference: Case, spec: ODBSpec, impactor: Impactor, end_tim
 
     x0 = np.ones(len(PARAMETERS))
     simplex = np.vstack([x0] + [x0 + 0.15 * np.eye(len(x0))[i] for i in range(len(x0))])
-    minimize(objective, x0, method="Nelder-Mead",
-             options={"maxfev": max_runs, "initial_simplex": simplex, "xatol": 5e-3, "fatol": 1e-3})
+    minimize(
+        objective,
+        x0,
+        method="Nelder-Mead",
+        options={"maxfev": max_runs, "initial_simplex": simplex, "xatol": 5e-3, "fatol": 1e-3},
+    )
     best_x, best = min(history, key=lambda h: h[1])
     multipliers = {name: float(np.clip(v, lo, hi)) for v, (name, lo, hi) in zip(best_x, PARAMETERS)}
-    return Calibration(adjusted(spec, best_x), multipliers, history[0][1], best, len(history),
-                       time.perf_counter() - t0, until, reference.name)
+    return Calibration(
+        adjusted(spec, best_x),
+        multipliers,
+        history[0][1],
+        best,
+        len(history),
+        time.perf_counter() - t0,
+        until,
+        reference.name,
+    )

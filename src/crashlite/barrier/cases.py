@@ -42,12 +42,20 @@ class Case:
         return f"{self.barrier} {round(100 * self.overlap)} %"
 
     def summary(self) -> dict:
-        return {"barrier": self.barrier, "overlap_percent": 100.0 * self.overlap, "deck": str(self.deck),
-                **self.counts, "time_step_ms": self.dt * 1e3, "cycles": self.cycles, "run_time_s": self.run_time,
-                "energy_ratio": self.energy_ratio, "impactor_energy_lost_kJ": self.lost / 1e6,
-                "barrier_energy_kJ": self.absorbed / 1e6,
-                "peak_force_kN_cfc60": float(_cfc(self.time, self.force).max() / 1e3),
-                "max_travel_mm": float(self.travel.max())}
+        return {
+            "barrier": self.barrier,
+            "overlap_percent": 100.0 * self.overlap,
+            "deck": str(self.deck),
+            **self.counts,
+            "time_step_ms": self.dt * 1e3,
+            "cycles": self.cycles,
+            "run_time_s": self.run_time,
+            "energy_ratio": self.energy_ratio,
+            "impactor_energy_lost_kJ": self.lost / 1e6,
+            "barrier_energy_kJ": self.absorbed / 1e6,
+            "peak_force_kN_cfc60": float(_cfc(self.time, self.force).max() / 1e3),
+            "max_travel_mm": float(self.travel.max()),
+        }
 
 
 def _cfc(t, f):
@@ -66,8 +74,18 @@ def _counts(deck: Path) -> dict:
     return n
 
 
-def run_case(name: str, overlap: float, folder: Path, barrier: SimplifiedBarrier, spec: ODBSpec, impactor: Impactor,
-             end_time: float, progress: bool = False, counts: bool = True, save: bool = True) -> Case:
+def run_case(
+    name: str,
+    overlap: float,
+    folder: Path,
+    barrier: SimplifiedBarrier,
+    spec: ODBSpec,
+    impactor: Impactor,
+    end_time: float,
+    progress: bool = False,
+    counts: bool = True,
+    save: bool = True,
+) -> Case:
     """Write and run one barrier under the impactor at ``overlap``;
     ``save``: write the results (and LS-DYNA ASCII files) to folder/out."""
     pl = Placement()
@@ -129,5 +147,12 @@ def rate_pair(ref: Case, cmp: Case, t1: float | None = None) -> dict:
     from ..verify.rating import iso_rating
 
     r = iso_rating(*rated_force(ref, t1), *rated_force(cmp, t1), 0.0, t1)
-    return {"overall": r.overall, "grade": r.grade, "corridor": r.corridor, "phase": r.phase,
-            "magnitude": r.magnitude, "slope": r.slope, "until_ms": None if t1 is None else t1 * 1e3}
+    return {
+        "overall": r.overall,
+        "grade": r.grade,
+        "corridor": r.corridor,
+        "phase": r.phase,
+        "magnitude": r.magnitude,
+        "slope": r.slope,
+        "until_ms": None if t1 is None else t1 * 1e3,
+    }

@@ -45,10 +45,18 @@ class Characteristic:
     wall_time: float  # [s]
 
     def summary(self) -> dict:
-        return {"block": self.block, "depth_mm": self.depth, "element_size_mm": self.element_size,
-                "speed_m_s": self.speed / 1000.0, "solids": self.solids, "cycles": self.cycles,
-                "wall_time_s": self.wall_time, "curve": asdict(self.curve),
-                "max_crush_mm": float(self.crush.max()), "max_force_kN": float(self.force.max() / 1e3)}
+        return {
+            "block": self.block,
+            "depth_mm": self.depth,
+            "element_size_mm": self.element_size,
+            "speed_m_s": self.speed / 1000.0,
+            "solids": self.solids,
+            "cycles": self.cycles,
+            "wall_time_s": self.wall_time,
+            "curve": asdict(self.curve),
+            "max_crush_mm": float(self.crush.max()),
+            "max_force_kN": float(self.force.max() / 1e3),
+        }
 
 
 def reduce_curve(crush: ArrayLike, force: ArrayLike, depth: float, template: BlockCurve | None = None) -> BlockCurve:
@@ -69,8 +77,10 @@ def reduce_curve(crush: ArrayLike, force: ArrayLike, depth: float, template: Blo
     if x.ndim != 1 or x.shape != f.shape or len(x) < 10:
         raise ValueError("crush and force must be 1-D arrays of the same length (at least 10 points)")
     if x.max() < 0.65 * depth:
-        raise ValueError(f"the test crushed {x.max():.1f} mm of a {depth:.1f} mm block: "
-                         "at least 65 % is needed to see the plateau and the compaction onset")
+        raise ValueError(
+            f"the test crushed {x.max():.1f} mm of a {depth:.1f} mm block: "
+            "at least 65 % is needed to see the plateau and the compaction onset"
+        )
     t = template or BlockCurve(plateau=1.0, peak=1.0)
     mid = (x >= 0.15 * depth) & (x <= 0.60 * depth)
     plateau = float(np.median(f[mid]))
@@ -104,15 +114,28 @@ def reduce_curve(crush: ArrayLike, force: ArrayLike, depth: float, template: Blo
             raise ValueError("the force does not rise after the compaction onset: crush the block further")
         full = onset + (target - plateau) / slope
     solid = max(t.solid, full / depth + 0.01)
-    return BlockCurve(plateau=plateau, peak=peak, rise=rise, drop_end=drop_end, compaction=onset / depth,
-                      full=min(full / depth, solid - 0.005), full_factor=t.full_factor, solid=solid,
-                      solid_factor=t.solid_factor)
+    return BlockCurve(
+        plateau=plateau,
+        peak=peak,
+        rise=rise,
+        drop_end=drop_end,
+        compaction=onset / depth,
+        full=min(full / depth, solid - 0.005),
+        full_factor=t.full_factor,
+        solid=solid,
+        solid_factor=t.solid_factor,
+    )
 
 
-def compression_test(block: Block, spec: ODBSpec | None = None, element_size: float = 25.0,
-                     speed: float = 10000.0, crush: float = 0.9,
-                     directory: Path | str | None = None,
-                     progress: bool = False) -> Characteristic:
+def compression_test(
+    block: Block,
+    spec: ODBSpec | None = None,
+    element_size: float = 25.0,
+    speed: float = 10000.0,
+    crush: float = 0.9,
+    directory: Path | str | None = None,
+    progress: bool = False,
+) -> Characteristic:
     """Compress ``block`` (``spec.main`` or ``spec.bumper``) of the detailed
     barrier alone by a rigid impactor of 1000 t at ``speed`` [mm/s] up to
     ``crush`` × its depth, and reduce the result. ``directory`` keeps the
@@ -121,16 +144,17 @@ def compression_test(block: Block, spec: ODBSpec | None = None, element_size: fl
 
     spec = spec or ODBSpec()
     alone = replace(spec, main=block, bumper=block)
-    barrier = detailed_barrier(alone, Placement(), element_size=element_size, bumper=False,
-                               title=f"characterisation {block.name}")
+    barrier = detailed_barrier(
+        alone, Placement(), element_size=element_size, bumper=False, title=f"characterisation {block.name}"
+    )
     gap = 1.0
     end = (crush * block.depth + gap) / speed
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(directory) if directory is not None else Path(tmp)
-        main = write_impactor_case(folder, barrier, Placement(), Impactor(mass=1000.0, speed=speed, gap=gap),
-                                   end_time=end, spec=alone)
-        r = run(main, out=folder / "out" if directory is not None else None, quiet=not progress,
-                output_dt=end / 500.0)
+        main = write_impactor_case(
+            folder, barrier, Placement(), Impactor(mass=1000.0, speed=speed, gap=gap), end_time=end, spec=alone
+        )
+        r = run(main, out=folder / "out" if directory is not None else None, quiet=not progress, output_dt=end / 500.0)
     from ..verify.filters import filter_signal
 
     t = r.time
@@ -141,12 +165,18 @@ def compression_test(block: Block, spec: ODBSpec | None = None, element_size: fl
     tf, f = filter_signal(t, f_raw, SMOOTH_CFC)
     f = np.interp(t, tf, f)
     curve = reduce_curve(x, f, block.depth, block.curve)
-    return Characteristic(block.name, block.depth, x, f, f_raw, curve, element_size, speed, barrier.solids,
-                          r.cycles, r.wall_time)
+    return Characteristic(
+        block.name, block.depth, x, f, f_raw, curve, element_size, speed, barrier.solids, r.cycles, r.wall_time
+    )
 
 
-def characterise(spec: ODBSpec | None = None, element_size: float = 25.0, speed: float = 10000.0,
-                 directory: Path | str | None = None, progress: bool = False) -> dict[str, Characteristic]:
+def characterise(
+    spec: ODBSpec | None = None,
+    element_size: float = 25.0,
+    speed: float = 10000.0,
+    directory: Path | str | None = None,
+    progress: bool = False,
+) -> dict[str, Characteristic]:
     """Compression tests of the bumper and the main block."""
     spec = spec or ODBSpec()
     out = {}

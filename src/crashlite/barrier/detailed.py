@@ -39,8 +39,19 @@ def _segments(bounds: list[float], size: float) -> np.ndarray:
 SHEET_E, SHEET_PR, SHEET_YIELD, SHEET_ETAN, SHEET_FAIL = 70000.0, 0.33, 100.0, 300.0, 0.2  # MPa, -, MPa, MPa, -
 
 
-def _honeycomb(dk: _Deck, mid: int, lcid: int, b: Block, u: UnitSystem, d: int, modulus: float, lateral: float,
-               shear_modulus: float, shear_strength: float, shear_failure: float) -> None:
+def _honeycomb(
+    dk: _Deck,
+    mid: int,
+    lcid: int,
+    b: Block,
+    u: UnitSystem,
+    d: int,
+    modulus: float,
+    lateral: float,
+    shear_modulus: float,
+    shear_strength: float,
+    shear_failure: float,
+) -> None:
     """MAT_026 of a block, crush along the depth (axis a; b, c across): the
     uniaxial curve is the block's force–crush per face area; the cells'
     walls make the transverse shears ab and ca stiff and strong
@@ -55,11 +66,14 @@ def _honeycomb(dk: _Deck, mid: int, lcid: int, b: Block, u: UnitSystem, d: int, 
     s = u.stress
     lcw, lct = lcid + 1, lcid + 2
     weak, g_t = lateral * e_u * s, shear_modulus * e_u * s
-    dk.kw("MAT_HONEYCOMB", [mid, b.density * u.density, modulus * s, 0.0, 20.0 * stress.max() * s, vf, 0.05, 0.0],
-          [lcid, lcw, lcw, lcw, lct, lcw, lct, 0],
-          [e_u * s, weak, weak, g_t, weak, g_t, 2.0, 1],
-          [0.0, 0.0, 0.0, float(d), 0.0, 0.0],
-          [0.0, 1.0, 0.0, 0.0, shear_failure, 0.0, 0.0, 0.0])
+    dk.kw(
+        "MAT_HONEYCOMB",
+        [mid, b.density * u.density, modulus * s, 0.0, 20.0 * stress.max() * s, vf, 0.05, 0.0],
+        [lcid, lcw, lcw, lcw, lct, lcw, lct, 0],
+        [e_u * s, weak, weak, g_t, weak, g_t, 2.0, 1],
+        [0.0, 0.0, 0.0, float(d), 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0, shear_failure, 0.0, 0.0, 0.0],
+    )
     dk.kw("DEFINE_CURVE", [lcid], *[(float(a), float(f) * s) for a, f in zip(strain, stress)])
     low = lateral * stress[1:].min()
     dk.kw("DEFINE_CURVE", [lcw], (0.0, low * s), (1.0, low * s))
@@ -67,11 +81,21 @@ def _honeycomb(dk: _Deck, mid: int, lcid: int, b: Block, u: UnitSystem, d: int, 
     dk.kw("DEFINE_CURVE", [lct], (0.0, tau * s), (1.0, tau * s))
 
 
-def detailed_barrier(spec: ODBSpec | None = None, placement: Placement | None = None, element_size: float = 20.0,
-                     id_offset: int = 0, units: UnitSystem | None = None, bumper: bool = True,
-                     compacted_modulus: float = COMPACTED_MODULUS, lateral: float = 0.05, shear_modulus: float = 1.0,
-                     shear_strength: float = 0.5, shear_failure: float = 1.5, cladding: bool = False,
-                     title: str = "detailed ODB") -> SimplifiedBarrier:
+def detailed_barrier(
+    spec: ODBSpec | None = None,
+    placement: Placement | None = None,
+    element_size: float = 20.0,
+    id_offset: int = 0,
+    units: UnitSystem | None = None,
+    bumper: bool = True,
+    compacted_modulus: float = COMPACTED_MODULUS,
+    lateral: float = 0.05,
+    shear_modulus: float = 1.0,
+    shear_strength: float = 0.5,
+    shear_failure: float = 1.5,
+    cladding: bool = False,
+    title: str = "detailed ODB",
+) -> SimplifiedBarrier:
     """Solid honeycomb barrier (mm–t–s spec, written in ``units``):
     elements of about ``element_size`` mm; ``compacted_modulus`` [MPa] of
     the fully compacted honeycomb; ``lateral`` the strength and stiffness
@@ -103,8 +127,12 @@ def detailed_barrier(spec: ODBSpec | None = None, placement: Placement | None = 
     dk.kw("TITLE", [title])
     ny, nz = len(y), len(z)
     nid_main = (o + 1 + np.arange(len(s_main) * nz * ny)).reshape(len(s_main), nz, ny)
-    rows = [(n, (pl.x_face + d * s) * L, yy * L, (pl.z_ground + zz) * L)
-            for s, plane in zip(s_main, nid_main) for zz, line in zip(z, plane) for yy, n in zip(y, line)]
+    rows = [
+        (n, (pl.x_face + d * s) * L, yy * L, (pl.z_ground + zz) * L)
+        for s, plane in zip(s_main, nid_main)
+        for zz, line in zip(z, plane)
+        for yy, n in zip(y, line)
+    ]
     planes = {"block_front": nid_main[0].ravel(), "back": nid_main[-1].ravel()}
     if bmp is not None:
         kb = np.flatnonzero((z >= bmp.z_low - 1e-9) & (z <= bmp.z_high + 1e-9))
@@ -113,8 +141,12 @@ def detailed_barrier(spec: ODBSpec | None = None, placement: Placement | None = 
         nid_b[-1] = nid_main[0][kb]  # bonded: the bumper's back is the block's front
         start = o + 1 + nid_main.size
         nid_b[:-1] = (start + np.arange((len(s_b) - 1) * len(kb) * ny)).reshape(len(s_b) - 1, len(kb), ny)
-        rows += [(n, (pl.x_face + d * s) * L, yy * L, (pl.z_ground + z[k]) * L)
-                 for s, plane in zip(s_b[:-1], nid_b[:-1]) for k, line in zip(kb, plane) for yy, n in zip(y, line)]
+        rows += [
+            (n, (pl.x_face + d * s) * L, yy * L, (pl.z_ground + z[k]) * L)
+            for s, plane in zip(s_b[:-1], nid_b[:-1])
+            for k, line in zip(kb, plane)
+            for yy, n in zip(y, line)
+        ]
         planes["bumper_front"] = nid_b[0].ravel()
     dk.kw("NODE", *rows)
 
@@ -145,8 +177,9 @@ def detailed_barrier(spec: ODBSpec | None = None, placement: Placement | None = 
         dk.kw("PART", [f"{title} {b.name}"], [p, p, p, 0, p])
         dk.kw("SECTION_SOLID", [p, 1])
         dk.kw("HOURGLASS", [p, 4, 0.1])
-        _honeycomb(dk, p, o + 1 + 3 * k, b, u, d, compacted_modulus, lateral, shear_modulus, shear_strength,
-                   shear_failure)
+        _honeycomb(
+            dk, p, o + 1 + 3 * k, b, u, d, compacted_modulus, lateral, shear_modulus, shear_strength, shear_failure
+        )
     shells = []
     if cladding:
         c = spec.cladding
@@ -158,21 +191,43 @@ def detailed_barrier(spec: ODBSpec | None = None, placement: Placement | None = 
             pid[name] = p
             dk.kw("PART", [f"{title} {name}"], [p, p, p])
             dk.kw("SECTION_SHELL", [p, 2, 1.0, 2], [t * L] * 4)
-            dk.kw("MAT_PIECEWISE_LINEAR_PLASTICITY",
-                  [p, c.density * u.density, SHEET_E * u.stress, SHEET_PR, SHEET_YIELD * u.stress,
-                   SHEET_ETAN * u.stress, SHEET_FAIL, 0.0], [0.0, 0.0, 0, 0, 0.0])
-            shells += [(next(eid), p, nid[i, j], nid[i, j + 1], nid[i + 1, j + 1], nid[i + 1, j])
-                       for i in range(nid.shape[0] - 1) for j in range(nid.shape[1] - 1)]
+            dk.kw(
+                "MAT_PIECEWISE_LINEAR_PLASTICITY",
+                [
+                    p,
+                    c.density * u.density,
+                    SHEET_E * u.stress,
+                    SHEET_PR,
+                    SHEET_YIELD * u.stress,
+                    SHEET_ETAN * u.stress,
+                    SHEET_FAIL,
+                    0.0,
+                ],
+                [0.0, 0.0, 0, 0, 0.0],
+            )
+            shells += [
+                (next(eid), p, nid[i, j], nid[i, j + 1], nid[i + 1, j + 1], nid[i + 1, j])
+                for i in range(nid.shape[0] - 1)
+                for j in range(nid.shape[1] - 1)
+            ]
         dk.kw("ELEMENT_SHELL", *shells)
     sid = {"front": o + 1, "back": o + 2, "parts": o + 4}
     all_nodes = np.array([r[0] for r in rows], np.int64)
     front = np.setdiff1d(all_nodes, planes["back"])
     for key, nodes in (("front", front), ("back", planes["back"])):
-        dk.kw("SET_NODE_LIST", [sid[key]], *[nodes[i:i + 8] for i in range(0, len(nodes), 8)])
+        dk.kw("SET_NODE_LIST", [sid[key]], *[nodes[i : i + 8] for i in range(0, len(nodes), 8)])
     used = [b.name for b in blocks] + [k for k in pid if k.startswith("cladding")]
     dk.kw("SET_PART_LIST", [sid["parts"]], [pid[k] for k in used])
     dk.kw("BOUNDARY_SPC_SET", [sid["back"], 0, 1, 1, 1, 1, 1, 1])
     dk.kw("END")
     mass = (sum(b.mass for b in blocks) + (spec.cladding_mass(bmp is not None) if cladding else 0.0)) * u.mass
-    return SimplifiedBarrier(deck="\n".join(dk.lines) + "\n", node_ids=planes, part_ids={k: pid[k] for k in used},
-                             set_ids=sid, beams=0, shells=len(shells), mass=mass, solids=len(elems))
+    return SimplifiedBarrier(
+        deck="\n".join(dk.lines) + "\n",
+        node_ids=planes,
+        part_ids={k: pid[k] for k in used},
+        set_ids=sid,
+        beams=0,
+        shells=len(shells),
+        mass=mass,
+        solids=len(elems),
+    )

@@ -35,9 +35,17 @@ class Impactor:
     friction: float = 0.0
 
 
-def impactor_deck(barrier_file: str, front_set: int, placement: Placement, impactor: Impactor,
-                  end_time: float, width: float = 1000.0, z_range: tuple[float, float] = (0.0, 1000.0),
-                  output_dt: float | None = None, title: str = "rigid impactor on ODB") -> str:
+def impactor_deck(
+    barrier_file: str,
+    front_set: int,
+    placement: Placement,
+    impactor: Impactor,
+    end_time: float,
+    width: float = 1000.0,
+    z_range: tuple[float, float] = (0.0, 1000.0),
+    output_dt: float | None = None,
+    title: str = "rigid impactor on ODB",
+) -> str:
     """Main deck text: the barrier include, the impactor wall, controls and
     output requests (mm–t–s)."""
     if not 0.0 < impactor.overlap <= 1.0:
@@ -48,8 +56,16 @@ def impactor_deck(barrier_file: str, front_set: int, placement: Placement, impac
     name = "RIGIDWALL_PLANAR_MOVING_FINITE" if finite else "RIGIDWALL_PLANAR_MOVING"
     dt = output_dt or end_time / 200.0
     fric = float(impactor.friction)
-    lines = ["*KEYWORD", "*TITLE", title, "*INCLUDE", barrier_file, f"*{name}", f"{front_set},0,0,0.0",
-             f"{x0!r},0.0,0.0,{x0 + d!r},0.0,0.0,{fric!r}"]
+    lines = [
+        "*KEYWORD",
+        "*TITLE",
+        title,
+        "*INCLUDE",
+        barrier_file,
+        f"*{name}",
+        f"{front_set},0,0,0.0",
+        f"{x0!r},0.0,0.0,{x0 + d!r},0.0,0.0,{fric!r}",
+    ]
     if finite:
         z_lo, z_hi = (placement.z_ground + z for z in z_range)
         y_lo = placement.y_min
@@ -62,18 +78,38 @@ def impactor_deck(barrier_file: str, front_set: int, placement: Placement, impac
             lines[-1] = f"{x0!r},{y_lo!r},{z_hi!r},{x0 + d!r},{y_lo!r},{z_hi!r},{fric!r}"
             lines.append(f"{x0!r},{y_lo + 1.0!r},{z_hi!r},{lenl!r},{z_hi - z_lo!r}")
     # one value per card, comma-terminated: free format, so a long number cannot spill into the next field
-    lines += [f"{impactor.mass!r},{impactor.speed!r}",
-              "*CONTROL_TERMINATION", f"{end_time!r},0,{DTMIN!r},",
-              # honeycomb solids sheared through at the impactor's edge are deleted, as in LS-DYNA
-              "*CONTROL_TIMESTEP", "0.0,0.9,0,0.0,0.0,0,1,0",
-              "*DATABASE_GLSTAT", f"{dt!r},", "*DATABASE_MATSUM", f"{dt!r},", "*DATABASE_RWFORC", f"{dt!r},",
-              "*DATABASE_SPCFORC", f"{dt!r},", "*DATABASE_DEFORC", f"{dt!r},",
-              "*DATABASE_BINARY_D3PLOT", f"{end_time / 20.0!r},", "*END"]
+    lines += [
+        f"{impactor.mass!r},{impactor.speed!r}",
+        "*CONTROL_TERMINATION",
+        f"{end_time!r},0,{DTMIN!r},",
+        # honeycomb solids sheared through at the impactor's edge are deleted, as in LS-DYNA
+        "*CONTROL_TIMESTEP",
+        "0.0,0.9,0,0.0,0.0,0,1,0",
+        "*DATABASE_GLSTAT",
+        f"{dt!r},",
+        "*DATABASE_MATSUM",
+        f"{dt!r},",
+        "*DATABASE_RWFORC",
+        f"{dt!r},",
+        "*DATABASE_SPCFORC",
+        f"{dt!r},",
+        "*DATABASE_DEFORC",
+        f"{dt!r},",
+        "*DATABASE_BINARY_D3PLOT",
+        f"{end_time / 20.0!r},",
+        "*END",
+    ]
     return "\n".join(lines) + "\n"
 
 
-def write_impactor_case(directory: Path | str, barrier: SimplifiedBarrier, placement: Placement, impactor: Impactor,
-                        end_time: float, spec: ODBSpec | None = None) -> Path:
+def write_impactor_case(
+    directory: Path | str,
+    barrier: SimplifiedBarrier,
+    placement: Placement,
+    impactor: Impactor,
+    end_time: float,
+    spec: ODBSpec | None = None,
+) -> Path:
     """Write ``barrier.k`` (the generated barrier) and ``main.k`` (the load
     case) into ``directory``; returns the main deck's path."""
     from .spec import ODBSpec
@@ -82,8 +118,15 @@ def write_impactor_case(directory: Path | str, barrier: SimplifiedBarrier, place
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     barrier.write(directory / "barrier.k")
-    text = impactor_deck("barrier.k", barrier.set_ids["front"], placement, impactor, end_time,
-                         width=spec.main.width, z_range=(spec.main.z_low - 50.0, spec.main.z_high + 50.0))
+    text = impactor_deck(
+        "barrier.k",
+        barrier.set_ids["front"],
+        placement,
+        impactor,
+        end_time,
+        width=spec.main.width,
+        z_range=(spec.main.z_low - 50.0, spec.main.z_high + 50.0),
+    )
     main = directory / "main.k"
     main.write_text(text)
     return main

@@ -37,9 +37,16 @@ class Placement:
     z_ground: float = 0.0  # [mm]
 
 
-def offset_placement(vehicle_width: float, overlap: float = 0.4, side: str = "left", y_centre: float = 0.0,
-                     x_face: float = 0.0, direction: int = 1, z_ground: float = 0.0,
-                     barrier_width: float = 1000.0) -> Placement:
+def offset_placement(
+    vehicle_width: float,
+    overlap: float = 0.4,
+    side: str = "left",
+    y_centre: float = 0.0,
+    x_face: float = 0.0,
+    direction: int = 1,
+    z_ground: float = 0.0,
+    barrier_width: float = 1000.0,
+) -> Placement:
     """Placement for an offset test: the barrier covers ``overlap`` of the
     vehicle width on ``side`` (the driver side: left for left-hand drive),
     as seen by the vehicle travelling along ``direction``·x with z up."""
@@ -97,9 +104,13 @@ def _rows(main: Block, bumper: Block | None, n_main: int, n_bumper: int) -> tupl
     n_below = int(round(rest * below / (below + above))) if below + above > 0 else 0
     n_below = min(max(n_below, 1 if below > 0 else 0), rest - (1 if above > 0 else 0))
     n_above = rest - n_below
-    z = np.concatenate([np.linspace(main.z_low, bumper.z_low, n_below + 1)[:-1],
-                        np.linspace(bumper.z_low, bumper.z_high, n_bumper),
-                        np.linspace(bumper.z_high, main.z_high, n_above + 1)[1:]])
+    z = np.concatenate(
+        [
+            np.linspace(main.z_low, bumper.z_low, n_below + 1)[:-1],
+            np.linspace(bumper.z_low, bumper.z_high, n_bumper),
+            np.linspace(bumper.z_high, main.z_high, n_above + 1)[1:],
+        ]
+    )
     return z, np.arange(n_below, n_below + n_bumper)
 
 
@@ -132,9 +143,18 @@ def _num(v) -> str:
     return repr(float(v))
 
 
-def simplified_barrier(spec: ODBSpec | None = None, placement: Placement | None = None, n_width: int = 36,
-                       n_main: int = 20, n_bumper: int = 10, id_offset: int = 0, units: UnitSystem | None = None,
-                       bumper: bool = True, cladding: bool = True, title: str = "simplified ODB") -> SimplifiedBarrier:
+def simplified_barrier(
+    spec: ODBSpec | None = None,
+    placement: Placement | None = None,
+    n_width: int = 36,
+    n_main: int = 20,
+    n_bumper: int = 10,
+    id_offset: int = 0,
+    units: UnitSystem | None = None,
+    bumper: bool = True,
+    cladding: bool = True,
+    title: str = "simplified ODB",
+) -> SimplifiedBarrier:
     """The paper's simplified barrier: ``n_width × n_main`` main-block beams
     and ``n_width × n_bumper`` bumper beams (36 × 20 + 36 × 10 = 1080 by
     default), as deck text in ``units`` (default mm–t–s) with every ID
@@ -222,12 +242,21 @@ def simplified_barrier(spec: ODBSpec | None = None, placement: Placement | None 
         for name, nid, t in sheets:
             dk.kw("PART", [f"{title} {name}"], [pid[name], pid[name], pid[name]])
             dk.kw("SECTION_SHELL", [pid[name], 2, 1.0, 2], [t * L] * 4)
-            dk.kw("MAT_PLASTIC_KINEMATIC", [pid[name], c.density * u.density, c.modulus * u.stress, c.poisson,
-                                             c.yield_stress * u.stress, 0.0, 0.0])
+            dk.kw(
+                "MAT_PLASTIC_KINEMATIC",
+                [
+                    pid[name],
+                    c.density * u.density,
+                    c.modulus * u.stress,
+                    c.poisson,
+                    c.yield_stress * u.stress,
+                    0.0,
+                    0.0,
+                ],
+            )
             for i in range(nid.shape[0] - 1):
                 for j in range(nid.shape[1] - 1):
-                    shells.append((next(eid), pid[name], nid[i, j], nid[i, j + 1], nid[i + 1, j + 1],
-                                   nid[i + 1, j]))
+                    shells.append((next(eid), pid[name], nid[i, j], nid[i, j + 1], nid[i + 1, j + 1], nid[i + 1, j]))
         dk.kw("ELEMENT_SHELL", *shells)
         shell_mass = spec.cladding_mass(bmp is not None)
     else:
@@ -239,15 +268,23 @@ def simplified_barrier(spec: ODBSpec | None = None, placement: Placement | None 
     axial = np.concatenate([planes[k].ravel() for k in planes if k != "back"])
     # an impactor meets the bumper face first, the block face above and below the bumper later
     for key, nodes in (("front", axial), ("axial", axial), ("back", planes["back"].ravel())):
-        dk.kw("SET_NODE_LIST", [sid[key]], *[nodes[i:i + 8] for i in range(0, len(nodes), 8)])
-    used_parts = [pid[b.name] for b in blocks] + ([pid["cladding middle"]] if cladding else []) \
+        dk.kw("SET_NODE_LIST", [sid[key]], *[nodes[i : i + 8] for i in range(0, len(nodes), 8)])
+    used_parts = (
+        [pid[b.name] for b in blocks]
+        + ([pid["cladding middle"]] if cladding else [])
         + ([pid["cladding front"]] if cladding and bmp is not None else [])
+    )
     dk.kw("SET_PART_LIST", [sid["parts"]], sorted(used_parts))
     dk.kw("BOUNDARY_SPC_SET", [sid["axial"], 0, 0, 1, 1, 0, 0, 0])
     dk.kw("BOUNDARY_SPC_SET", [sid["back"], 0, 1, 1, 1, 1, 1, 1])
     dk.kw("END")
     total = (main.mass + (bmp.mass if bmp is not None else 0.0) + shell_mass) * u.mass
     return SimplifiedBarrier(
-        deck="\n".join(dk.lines) + "\n", node_ids={k: v.ravel() for k, v in planes.items()},
-        part_ids={k: v for k, v in pid.items() if v in used_parts}, set_ids=sid, beams=n_beams,
-        shells=len(shells), mass=total)
+        deck="\n".join(dk.lines) + "\n",
+        node_ids={k: v.ravel() for k, v in planes.items()},
+        part_ids={k: v for k, v in pid.items() if v in used_parts},
+        set_ids=sid,
+        beams=n_beams,
+        shells=len(shells),
+        mass=total,
+    )

@@ -107,13 +107,20 @@ class Cladding:
 
 
 def _main_block() -> Block:
-    return Block("main block", 1000.0, 650.0, 450.0, 200.0, 0.342, 2.86e-11,
-                 BlockCurve(plateau=230e3, peak=230e3))
+    return Block("main block", 1000.0, 650.0, 450.0, 200.0, 0.342, 2.86e-11, BlockCurve(plateau=230e3, peak=230e3))
 
 
 def _bumper() -> Block:
-    return Block("bumper", 1000.0, 330.0, 90.0, 280.0, 1.711, 8.26e-11,
-                 BlockCurve(plateau=500e3, peak=1000e3, rise=3.0, drop_end=12.0))
+    return Block(
+        "bumper",
+        1000.0,
+        330.0,
+        90.0,
+        280.0,
+        1.711,
+        8.26e-11,
+        BlockCurve(plateau=500e3, peak=1000e3, rise=3.0, drop_end=12.0),
+    )
 
 
 @dataclass(frozen=True)
@@ -132,10 +139,16 @@ class ODBSpec:
         """The spec with plateaus from the crush strengths × face areas
         (R94: 222 kN and 565 kN) instead of the paper's curves."""
         m, b = self.main, self.bumper
-        return replace(self, main=replace(m, curve=replace(m.curve, plateau=m.strength * m.area,
-                                                           peak=m.strength * m.area)),
-                       bumper=replace(b, curve=replace(b.curve, plateau=b.strength * b.area,
-                                                       peak=b.curve.peak / b.curve.plateau * b.strength * b.area)))
+        return replace(
+            self,
+            main=replace(m, curve=replace(m.curve, plateau=m.strength * m.area, peak=m.strength * m.area)),
+            bumper=replace(
+                b,
+                curve=replace(
+                    b.curve, plateau=b.strength * b.area, peak=b.curve.peak / b.curve.plateau * b.strength * b.area
+                ),
+            ),
+        )
 
     @property
     def depth(self) -> float:
@@ -150,8 +163,9 @@ class ODBSpec:
         """Mass [t] of the cladding sheets: the block front, and the bumper
         front when there is a bumper."""
         c = self.cladding
-        return c.density * (self.main.area * c.thickness_middle + (self.bumper.area * c.thickness_front if bumper
-                                                                   else 0.0))
+        return c.density * (
+            self.main.area * c.thickness_middle + (self.bumper.area * c.thickness_front if bumper else 0.0)
+        )
 
     def check(self) -> None:
         for b in (self.main, self.bumper):

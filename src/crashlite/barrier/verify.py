@@ -45,10 +45,18 @@ from .simplified import Placement, simplified_barrier
 from .spec import ODBSpec
 
 
-def verify_barriers(directory: Path | str, spec: ODBSpec | None = None, element_size: float = 25.0,
-                    end_time: float = 0.045, overlaps: Sequence[float] = (1.0, 0.4), impactor: Impactor | None = None,
-                    progress: bool = False, report: bool = True, curves: str | ODBSpec = "calibrated",
-                    calibration_runs: int = 80) -> dict:
+def verify_barriers(
+    directory: Path | str,
+    spec: ODBSpec | None = None,
+    element_size: float = 25.0,
+    end_time: float = 0.045,
+    overlaps: Sequence[float] = (1.0, 0.4),
+    impactor: Impactor | None = None,
+    progress: bool = False,
+    report: bool = True,
+    curves: str | ODBSpec = "calibrated",
+    calibration_runs: int = 80,
+) -> dict:
     """Run the impactor on both barriers at each overlap into ``directory``
     and write the reports; returns the summary (also ``summary.json``).
 
@@ -79,33 +87,62 @@ def verify_barriers(directory: Path | str, spec: ODBSpec | None = None, element_
     cases: dict[tuple[str, float], Case] = {}
     calibration = None
     for ov in order:
-        cases["detailed", ov] = run_case("detailed", ov, out / "cases" / f"detailed_{round(100 * ov)}",
-                                         detailed_barrier(spec, pl, element_size=element_size), spec, imp,
-                                         end_time, progress)
+        cases["detailed", ov] = run_case(
+            "detailed",
+            ov,
+            out / "cases" / f"detailed_{round(100 * ov)}",
+            detailed_barrier(spec, pl, element_size=element_size),
+            spec,
+            imp,
+            end_time,
+            progress,
+        )
         if calibrate and calibration is None:
             from .calibrate import calibrate_curves
 
-            calibration = calibrate_curves(cases["detailed", ov], simple, imp, end_time, out / "calibration",
-                                           max_runs=calibration_runs, progress=progress)
+            calibration = calibrate_curves(
+                cases["detailed", ov],
+                simple,
+                imp,
+                end_time,
+                out / "calibration",
+                max_runs=calibration_runs,
+                progress=progress,
+            )
             calibration.write_curves(out / "calibration" / "curves.json")
             simple, source = calibration.spec, f"calibrated against {cases['detailed', ov].name}"
-        cases["simplified", ov] = run_case("simplified", ov, out / "cases" / f"simplified_{round(100 * ov)}",
-                                           simplified_barrier(simple, pl), simple, imp, end_time, progress)
-    summary = {"impactor": {"mass_kg": imp.mass * 1000.0, "speed_km_h": imp.speed * 3.6e-3},
-               "element_size_mm": element_size, "end_time_ms": end_time * 1e3,
-               "simplified_curves_source": source,
-               "curves": {b.name: b.curve.__dict__ for b in (simple.main, simple.bumper)},
-               "detailed_curves": {b.name: b.curve.__dict__ for b in (spec.main, spec.bumper)},
-               "calibration": None if calibration is None else calibration.summary(),
-               "cases": [c.summary() for c in cases.values()], "overlaps": []}
+        cases["simplified", ov] = run_case(
+            "simplified",
+            ov,
+            out / "cases" / f"simplified_{round(100 * ov)}",
+            simplified_barrier(simple, pl),
+            simple,
+            imp,
+            end_time,
+            progress,
+        )
+    summary = {
+        "impactor": {"mass_kg": imp.mass * 1000.0, "speed_km_h": imp.speed * 3.6e-3},
+        "element_size_mm": element_size,
+        "end_time_ms": end_time * 1e3,
+        "simplified_curves_source": source,
+        "curves": {b.name: b.curve.__dict__ for b in (simple.main, simple.bumper)},
+        "detailed_curves": {b.name: b.curve.__dict__ for b in (spec.main, spec.bumper)},
+        "calibration": None if calibration is None else calibration.summary(),
+        "cases": [c.summary() for c in cases.values()],
+        "overlaps": [],
+    }
     for ov in overlaps:
         d, s = cases["detailed", ov], cases["simplified", ov]
         t_c = crush_phase_end(d, s, spec)
-        entry = {"overlap_percent": 100.0 * ov,
-                 "rating_crush_phase": rate_pair(d, s, t_c), "rating_whole_event": rate_pair(d, s),
-                 "elements_percent": 100.0 * s.counts["elements"] / d.counts["elements"],
-                 "run_time_ratio": d.run_time / s.run_time if s.run_time > 0 else None,
-                 "run_time_reduction_percent": 100.0 * (1.0 - s.run_time / d.run_time) if d.run_time > 0 else None}
+        entry = {
+            "overlap_percent": 100.0 * ov,
+            "rating_crush_phase": rate_pair(d, s, t_c),
+            "rating_whole_event": rate_pair(d, s),
+            "elements_percent": 100.0 * s.counts["elements"] / d.counts["elements"],
+            "run_time_ratio": d.run_time / s.run_time if s.run_time > 0 else None,
+            "run_time_reduction_percent": 100.0 * (1.0 - s.run_time / d.run_time) if d.run_time > 0 else None,
+        }
         if report:
             entry["report"] = _compare_report(d, s, out / f"overlap_{round(100 * ov)}")
         summary["overlaps"].append(entry)
@@ -136,7 +173,12 @@ def _compare_report(d: Case, s: Case, folder: Path) -> str:
     from ..report.build import write_report
     from ..verify.compare import Options, compare_paths
 
-    c = compare_paths(d.folder / "out", s.folder / "out", Options(cfc=CFC, time_scale=1.0),
-                      names=(d.name, s.name), decks=(d.deck, s.deck))
+    c = compare_paths(
+        d.folder / "out",
+        s.folder / "out",
+        Options(cfc=CFC, time_scale=1.0),
+        names=(d.name, s.name),
+        decks=(d.deck, s.deck),
+    )
     write_report(c, folder)
     return str(folder / "index.html")

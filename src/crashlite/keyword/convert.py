@@ -45,9 +45,12 @@ def _codes(r: Record, name: str, problems: Collector) -> np.ndarray:
     col = np.asarray(r.rows[name])
     bad = np.flatnonzero((col < 0) | (col > 7))
     for i in bad[:10]:
-        problems.error(*r.source, r.name, name.upper(),
-                       f"node {int(r.rows['nid'][i])}: {name.upper()} = {int(col[i])} is not a "
-                       "constraint code (0 to 7)")
+        problems.error(
+            *r.source,
+            r.name,
+            name.upper(),
+            f"node {int(r.rows['nid'][i])}: {name.upper()} = {int(col[i])} is not a constraint code (0 to 7)",
+        )
     if len(bad) > 10:
         problems.error(*r.source, r.name, name.upper(), f"... and {len(bad) - 10} more nodes")
     return np.where((col < 0) | (col > 7), 0, col).astype(np.int8)
@@ -57,22 +60,35 @@ def _positive_ids(r: Record, ids: np.ndarray, what: str, field: str, problems: C
     """IDs must be positive: 0 reads as a blank ID, and LS-DYNA numbers entities from 1."""
     bad = np.flatnonzero(ids <= 0)
     for i in bad[:10]:
-        problems.error(*r.source, r.name, field,
-                       f"{what} ID {int(ids[i])} (row {int(i) + 1} of the block): IDs must be positive")
+        problems.error(
+            *r.source, r.name, field, f"{what} ID {int(ids[i])} (row {int(i) + 1} of the block): IDs must be positive"
+        )
     if len(bad) > 10:
         problems.error(*r.source, r.name, field, f"... and {len(bad) - 10} more {what} IDs not positive")
 
 
 def _mesh_tables(recs: dict[str, list[Record]], problems: Collector):
-    nodes = Nodes.concat([
-        Nodes(_i64(r.rows["nid"]), np.ascontiguousarray(_block(r, "x", "y", "z")),
-              _codes(r, "tc", problems), _codes(r, "rc", problems))
-        for r in recs.get("NODE", [])])
+    nodes = Nodes.concat(
+        [
+            Nodes(
+                _i64(r.rows["nid"]),
+                np.ascontiguousarray(_block(r, "x", "y", "z")),
+                _codes(r, "tc", problems),
+                _codes(r, "rc", problems),
+            )
+            for r in recs.get("NODE", [])
+        ]
+    )
     for r in recs.get("NODE", []):
         _positive_ids(r, r.rows["nid"], "node", "NID", problems)
-    for kw, what in (("ELEMENT_SHELL", "shell"), ("ELEMENT_SOLID", "solid"), ("ELEMENT_BEAM", "beam"),
-                     ("ELEMENT_DISCRETE", "discrete"), ("ELEMENT_MASS", "mass"),
-                     ("ELEMENT_INERTIA", "inertia")):
+    for kw, what in (
+        ("ELEMENT_SHELL", "shell"),
+        ("ELEMENT_SOLID", "solid"),
+        ("ELEMENT_BEAM", "beam"),
+        ("ELEMENT_DISCRETE", "discrete"),
+        ("ELEMENT_MASS", "mass"),
+        ("ELEMENT_INERTIA", "inertia"),
+    ):
         for r in recs.get(kw, []):
             _positive_ids(r, r.rows["eid"], what, "EID", problems)
     shell_parts = []
@@ -80,12 +96,19 @@ def _mesh_tables(recs: dict[str, list[Record]], problems: Collector):
         n = len(r.rows["eid"])
         higher = np.flatnonzero(np.any(_block(r, "n5", "n6", "n7", "n8") != 0, axis=1))
         if len(higher):
-            problems.error(*r.source, r.name, "N5",
-                           f"element {int(r.rows['eid'][higher[0]])}: 8-node shells are not supported")
+            problems.error(
+                *r.source, r.name, "N5", f"element {int(r.rows['eid'][higher[0]])}: 8-node shells are not supported"
+            )
         # optional per-element data absent: read-only broadcast views cost no memory
-        t = Shells(_i64(r.rows["eid"]), _i64(r.rows["pid"]), _block(r, "n1", "n2", "n3", "n4"),
-                   _absent((n, 4), np.nan), _absent(n, np.nan), _absent(n, 0, np.int64),
-                   _absent(n, np.nan))
+        t = Shells(
+            _i64(r.rows["eid"]),
+            _i64(r.rows["pid"]),
+            _block(r, "n1", "n2", "n3", "n4"),
+            _absent((n, 4), np.nan),
+            _absent(n, np.nan),
+            _absent(n, 0, np.int64),
+            _absent(n, np.nan),
+        )
         if "thic1" in r.rows:
             t.thickness = _nan0(np.stack(_rows(r, "thic1", "thic2", "thic3", "thic4"), axis=1))
             if "MCID" in r.options:
@@ -119,20 +142,35 @@ def _mesh_tables(recs: dict[str, list[Record]], problems: Collector):
         beam_parts.append((r, t))
     disc_parts = []
     for r in recs.get("ELEMENT_DISCRETE", []):
-        t = Discretes(_i64(r.rows["eid"]), _i64(r.rows["pid"]), _block(r, "n1", "n2"),
-                      _i64(r.rows["vid"]), r.rows["s"], _i64(r.rows["pf"]), r.rows["offset"])
+        t = Discretes(
+            _i64(r.rows["eid"]),
+            _i64(r.rows["pid"]),
+            _block(r, "n1", "n2"),
+            _i64(r.rows["vid"]),
+            r.rows["s"],
+            _i64(r.rows["pf"]),
+            r.rows["offset"],
+        )
         disc_parts.append((r, t))
     mass_parts = []
     for r in recs.get("ELEMENT_MASS", []):
         mass_parts.append((r, Masses(_i64(r.rows["eid"]), r.rows["id"], r.rows["mass"], _i64(r.rows["pid"]))))
     inertia_parts = []
     for r in recs.get("ELEMENT_INERTIA", []):
-        off = (np.stack(_rows(r, "x", "y", "z"), axis=1) if "x" in r.rows
-               else np.full((len(r.rows["eid"]), 3), np.nan))
-        inertia_parts.append((r, Inertias(
-            _i64(r.rows["eid"]), r.rows["nid"], _i64(r.rows["csid"]),
-            np.stack(_rows(r, "ixx", "ixy", "ixz", "iyy", "iyz", "izz"), axis=1),
-            r.rows["mass"], off)))
+        off = np.stack(_rows(r, "x", "y", "z"), axis=1) if "x" in r.rows else np.full((len(r.rows["eid"]), 3), np.nan)
+        inertia_parts.append(
+            (
+                r,
+                Inertias(
+                    _i64(r.rows["eid"]),
+                    r.rows["nid"],
+                    _i64(r.rows["csid"]),
+                    np.stack(_rows(r, "ixx", "ixy", "ixz", "iyy", "iyz", "izz"), axis=1),
+                    r.rows["mass"],
+                    off,
+                ),
+            )
+        )
     return nodes, shell_parts, solid_parts, beam_parts, disc_parts, mass_parts, inertia_parts
 
 
@@ -150,8 +188,13 @@ def _check_unique(ids: np.ndarray, what: str, parts, problems: Collector) -> Non
     for d in dup[:20]:
         where = [f"{r.source[0]}:{r.source[1]}" for r, t in parts if np.any(t.ids == d)]
         r = next(r for r, t in parts if np.any(t.ids == d))
-        problems.error(r.source[0], r.source[1], r.name, None,
-                       f"{what} ID {int(d)} defined more than once (in blocks at {', '.join(where)})")
+        problems.error(
+            r.source[0],
+            r.source[1],
+            r.name,
+            None,
+            f"{what} ID {int(d)} defined more than once (in blocks at {', '.join(where)})",
+        )
     if len(dup) > 20:
         problems.error("", 0, "", None, f"... {len(dup) - 20} more duplicate {what} IDs")
 
@@ -170,11 +213,13 @@ def _map_nodes(parts, cols, node_of, problems: Collector, what: str, allow_zero=
                 eid = int(t.ids[rows[i]])
                 nid = int(ids.reshape(len(ids), -1)[rows[i], cols_[i]])
                 field = f"N{cols_[i] + 1}" if ids.ndim == 2 else ("NID" if what == "inertia" else "ID")
-                problems.error(r.source[0], r.source[1], r.name, field,
-                               f"{what} {eid} refers to node {nid}, which is not defined")
+                problems.error(
+                    r.source[0], r.source[1], r.name, field, f"{what} {eid} refers to node {nid}, which is not defined"
+                )
             if len(rows) > 20:
-                problems.error(r.source[0], r.source[1], r.name, None,
-                               f"... {len(rows) - 20} more undefined node references")
+                problems.error(
+                    r.source[0], r.source[1], r.name, None, f"... {len(rows) - 20} more undefined node references"
+                )
         setattr(t, cols, idx.astype(np.int32, copy=False))
 
 
@@ -199,18 +244,31 @@ def build_model(records: list[Record | RawKeyword], problems: Collector) -> tupl
         else:
             _add_entity(getattr(model, g), rec.id, rec, problems, g[:-1])
     nodes, shells, solids, beams, discs, masses, inertias = _mesh_tables(bulk, problems)
-    _check_unique(nodes.ids, "node", [(r, t) for r in bulk.get("NODE", [])
-                                       for t in [Nodes(r.rows["nid"], None, None, None)]], problems)
+    _check_unique(
+        nodes.ids,
+        "node",
+        [(r, t) for r in bulk.get("NODE", []) for t in [Nodes(r.rows["nid"], None, None, None)]],
+        problems,
+    )
     node_of = index_map(nodes.ids)
-    for parts, what, col in ((shells, "shell", "nodes"), (solids, "solid", "nodes"),
-                             (beams, "beam", "nodes"), (discs, "discrete", "nodes"),
-                             (masses, "mass", "node"), (inertias, "inertia", "node")):
+    for parts, what, col in (
+        (shells, "shell", "nodes"),
+        (solids, "solid", "nodes"),
+        (beams, "beam", "nodes"),
+        (discs, "discrete", "nodes"),
+        (masses, "mass", "node"),
+        (inertias, "inertia", "node"),
+    ):
         _map_nodes(parts, col, node_of, problems, what)
     model.nodes = nodes
-    for name, parts, cls, what in (("shells", shells, Shells, "shell"), ("solids", solids, Solids, "solid"),
-                                   ("beams", beams, Beams, "beam"), ("discretes", discs, Discretes, "discrete"),
-                                   ("masses", masses, Masses, "mass"),
-                                   ("inertias", inertias, Inertias, "inertia")):
+    for name, parts, cls, what in (
+        ("shells", shells, Shells, "shell"),
+        ("solids", solids, Solids, "solid"),
+        ("beams", beams, Beams, "beam"),
+        ("discretes", discs, Discretes, "discrete"),
+        ("masses", masses, Masses, "mass"),
+        ("inertias", inertias, Inertias, "inertia"),
+    ):
         setattr(model, name, cls.concat([t for _, t in parts]))
         _check_unique(getattr(model, name).ids, what, parts, problems)
     # shells: triangles written as n4 = 0 or n4 = n3 are stored with n4 = n3
@@ -226,21 +284,24 @@ def _add_entity(store: dict, key, rec: Record, problems: Collector, what: str) -
         # blank, or unreadable (already reported): nothing can refer to it
         fld = rec.spec.id_field
         file, line = rec.where(fld)
-        if not any(p.file == file and p.line == line and p.field == fld.upper()
-                   for p in problems.problems):
-            problems.error(file, line, rec.name, fld.upper(),
-                           f"{fld.upper()} is blank: the definition needs an ID")
+        if not any(p.file == file and p.line == line and p.field == fld.upper() for p in problems.problems):
+            problems.error(file, line, rec.name, fld.upper(), f"{fld.upper()} is blank: the definition needs an ID")
         return
     if key in store:
         first = store[key].source
-        problems.error(rec.source[0], rec.source[1], rec.name, None,
-                       f"{what} ID {key if not isinstance(key, tuple) else key[1]} defined twice "
-                       f"(first at {first[0]}:{first[1]})")
+        problems.error(
+            rec.source[0],
+            rec.source[1],
+            rec.name,
+            None,
+            f"{what} ID {key if not isinstance(key, tuple) else key[1]} defined twice (first at {first[0]}:{first[1]})",
+        )
         return
     store[key] = rec
 
 
 # --- Model -> records (for the writer) ---------------------------------------
+
 
 def _split(mask: np.ndarray):
     return [m for m in (~mask, mask) if m.any()]
@@ -258,9 +319,21 @@ def mesh_records(model: Model) -> list[Record]:
 
     n = model.nodes
     if len(n):
-        out.append(Record("NODE", frozenset(), {}, {
-            "nid": n.ids, "x": n.xyz[:, 0], "y": n.xyz[:, 1], "z": n.xyz[:, 2],
-            "tc": n.tc.astype(np.int64), "rc": n.rc.astype(np.int64)}))
+        out.append(
+            Record(
+                "NODE",
+                frozenset(),
+                {},
+                {
+                    "nid": n.ids,
+                    "x": n.xyz[:, 0],
+                    "y": n.xyz[:, 1],
+                    "z": n.xyz[:, 2],
+                    "tc": n.tc.astype(np.int64),
+                    "rc": n.rc.astype(np.int64),
+                },
+            )
+        )
     s = model.shells
     if len(s):
         has_t = ~np.all(np.isnan(s.thickness), axis=1) | ~np.isnan(s.beta) | (s.mcid != 0)
@@ -299,10 +372,12 @@ def mesh_records(model: Model) -> list[Record]:
         out.append(Record("ELEMENT_SOLID", frozenset(), {}, rows))
     b = model.beams
     if len(b):
-        opt_cols = {"THICKNESS": ~np.all(np.isnan(b.params), axis=1),
-                    "PID": np.any(b.pid2 != 0, axis=1),
-                    "OFFSET": ~np.all(np.isnan(b.offsets), axis=1),
-                    "ORIENTATION": ~np.all(np.isnan(b.orientation), axis=1)}
+        opt_cols = {
+            "THICKNESS": ~np.all(np.isnan(b.params), axis=1),
+            "PID": np.any(b.pid2 != 0, axis=1),
+            "OFFSET": ~np.all(np.isnan(b.offsets), axis=1),
+            "ORIENTATION": ~np.all(np.isnan(b.orientation), axis=1),
+        }
         key = sum(v.astype(int) << i for i, v in enumerate(opt_cols.values()))
         for k in np.unique(key):
             t = b.take(key == k)
@@ -315,21 +390,35 @@ def mesh_records(model: Model) -> list[Record]:
             if "PID" in opts:
                 rows.update({"pid1": t.pid2[:, 0], "pid2": t.pid2[:, 1]})
             if "OFFSET" in opts:
-                rows.update(dict(zip(("wx1", "wy1", "wz1", "wx2", "wy2", "wz2"),
-                                     np.nan_to_num(t.offsets).T)))
+                rows.update(dict(zip(("wx1", "wy1", "wz1", "wx2", "wy2", "wz2"), np.nan_to_num(t.offsets).T)))
             if "ORIENTATION" in opts:
                 rows.update(dict(zip(("vx", "vy", "vz"), np.nan_to_num(t.orientation).T)))
             out.append(Record("ELEMENT_BEAM", frozenset(opts), {}, rows))
     d = model.discretes
     if len(d):
         conn = ids_of(d.nodes)
-        out.append(Record("ELEMENT_DISCRETE", frozenset(), {}, {
-            "eid": d.ids, "pid": d.pid, "n1": conn[:, 0], "n2": conn[:, 1], "vid": d.vid,
-            "s": d.scale, "pf": d.pf, "offset": d.offset}))
+        out.append(
+            Record(
+                "ELEMENT_DISCRETE",
+                frozenset(),
+                {},
+                {
+                    "eid": d.ids,
+                    "pid": d.pid,
+                    "n1": conn[:, 0],
+                    "n2": conn[:, 1],
+                    "vid": d.vid,
+                    "s": d.scale,
+                    "pf": d.pf,
+                    "offset": d.offset,
+                },
+            )
+        )
     m = model.masses
     if len(m):
-        out.append(Record("ELEMENT_MASS", frozenset(), {}, {
-            "eid": m.ids, "id": ids_of(m.node), "mass": m.mass, "pid": m.pid}))
+        out.append(
+            Record("ELEMENT_MASS", frozenset(), {}, {"eid": m.ids, "id": ids_of(m.node), "mass": m.mass, "pid": m.pid})
+        )
     it = model.inertias
     if len(it):
         has_off = ~np.all(np.isnan(it.offset), axis=1)

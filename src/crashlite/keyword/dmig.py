@@ -77,9 +77,9 @@ def _fields(line: str) -> list[str]:
     head = line[:8]
     if head.strip().endswith("*") or head.startswith("*"):
         body = line[8:72].ljust(64)  # (blank trailing fields may be cut off)
-        return [head.strip()] + [body[i:i + 16].strip() for i in range(0, len(body), 16)]
+        return [head.strip()] + [body[i : i + 16].strip() for i in range(0, len(body), 16)]
     body = line[8:72].ljust(64)
-    return [head.strip()] + [body[i:i + 8].strip() for i in range(0, len(body), 8)]
+    return [head.strip()] + [body[i : i + 8].strip() for i in range(0, len(body), 8)]
 
 
 def _number(text: str) -> float:

@@ -74,6 +74,7 @@ class ExpressionError(ValueError):
 
 # ---------------------------------------------------------------- tokenizer
 
+
 class _Tok(NamedTuple):
     kind: str  # "num", "name", "op" or "end"
     text: str  # for names: lower-cased, "&" stripped
@@ -120,8 +121,7 @@ def _tokenize(expr: str) -> list[_Tok]:
                     raise ExpressionError(f"number {shown!r} is out of range", expr, pos)
             else:  # digits alone: an integer, held to MAX_INT_BITS as any result
                 if len(text) > MAX_INT_BITS // 3 or int(text).bit_length() > MAX_INT_BITS:
-                    raise ExpressionError(f"integer {shown!r} is too large (more than "
-                                          f"{MAX_INT_BITS} bits)", expr, pos)
+                    raise ExpressionError(f"integer {shown!r} is too large (more than {MAX_INT_BITS} bits)", expr, pos)
                 value = int(text)
             toks.append(_Tok("num", text, pos, value))
         elif kind == "name":
@@ -133,6 +133,7 @@ def _tokenize(expr: str) -> list[_Tok]:
 
 
 # ---------------------------------------------------------------- functions
+
 
 def _trunc_div(a: int, b: int) -> int:
     """Fortran integer division (Python's // floors instead)."""
@@ -181,6 +182,7 @@ def _minmax(pick: Callable[..., Number]) -> Callable[..., Number]:
         v = pick(args)
         # Mixed integer/real arguments give a real, as any other operation.
         return v if all(isinstance(a, int) for a in args) else float(v)
+
     return f
 
 
@@ -190,9 +192,10 @@ def _real(fn: Callable[..., float]) -> Callable[..., float]:
 
 # name -> (minimum args, maximum args or None for unlimited, implementation)
 _FUNCS: dict[str, tuple[int, int | None, Callable[..., Number]]] = {
-    **{name: (1, 1, _real(getattr(math, name))) for name in (
-        "sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh",
-        "sqrt", "exp", "log10")},
+    **{
+        name: (1, 1, _real(getattr(math, name)))
+        for name in ("sin", "cos", "tan", "asin", "acos", "atan", "sinh", "cosh", "tanh", "sqrt", "exp", "log10")
+    },
     "log": (1, 1, _real(math.log)),  # wrapped so that log(x, base) is refused
     "atan2": (2, 2, _real(math.atan2)),
     "abs": (1, 1, abs),
@@ -211,6 +214,7 @@ _FUNCS: dict[str, tuple[int, int | None, Callable[..., Number]]] = {
 # The parser is written once and driven by one of two action sets: one that
 # only collects names (names_used, and the syntax check before evaluating)
 # and one that computes.
+
 
 class _Names:
     def __init__(self) -> None:
@@ -313,8 +317,7 @@ class _Compute:
             raise self.fail(f"division by zero in {tok.text}()", tok.pos) from None
         except (ValueError, OverflowError):
             shown = ", ".join(repr(a) for a in args)
-            raise self.fail(f"{tok.text}({shown}) is outside the function's domain or range",
-                            tok.pos) from None
+            raise self.fail(f"{tok.text}({shown}) is outside the function's domain or range", tok.pos) from None
         return self.finite(r, tok.pos)
 
 
@@ -400,8 +403,7 @@ class _Parser:
     def close(self, opening: _Tok) -> None:
         tok = self.next()
         if tok.text != ")" or tok.kind != "op":
-            raise self.fail(f"expected ')' to close '(' at position {opening.pos}, "
-                            f"found {_describe(tok)}", tok.pos)
+            raise self.fail(f"expected ')' to close '(' at position {opening.pos}, found {_describe(tok)}", tok.pos)
 
     def call(self, name: _Tok):
         # Checked before the arguments are parsed so the error points at the
@@ -420,12 +422,12 @@ class _Parser:
         if len(args) < lo or (hi is not None and len(args) > hi):
             want = f"at least {lo}" if hi is None else str(lo)
             plural = "" if want == "1" else "s"
-            raise self.fail(f"{name.text}() takes {want} argument{plural}, got {len(args)}",
-                            name.pos)
+            raise self.fail(f"{name.text}() takes {want} argument{plural}, got {len(args)}", name.pos)
         return self.act.call(name, args)
 
 
 # ---------------------------------------------------------------- public API
+
 
 def names_used(expr: str) -> set[str]:
     """Lower-cased parameter names referenced by ``expr`` (function names excluded).

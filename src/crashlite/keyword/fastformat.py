@@ -74,7 +74,8 @@ def fixed_lines(columns, kinds, widths) -> list[str] | None:
     total = int(sum(widths))
     out = np.empty((n, total + 1), np.uint8)
     out[:, total] = 10  # newline: one decode and one split make the lines
-    if not layout_rows(int_arr, reals, real_len, np.array(kinds, np.int64), np.array(slot, np.int64),
-                       np.array(widths, np.int64), out):
+    if not layout_rows(
+        int_arr, reals, real_len, np.array(kinds, np.int64), np.array(slot, np.int64), np.array(widths, np.int64), out
+    ):
         return None
     return out.tobytes()[:-1].decode("latin-1").split("\n")

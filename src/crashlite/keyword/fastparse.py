@@ -206,8 +206,26 @@ def _free_token(buf, s, e, j):
 
 
 @njit(cache=True, inline="always")
-def _parse_row(buf, starts, ends, r, lines_per_row, card_of, index_in_card, col, width,
-               is_int, slot, def_i, def_f, out_i, out_f, free, card_end, pow10):
+def _parse_row(
+    buf,
+    starts,
+    ends,
+    r,
+    lines_per_row,
+    card_of,
+    index_in_card,
+    col,
+    width,
+    is_int,
+    slot,
+    def_i,
+    def_f,
+    out_i,
+    out_f,
+    free,
+    card_end,
+    pow10,
+):
     for c in range(lines_per_row):
         li = r * lines_per_row + c
         free[c] = False
@@ -268,8 +286,23 @@ def _parse_row(buf, starts, ends, r, lines_per_row, card_of, index_in_card, col,
 
 
 @njit(cache=True, parallel=True)
-def parse_rows(buf, starts, ends, lines_per_row, card_of, index_in_card, col, width,
-               is_int, slot, def_i, def_f, out_i, out_f, status):
+def parse_rows(
+    buf,
+    starts,
+    ends,
+    lines_per_row,
+    card_of,
+    index_in_card,
+    col,
+    width,
+    is_int,
+    slot,
+    def_i,
+    def_f,
+    out_i,
+    out_f,
+    status,
+):
     """Parse rows of numeric fields, in parallel chunks of rows.
 
     ``starts``/``ends``: bounds of the data lines of the block (comments
@@ -292,8 +325,26 @@ def parse_rows(buf, starts, ends, lines_per_row, card_of, index_in_card, col, wi
         free = np.zeros(lines_per_row, dtype=np.bool_)
         pow10 = _POW10
         for r in range(ch * chunk, min(nrow, (ch + 1) * chunk)):
-            status[r] = _parse_row(buf, starts, ends, r, lines_per_row, card_of, index_in_card, col,
-                                   width, is_int, slot, def_i, def_f, out_i, out_f, free, card_end, pow10)
+            status[r] = _parse_row(
+                buf,
+                starts,
+                ends,
+                r,
+                lines_per_row,
+                card_of,
+                index_in_card,
+                col,
+                width,
+                is_int,
+                slot,
+                def_i,
+                def_f,
+                out_i,
+                out_f,
+                free,
+                card_end,
+                pow10,
+            )
     return nrow
 
 

@@ -333,20 +333,85 @@ def seeds() -> list[dict[str, bytes]]:
 # ------------------------------------------------------------------ mutations
 
 GARBAGE = (
-    "abc", "1e999", "-1e999", "nan", "inf", "&nope", "-&nope", "&", "\x00", "1e", "1.2.3", "--1",
-    "+", "-", ".", "e5", "0x10", "1,5", "99999999999999999999", "18446744073709551619",
-    "-9223372036854775809", "2147483648", "0", "-1", "-7", "300", "8", "1.5", "1d3", "1.5-3",
-    "\xa0.85e-09", "1\xa02", "\t1", "*", "$", "é", "\xff\xfe", "&x*2", "2**4000", "   ", "1e308",
-    "4.9e-324", "-0", "1" * 400,
+    "abc",
+    "1e999",
+    "-1e999",
+    "nan",
+    "inf",
+    "&nope",
+    "-&nope",
+    "&",
+    "\x00",
+    "1e",
+    "1.2.3",
+    "--1",
+    "+",
+    "-",
+    ".",
+    "e5",
+    "0x10",
+    "1,5",
+    "99999999999999999999",
+    "18446744073709551619",
+    "-9223372036854775809",
+    "2147483648",
+    "0",
+    "-1",
+    "-7",
+    "300",
+    "8",
+    "1.5",
+    "1d3",
+    "1.5-3",
+    "\xa0.85e-09",
+    "1\xa02",
+    "\t1",
+    "*",
+    "$",
+    "é",
+    "\xff\xfe",
+    "&x*2",
+    "2**4000",
+    "   ",
+    "1e308",
+    "4.9e-324",
+    "-0",
+    "1" * 400,
 )
 
 _RANDOM_LINES = (
-    "*NODE", "*ELEMENT_SHELL", "*PART", "*END", "*KEYWORD", "*KEYWORD LONG=Y", "*KEYWORD I10=Y",
-    "*INCLUDE", "*PARAMETER", "*PARAMETER_EXPRESSION", "*SET_NODE_LIST", "*SET_PART_ADD",
-    "*SECTION_SHELL_TITLE", "*MAT_ELASTIC", "*CONTACT_AUTOMATIC_SINGLE_SURFACE", "*RIGIDWALL_PLANAR",
-    "*DEFINE_CURVE", "*DEFINE_TRANSFORMATION", "*INCLUDE_TRANSFORM", "*INCLUDE_PATH", "*NODE +",
-    "*ELEMENT_SOLID%", "*BOUNDARY_SPC_SET", "*CONSTRAINED_NODAL_RIGID_BODY", "*ELEMENT_MASS_NODE_SET",
-    "*", "$ comment", "", ",,,,", "1,2,3,4,5,6,7,8,9,10,11,12", "R a       2**62", "I b       &b+1",
+    "*NODE",
+    "*ELEMENT_SHELL",
+    "*PART",
+    "*END",
+    "*KEYWORD",
+    "*KEYWORD LONG=Y",
+    "*KEYWORD I10=Y",
+    "*INCLUDE",
+    "*PARAMETER",
+    "*PARAMETER_EXPRESSION",
+    "*SET_NODE_LIST",
+    "*SET_PART_ADD",
+    "*SECTION_SHELL_TITLE",
+    "*MAT_ELASTIC",
+    "*CONTACT_AUTOMATIC_SINGLE_SURFACE",
+    "*RIGIDWALL_PLANAR",
+    "*DEFINE_CURVE",
+    "*DEFINE_TRANSFORMATION",
+    "*INCLUDE_TRANSFORM",
+    "*INCLUDE_PATH",
+    "*NODE +",
+    "*ELEMENT_SOLID%",
+    "*BOUNDARY_SPC_SET",
+    "*CONSTRAINED_NODAL_RIGID_BODY",
+    "*ELEMENT_MASS_NODE_SET",
+    "*",
+    "$ comment",
+    "",
+    ",,,,",
+    "1,2,3,4,5,6,7,8,9,10,11,12",
+    "R a       2**62",
+    "I b       &b+1",
     "R c       1e300*1e300",
 )
 
@@ -425,8 +490,7 @@ def m_nul(rng, files, name):
 def m_random_line(rng, files, name):
     ln = _lines(files[name])
     i = rng.randrange(len(ln) + 1)
-    new = (rng.choice(_RANDOM_LINES).encode() if rng.random() < 0.6
-           else _printable(rng, rng.randrange(1, 90)))
+    new = rng.choice(_RANDOM_LINES).encode() if rng.random() < 0.6 else _printable(rng, rng.randrange(1, 90))
     ln.insert(i, new)
     files[name] = _join(ln)
 
@@ -488,9 +552,9 @@ def m_missing_include(rng, files, name):
 
 
 def m_blank_include(rng, files, name):
-    files[name] = _insert_after_keyword(files[name], rng.choice((b"*INCLUDE", b"*INCLUDE\n   ",
-                                                                  b"*INCLUDE_TRANSFORM",
-                                                                  b"*INCLUDE_PATH\n")))
+    files[name] = _insert_after_keyword(
+        files[name], rng.choice((b"*INCLUDE", b"*INCLUDE\n   ", b"*INCLUDE_TRANSFORM", b"*INCLUDE_PATH\n"))
+    )
 
 
 def m_include_odd(rng, files, name):
@@ -514,22 +578,27 @@ def m_include_odd(rng, files, name):
 def m_whole_file(rng, files, name):
     """The main file replaced: binary, NUL bytes, empty, text without keywords."""
     kind = rng.randrange(4)
-    files["main.k"] = (bytes(rng.randrange(256) for _ in range(rng.randrange(1, 500))),
-                       b"\x00" * rng.randrange(1, 500), b"",
-                       _printable(rng, 200))[kind]
+    files["main.k"] = (
+        bytes(rng.randrange(256) for _ in range(rng.randrange(1, 500))),
+        b"\x00" * rng.randrange(1, 500),
+        b"",
+        _printable(rng, 200),
+    )[kind]
 
 
 def m_parameter(rng, files, name):
     """A parameter chain with absurd magnitudes, or a self reference."""
-    chain = rng.choice((
-        b"*PARAMETER_EXPRESSION\nI a       2**4000\nI b       a*a\nI c       b*b\nI d       c*c\n",
-        b"*PARAMETER_EXPRESSION\nI a       2**62\nI b       a*a*a*a\nR c       b*1.0\n",
-        b"*PARAMETER_EXPRESSION\nR a       1e300\nR b       a*a\n",
-        b"*PARAMETER_EXPRESSION\nI a       a+1\n",
-        b"*PARAMETER\nI big     99999999999999999999999\n",
-        b"*PARAMETER\nR x       1e999\n",
-        b"*PARAMETER_EXPRESSION\nR x       " + b"(" * 300 + b"1" + b")" * 300 + b"\n",
-    ))
+    chain = rng.choice(
+        (
+            b"*PARAMETER_EXPRESSION\nI a       2**4000\nI b       a*a\nI c       b*b\nI d       c*c\n",
+            b"*PARAMETER_EXPRESSION\nI a       2**62\nI b       a*a*a*a\nR c       b*1.0\n",
+            b"*PARAMETER_EXPRESSION\nR a       1e300\nR b       a*a\n",
+            b"*PARAMETER_EXPRESSION\nI a       a+1\n",
+            b"*PARAMETER\nI big     99999999999999999999999\n",
+            b"*PARAMETER\nR x       1e999\n",
+            b"*PARAMETER_EXPRESSION\nR x       " + b"(" * 300 + b"1" + b")" * 300 + b"\n",
+        )
+    )
     files[name] = _insert_after_keyword(files[name], chain.rstrip(b"\n"))
 
 
@@ -550,15 +619,28 @@ def _insert_after_keyword(data: bytes, text: bytes) -> bytes:
 
 
 MUTATIONS = {
-    "truncate": (m_truncate, 6), "delete_lines": (m_delete_lines, 8),
-    "duplicate_lines": (m_duplicate_lines, 6), "shift": (m_shift, 6), "garbage": (m_garbage, 14),
-    "nul": (m_nul, 3), "random_line": (m_random_line, 6), "swap_keyword": (m_swap_keyword, 3),
-    "crlf": (m_crlf, 2), "cr_only": (m_cr_only, 2), "mixed_endings": (m_mixed_endings, 1),
-    "tabs": (m_tabs, 2), "bom": (m_bom, 2), "latin1": (m_latin1, 3),
-    "include_loop": (m_include_loop, 1), "self_include": (m_self_include, 1),
-    "missing_include": (m_missing_include, 1), "blank_include": (m_blank_include, 1),
-    "include_odd": (m_include_odd, 1), "whole_file": (m_whole_file, 1),
-    "parameter": (m_parameter, 2), "deep_include": (m_deep_include, 1),
+    "truncate": (m_truncate, 6),
+    "delete_lines": (m_delete_lines, 8),
+    "duplicate_lines": (m_duplicate_lines, 6),
+    "shift": (m_shift, 6),
+    "garbage": (m_garbage, 14),
+    "nul": (m_nul, 3),
+    "random_line": (m_random_line, 6),
+    "swap_keyword": (m_swap_keyword, 3),
+    "crlf": (m_crlf, 2),
+    "cr_only": (m_cr_only, 2),
+    "mixed_endings": (m_mixed_endings, 1),
+    "tabs": (m_tabs, 2),
+    "bom": (m_bom, 2),
+    "latin1": (m_latin1, 3),
+    "include_loop": (m_include_loop, 1),
+    "self_include": (m_self_include, 1),
+    "missing_include": (m_missing_include, 1),
+    "blank_include": (m_blank_include, 1),
+    "include_odd": (m_include_odd, 1),
+    "whole_file": (m_whole_file, 1),
+    "parameter": (m_parameter, 2),
+    "deep_include": (m_deep_include, 1),
 }
 
 

@@ -24,9 +24,28 @@ INT, FLOAT, STR = "i", "f", "s"
 # Entity kinds an ID field can reference. Offsets of *INCLUDE_TRANSFORM are
 # applied per kind (IDNOFF, IDEOFF, IDPOFF, IDMOFF, IDSOFF, IDFOFF, IDDOFF).
 REF_KINDS = (
-    "node", "elem", "part", "sec", "mat", "eos", "hg", "curve", "vector",
-    "coord", "set_node", "set_part", "set_shell", "set_solid", "set_beam",
-    "set_discrete", "set_segment", "set_any", "rigidwall", "contact", "sect", "sdo",
+    "node",
+    "elem",
+    "part",
+    "sec",
+    "mat",
+    "eos",
+    "hg",
+    "curve",
+    "vector",
+    "coord",
+    "set_node",
+    "set_part",
+    "set_shell",
+    "set_solid",
+    "set_beam",
+    "set_discrete",
+    "set_segment",
+    "set_any",
+    "rigidwall",
+    "contact",
+    "sect",
+    "sdo",
 )
 
 

@@ -82,8 +82,7 @@ _KINDS = {
     "IDEOFF": ("elem",),
     "IDPOFF": ("part", "sec"),
     "IDMOFF": ("mat", "eos", "hg"),
-    "IDSOFF": ("set_node", "set_part", "set_shell", "set_solid", "set_beam", "set_discrete",
-               "set_segment", "set_any"),
+    "IDSOFF": ("set_node", "set_part", "set_shell", "set_solid", "set_beam", "set_discrete", "set_segment", "set_any"),
     "IDFOFF": ("curve",),
     "IDDOFF": ("vector", "coord", "sdo"),
     "IDROFF": ("rigidwall", "contact", "sect"),
@@ -101,7 +100,7 @@ def include_context(blk: Block, problems: Collector) -> IncludeContext | None:
         if k >= len(lines):
             return {n: 0 for n in names}
         text, ln = lines[k]
-        toks = text.split(",") if "," in text else [text[i:i + 10] for i in range(0, 10 * len(names), 10)]
+        toks = text.split(",") if "," in text else [text[i : i + 10] for i in range(0, 10 * len(names), 10)]
         out = {}
         for n, t in zip(names, toks + [""] * len(names)):
             t = t.strip()
@@ -118,15 +117,19 @@ def include_context(blk: Block, problems: Collector) -> IncludeContext | None:
     c5 = fields(4, ("TRANID",), INT)
     for name in ("FCTMAS", "FCTTIM", "FCTLEN"):
         if c4[name] not in (0.0, 1.0):
-            problems.error(blk.file, lines[3][1], blk.keyword, name,
-                           "unit conversion factors of *INCLUDE_TRANSFORM are not supported; "
-                           "convert the included file's units first")
+            problems.error(
+                blk.file,
+                lines[3][1],
+                blk.keyword,
+                name,
+                "unit conversion factors of *INCLUDE_TRANSFORM are not supported; "
+                "convert the included file's units first",
+            )
     offsets = {}
     for key, val in {**c2, **c3}.items():
         for kind in _KINDS[key]:
             offsets[kind] = int(val)
     return IncludeContext(offsets, int(c5["TRANID"]), blk.file, blk.line)
-
 
 
 def read_source(path: Path) -> SourceFile:
@@ -218,8 +221,15 @@ class Lexer:
                 return cand
         return None
 
-    def walk(self, path: Path, parent_scope: int = -1, contexts: tuple = (),
-             stack: tuple = (), mode: str = STD, via: tuple | None = None) -> None:
+    def walk(
+        self,
+        path: Path,
+        parent_scope: int = -1,
+        contexts: tuple = (),
+        stack: tuple = (),
+        mode: str = STD,
+        via: tuple | None = None,
+    ) -> None:
         """Blocks of ``path`` and its includes; ``via``: (file, line, keyword)
         of the *INCLUDE that names it (None for the deck itself)."""
         path = Path(path)
@@ -229,9 +239,14 @@ class Lexer:
         if len(stack) >= MAX_INCLUDE_DEPTH:
             chain = [p.name for p in stack] + [path.name]
             shown = " -> ".join(chain[:3] + ["..."] + chain[-3:])
-            self.problems.error(via[0], via[1], via[2], "FILENAME",
-                                f"includes nested more than {MAX_INCLUDE_DEPTH} deep ({shown}); "
-                                "an include chain this deep is a mistake (or a loop through copies)")
+            self.problems.error(
+                via[0],
+                via[1],
+                via[2],
+                "FILENAME",
+                f"includes nested more than {MAX_INCLUDE_DEPTH} deep ({shown}); "
+                "an include chain this deep is a mistake (or a loop through copies)",
+            )
             return
         try:
             src = read_source(path)
@@ -253,8 +268,7 @@ class Lexer:
                 continue
             if name == "END":
                 break
-            blk = Block(name, line_text, kmode, src, kw_index, data, stop, scope, contexts,
-                        len(self.blocks))
+            blk = Block(name, line_text, kmode, src, kw_index, data, stop, scope, contexts, len(self.blocks))
             if name.startswith("INCLUDE"):
                 self._include(blk, relative_paths, scope, contexts, stack, mode)
                 continue
@@ -271,31 +285,36 @@ class Lexer:
             return False
         if src.nul >= 0:
             line = int(np.searchsorted(src.starts, src.nul, side="right"))
-            self.problems.error(path, line, "", None,
-                                f"binary data (a NUL byte at line {line}){from_}: not a keyword deck")
+            self.problems.error(
+                path, line, "", None, f"binary data (a NUL byte at line {line}){from_}: not a keyword deck"
+            )
             return False
         head = src.buf[:65536]
         ctrl = int(np.count_nonzero(((head < 32) & ~np.isin(head, (9, 10, 12, 13))) | (head == 127)))
         if ctrl > max(8, len(head) // 100):  # text has next to none; a stray one is a field's problem
-            self.problems.error(path, 0, "", None, f"binary data ({ctrl} control bytes in the first "
-                                f"{len(head)}){from_}: not a keyword deck")
+            self.problems.error(
+                path,
+                0,
+                "",
+                None,
+                f"binary data ({ctrl} control bytes in the first {len(head)}){from_}: not a keyword deck",
+            )
             return False
         first = blocks[0][0] if blocks else len(src.starts)
         data = [i for i in range(first) if src.text(i).strip(" \t") and not src.text(i).startswith("$")]
         if not blocks:
             if via is None:
                 what = "the file is empty" if not len(src.buf) else "no keyword (a line starting with *)"
-                self.problems.error(path, 0, "", None,
-                                    f"not a keyword deck: {what}; a deck starts with *KEYWORD")
+                self.problems.error(path, 0, "", None, f"not a keyword deck: {what}; a deck starts with *KEYWORD")
             elif data:
-                self.problems.error(path, data[0] + 1, "", None,
-                                    f"holds text but no keyword{from_}: not a keyword deck")
+                self.problems.error(
+                    path, data[0] + 1, "", None, f"holds text but no keyword{from_}: not a keyword deck"
+                )
             else:
                 self.problems.warn(path, 0, "", None, f"holds no keyword{from_}")
             return bool(not data and via is not None)
         if data:
-            self.problems.warn(path, data[0] + 1, "", None,
-                               f"{len(data)} line(s) before the first keyword ignored")
+            self.problems.warn(path, data[0] + 1, "", None, f"{len(data)} line(s) before the first keyword ignored")
         return True
 
     def _include(self, blk: Block, relative_paths, scope, contexts, stack, mode) -> None:
@@ -307,8 +326,11 @@ class Lexer:
                 if ln.strip():
                     p = Path(ln.strip())
                     if not p.is_absolute():
-                        p = base / p if name == "INCLUDE_PATH_RELATIVE" else (
-                            Path.cwd() / p if _is_dir(Path.cwd() / p) else base / p)
+                        p = (
+                            base / p
+                            if name == "INCLUDE_PATH_RELATIVE"
+                            else (Path.cwd() / p if _is_dir(Path.cwd() / p) else base / p)
+                        )
                     (relative_paths if name == "INCLUDE_PATH_RELATIVE" else self.include_paths).append(p)
             return
         if name == "INCLUDE":
@@ -324,21 +346,34 @@ class Lexer:
                 return
             self._walk_named(blk, 0, lines[0], relative_paths, scope, (*contexts, ctx), stack, mode)
             return
-        self.problems.error(blk.file, blk.line, name, None,
-                            "unsupported include keyword (use *INCLUDE, *INCLUDE_PATH, "
-                            "*INCLUDE_PATH_RELATIVE or *INCLUDE_TRANSFORM)")
+        self.problems.error(
+            blk.file,
+            blk.line,
+            name,
+            None,
+            "unsupported include keyword (use *INCLUDE, *INCLUDE_PATH, *INCLUDE_PATH_RELATIVE or *INCLUDE_TRANSFORM)",
+        )
 
     def _walk_named(self, blk, j, fname, relative_paths, scope, contexts, stack, mode):
         fname = fname.strip()
         if not fname:
-            self.problems.error(blk.file, blk.line_no(j) if len(blk.data) else blk.line, blk.keyword,
-                                "FILENAME", "the file name is blank")
+            self.problems.error(
+                blk.file,
+                blk.line_no(j) if len(blk.data) else blk.line,
+                blk.keyword,
+                "FILENAME",
+                "the file name is blank",
+            )
             return
         target = self.resolve(fname, blk.src.path, [*relative_paths, *self.include_paths])
         if target is None:
-            self.problems.error(blk.file, blk.line_no(j), blk.keyword, "FILENAME",
-                                f"include file {fname!r} not found (looked in "
-                                f"{os.fspath(blk.src.path.parent)} and the include paths)")
+            self.problems.error(
+                blk.file,
+                blk.line_no(j),
+                blk.keyword,
+                "FILENAME",
+                f"include file {fname!r} not found (looked in {os.fspath(blk.src.path.parent)} and the include paths)",
+            )
             return
         self.walk(target, scope, contexts, stack, mode, (blk.file, blk.line_no(j), blk.keyword))
 

@@ -24,8 +24,13 @@ class Parameter:
     source: tuple[str, int] | None = None
 
 
-PARAMETER_KEYWORDS = ("PARAMETER", "PARAMETER_LOCAL", "PARAMETER_EXPRESSION",
-                      "PARAMETER_EXPRESSION_LOCAL", "PARAMETER_DUPLICATION")
+PARAMETER_KEYWORDS = (
+    "PARAMETER",
+    "PARAMETER_LOCAL",
+    "PARAMETER_EXPRESSION",
+    "PARAMETER_EXPRESSION_LOCAL",
+    "PARAMETER_DUPLICATION",
+)
 
 
 class ParameterTable:
@@ -83,15 +88,21 @@ class ParameterTable:
                     continue
                 t, name = head[0].upper(), head[1:].strip(BLANKS)
                 if t not in "RIC" or not name:
-                    problems.error(blk.file, lineno, kw, "PRMR",
-                                   f"expected a type letter R, I or C followed by a name, got {head!r}")
+                    problems.error(
+                        blk.file,
+                        lineno,
+                        kw,
+                        "PRMR",
+                        f"expected a type letter R, I or C followed by a name, got {head!r}",
+                    )
                     continue
-                value = self._value(t, text.strip(BLANKS), expr, blk.scope, problems,
-                                    (blk.file, lineno, kw))
+                value = self._value(t, text.strip(BLANKS), expr, blk.scope, problems, (blk.file, lineno, kw))
                 if value is None:
                     continue
-                self.define(Parameter(name, t, value, text.strip(BLANKS) if expr else None, local,
-                                      (blk.file, lineno)), blk.scope)
+                self.define(
+                    Parameter(name, t, value, text.strip(BLANKS) if expr else None, local, (blk.file, lineno)),
+                    blk.scope,
+                )
 
     def _value(self, t, text, expr, scope, problems, where):
         file, lineno, kw = where
@@ -121,16 +132,21 @@ class ParameterTable:
                 problems.error(file, lineno, kw, field, f"integer parameter got {v}")
                 return None
             if not INT_MIN <= int(v) <= INT_MAX:
-                problems.error(file, lineno, kw, field,
-                               f"integer parameter is {_magnitude(v)}, outside the 64-bit range "
-                               "(|value| < 2**63)")
+                problems.error(
+                    file,
+                    lineno,
+                    kw,
+                    field,
+                    f"integer parameter is {_magnitude(v)}, outside the 64-bit range (|value| < 2**63)",
+                )
                 return None
             return int(v)
         try:
             return float(v)
         except OverflowError:  # an integer result past the largest double
-            problems.error(file, lineno, kw, field,
-                           f"real parameter is {_magnitude(v)}, past the largest double (1.8e308)")
+            problems.error(
+                file, lineno, kw, field, f"real parameter is {_magnitude(v)}, past the largest double (1.8e308)"
+            )
             return None
 
 

@@ -28,8 +28,7 @@ class _Lines:
         return t
 
 
-def parse_block(blk: Block, spec: Spec, options: frozenset, params: dict,
-                problems: Collector) -> list[Record]:
+def parse_block(blk: Block, spec: Spec, options: frozenset, params: dict, problems: Collector) -> list[Record]:
     """All records of one block (keywords without rows may repeat their cards)."""
     if spec.sniff is not None and len(blk.data):
         options = spec.sniff(blk.text(0), options)
@@ -67,9 +66,14 @@ def _parse_head(blk, spec, options, lay, cur, params, problems) -> Record | None
             # card: its fields take their defaults, unless one has none
             needed = [f.name for f in c.fields if f.default is None and f.kind != STR]
             if needed and not c.optional:
-                problems.error(blk.file, blk.line, blk.keyword, needed[0].upper(),
-                               f"card with {', '.join(c.names)} missing: the keyword ended before it, "
-                               f"and {needed[0].upper()} has no default")
+                problems.error(
+                    blk.file,
+                    blk.line,
+                    blk.keyword,
+                    needed[0].upper(),
+                    f"card with {', '.join(c.names)} missing: the keyword ended before it, "
+                    f"and {needed[0].upper()} has no default",
+                )
                 return None
             for f in c.fields:
                 rec.values[f.name] = f.default
@@ -114,8 +118,9 @@ def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
     n_lines = len(idx)
     if n_lines % nl:
         ln = int(idx[-1]) + 1 if n_lines else blk.line
-        problems.error(blk.file, ln, blk.keyword, None,
-                       f"each entry has {nl} cards but {n_lines} data lines were found")
+        problems.error(
+            blk.file, ln, blk.keyword, None, f"each entry has {nl} cards but {n_lines} data lines were found"
+        )
         n_lines -= n_lines % nl
         idx, starts, ends = idx[:n_lines], starts[:n_lines], ends[:n_lines]
     nrow = n_lines // nl
@@ -138,12 +143,16 @@ def _parse_rows(blk: Block, lay: Layout, cur: _Lines, params, problems) -> dict:
                 w = cards.width(f, blk.mode)
                 card_of.append(ci), index_in.append(fi), col.append(pos), width.append(w)
                 pos += w
-        args = (np.array(card_of, np.int64), np.array(index_in, np.int64), np.array(col, np.int64),
-                np.array(width, np.int64), np.array([f.kind == INT for f in fields]),
-                np.array([ints.index(k) if k in ints else flts.index(k) for k in range(len(fields))],
-                         np.int64),
-                np.array([int(_row_default(f)) if f.kind == INT else 0 for f in fields], np.int64),
-                np.array([float(_row_default(f)) if f.kind == FLOAT else 0.0 for f in fields]))
+        args = (
+            np.array(card_of, np.int64),
+            np.array(index_in, np.int64),
+            np.array(col, np.int64),
+            np.array(width, np.int64),
+            np.array([f.kind == INT for f in fields]),
+            np.array([ints.index(k) if k in ints else flts.index(k) for k in range(len(fields))], np.int64),
+            np.array([int(_row_default(f)) if f.kind == INT else 0 for f in fields], np.int64),
+            np.array([float(_row_default(f)) if f.kind == FLOAT else 0.0 for f in fields]),
+        )
         widths = {w for w in width}
         if nl == 1 and not flts and len(widths) == 1:  # element cards: all-integer fast path
             parse_int_rows(src.buf, starts, ends, width[0], args[6], ints_t, status)
@@ -221,7 +230,10 @@ class RowColumns(dict):
     def block(self, *names) -> np.ndarray:
         """(n, len(names)) array of the named columns (a view when adjacent)."""
         w = [self._where.get(n) for n in names]
-        if all(x is not None for x in w) and all(x[0] is w[0][0] for x in w) and \
-                [x[1] for x in w] == list(range(w[0][1], w[0][1] + len(w))):
+        if (
+            all(x is not None for x in w)
+            and all(x[0] is w[0][0] for x in w)
+            and [x[1] for x in w] == list(range(w[0][1], w[0][1] + len(w)))
+        ):
             return w[0][0][:, w[0][1] : w[0][1] + len(w)]
         return np.stack([self[n] for n in names], axis=1)

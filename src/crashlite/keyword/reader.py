@@ -37,8 +37,9 @@ def read_deck(path: Path | str, strict: bool = False) -> Model:
     return model
 
 
-def read_records(path: Path | str, problems: Collector | None = None,
-                 strict: bool = False) -> tuple[list[Record | RawKeyword], Lexer, ParameterTable]:
+def read_records(
+    path: Path | str, problems: Collector | None = None, strict: bool = False
+) -> tuple[list[Record | RawKeyword], Lexer, ParameterTable]:
     """The typed records and verbatim keywords of a deck in input order,
     before they become a Model (no reference checks). Returns (records,
     lexer, parameter table); raises DeckError when ``problems`` is None and
@@ -51,8 +52,9 @@ def read_records(path: Path | str, problems: Collector | None = None,
     except (OSError, ValueError) as e:  # a name too long, a NUL byte in it
         raise DeckError([_problem(path, f"deck file name cannot be used: {getattr(e, 'strerror', None) or e}")])  # noqa: B904
     if not found:
-        raise DeckError([_problem(path, "deck path is a folder, not a file" if path.is_dir()
-                                  else "deck file not found")])
+        raise DeckError(
+            [_problem(path, "deck path is a folder, not a file" if path.is_dir() else "deck file not found")]
+        )
     lexer = Lexer(problems)
     lexer.walk(path)
     params = ParameterTable(lexer.scopes)
@@ -73,8 +75,13 @@ def read_records(path: Path | str, problems: Collector | None = None,
             f, ln, n = unknown.get(blk.keyword, (blk.file, blk.line, 0))
             unknown[blk.keyword] = (f, ln, n + 1)
             if blk.contexts and any(c.offsets for c in blk.contexts):
-                problems.warn(blk.file, blk.line, blk.keyword, None,
-                              "kept verbatim: *INCLUDE_TRANSFORM ID offsets are not applied to it")
+                problems.warn(
+                    blk.file,
+                    blk.line,
+                    blk.keyword,
+                    None,
+                    "kept verbatim: *INCLUDE_TRANSFORM ID offsets are not applied to it",
+                )
             continue
         if blk.scope not in visible:
             visible[blk.scope] = params.visible(blk.scope)
@@ -102,8 +109,13 @@ def _apply_coordinate_transforms(records, transformed, problems) -> None:
                 continue
             tr = trans.get(ctx.tranid)
             if tr is None:
-                problems.error(ctx.file, ctx.line, "INCLUDE_TRANSFORM", "TRANID",
-                               f"*DEFINE_TRANSFORMATION {ctx.tranid} is not defined")
+                problems.error(
+                    ctx.file,
+                    ctx.line,
+                    "INCLUDE_TRANSFORM",
+                    "TRANID",
+                    f"*DEFINE_TRANSFORMATION {ctx.tranid} is not defined",
+                )
                 continue
             m = matrix(tr, problems)
             for r in recs:

@@ -10,9 +10,18 @@ from .schema import INT, RawKeyword, Record
 
 # Families of keywords crashlite keeps verbatim whose first field still
 # defines an ID others may reference (e.g. *DEFINE_TABLE for a MAT_024 LCSS).
-_RAW_DEFINES = (("MAT_", "mat"), ("SECTION_", "sec"), ("HOURGLASS", "hg"), ("EOS_", "eos"),
-                ("DEFINE_CURVE", "curve"), ("DEFINE_TABLE", "curve"), ("DEFINE_FUNCTION", "curve"),
-                ("DEFINE_VECTOR", "vector"), ("DEFINE_COORDINATE", "coord"), ("PART", "part"))
+_RAW_DEFINES = (
+    ("MAT_", "mat"),
+    ("SECTION_", "sec"),
+    ("HOURGLASS", "hg"),
+    ("EOS_", "eos"),
+    ("DEFINE_CURVE", "curve"),
+    ("DEFINE_TABLE", "curve"),
+    ("DEFINE_FUNCTION", "curve"),
+    ("DEFINE_VECTOR", "vector"),
+    ("DEFINE_COORDINATE", "coord"),
+    ("PART", "part"),
+)
 
 
 def _raw_id(raw: RawKeyword) -> int | None:
@@ -30,9 +39,14 @@ def _raw_id(raw: RawKeyword) -> int | None:
 
 def defined_ids(model: Model) -> dict[str, set]:
     d: dict[str, set] = {
-        "part": set(model.parts), "sec": set(model.sections), "mat": set(model.materials),
-        "hg": set(model.hourglasses), "curve": set(model.curves), "vector": set(model.vectors),
-        "coord": set(model.coordinate_systems), "eos": set(),
+        "part": set(model.parts),
+        "sec": set(model.sections),
+        "mat": set(model.materials),
+        "hg": set(model.hourglasses),
+        "curve": set(model.curves),
+        "vector": set(model.vectors),
+        "coord": set(model.coordinate_systems),
+        "eos": set(),
         "sdo": {int(r["vid"]) for r in model.find("DEFINE_SD_ORIENTATION")},
     }
     for kind, sid in model.sets:
@@ -53,16 +67,36 @@ def defined_ids(model: Model) -> dict[str, set]:
     return d
 
 
-_WHAT = {"part": "part", "sec": "section", "mat": "material", "hg": "hourglass control",
-         "curve": "curve", "vector": "vector", "coord": "coordinate system", "sdo": "SD orientation",
-         "set_node": "node set", "set_part": "part set", "set_shell": "shell set",
-         "set_solid": "solid set", "set_beam": "beam set", "set_discrete": "discrete set",
-         "set_segment": "segment set"}
+_WHAT = {
+    "part": "part",
+    "sec": "section",
+    "mat": "material",
+    "hg": "hourglass control",
+    "curve": "curve",
+    "vector": "vector",
+    "coord": "coordinate system",
+    "sdo": "SD orientation",
+    "set_node": "node set",
+    "set_part": "part set",
+    "set_shell": "shell set",
+    "set_solid": "solid set",
+    "set_beam": "beam set",
+    "set_discrete": "discrete set",
+    "set_segment": "segment set",
+}
 
 
 def _records(model: Model):
-    for g in ("parts", "sections", "materials", "hourglasses", "curves", "vectors",
-              "coordinate_systems", "transformations"):
+    for g in (
+        "parts",
+        "sections",
+        "materials",
+        "hourglasses",
+        "curves",
+        "vectors",
+        "coordinate_systems",
+        "transformations",
+    ):
         yield from getattr(model, g).values()
     yield from model.sets.values()
     yield from (k for k in model.keywords if isinstance(k, Record))
@@ -113,8 +147,7 @@ def check_references(model: Model, problems: Collector, bulk=()) -> None:
                     what = "node" if f.ref == "node" else _WHAT[f.ref]
                     listed = ", ".join(str(int(m)) for m in missing[:10])
                     more = f" and {len(missing) - 10} more" if len(missing) > 10 else ""
-                    problems.error(*rec.source, rec.name, f.name.upper(),
-                                   f"{what} {listed}{more} not defined")
+                    problems.error(*rec.source, rec.name, f.name.upper(), f"{what} {listed}{more} not defined")
     known_parts = np.fromiter(ids["part"], dtype=np.int64)
     for rec in bulk:
         if "pid" not in (rec.rows or {}) or rec.keyword in ("ELEMENT_MASS",):
@@ -123,6 +156,10 @@ def check_references(model: Model, problems: Collector, bulk=()) -> None:
         missing = np.setdiff1d(np.unique(pid), known_parts)
         for p in missing[:20]:
             eid = int(rec.rows["eid"][np.argmax(pid == p)])
-            problems.error(*rec.source, rec.name, "PID",
-                           f"element {eid} (and any other in this block with PID {int(p)}) "
-                           f"refers to part {int(p)}, which is not defined")
+            problems.error(
+                *rec.source,
+                rec.name,
+                "PID",
+                f"element {eid} (and any other in this block with PID {int(p)}) "
+                f"refers to part {int(p)}, which is not defined",
+            )

@@ -23,9 +23,13 @@ def apply_offsets(rec: Record, ctx: IncludeContext, problems: Collector | None =
 
     def too_large(name, v, off):
         if problems is not None:
-            problems.error(*rec.where(name), rec.name, name.upper(),
-                           f"ID {int(v)} plus the *INCLUDE_TRANSFORM offset {off} (at {ctx.file}:{ctx.line}) "
-                           "is past the 64-bit range")
+            problems.error(
+                *rec.where(name),
+                rec.name,
+                name.upper(),
+                f"ID {int(v)} plus the *INCLUDE_TRANSFORM offset {off} (at {ctx.file}:{ctx.line}) "
+                "is past the 64-bit range",
+            )
 
     for c in lay.head:
         for f in c.fields:
@@ -75,8 +79,13 @@ def matrix(tr: Record, problems: Collector) -> np.ndarray:
             step[:3, :3] = r
             step[:3, 3] = p - r @ p
         else:
-            problems.error(tr.source[0], tr.source[1], tr.name, "OPTION",
-                           f"transformation {opt!r} not supported (TRANSL, SCALE, ROTATE are)")
+            problems.error(
+                tr.source[0],
+                tr.source[1],
+                tr.name,
+                "OPTION",
+                f"transformation {opt!r} not supported (TRANSL, SCALE, ROTATE are)",
+            )
             continue
         m = step @ m
     return m

@@ -63,8 +63,9 @@ def _card_lines(columns: list, fields: tuple[Field, ...], mode: str):
         # a line without a comma would be read by columns: keep one
         return [ln if "," in ln else ln + "," for ln in lines], np.ones(n, bool)
     widths = [cards.width(f, mode) for f in fields]
-    if n >= 1024 and all(f.kind != STR and isinstance(c, np.ndarray) and c.dtype.kind in "iuf"
-                         for c, f in zip(columns, fields)):
+    if n >= 1024 and all(
+        f.kind != STR and isinstance(c, np.ndarray) and c.dtype.kind in "iuf" for c, f in zip(columns, fields)
+    ):
         if not all(np.isfinite(c).all() for c in columns if c.dtype.kind == "f"):
             raise ValueError("cannot write non-finite values")
         fast = fixed_lines(columns, [0 if f.kind == INT else 1 for f in fields], widths)
@@ -101,8 +102,12 @@ def _record_cards(rec: Record):
 def _trim_optional(rec: Record, lay, head):
     """Drop trailing optional head cards that hold only their defaults."""
     cards_used = [c for c in lay.head if c.when is None or c.when(rec.values, rec.options)]
-    while head and cards_used and cards_used[-1].optional and all(
-            rec.values.get(f.name) == f.default for f in cards_used[-1].fields):
+    while (
+        head
+        and cards_used
+        and cards_used[-1].optional
+        and all(rec.values.get(f.name) == f.default for f in cards_used[-1].fields)
+    ):
         head.pop()
         cards_used.pop()
     return head
@@ -158,8 +163,11 @@ def _parameter_lines(model: Model, mode: str) -> list[str]:
         if p.local:
             kw += "_LOCAL"
         head = f"{p.type}{p.name}"
-        body = p.expression if p.expression else (
-            str(p.value) if p.type == "C" else repr(p.value) if p.type == "R" else str(int(p.value)))
+        body = (
+            p.expression
+            if p.expression
+            else (str(p.value) if p.type == "C" else repr(p.value) if p.type == "R" else str(int(p.value)))
+        )
         w = 20 if mode == LONG else 10
         if len(head) <= w and (p.expression or len(body) <= w) and mode != "free" and "," not in body:
             line = head.ljust(w) + (body if p.expression else body.rjust(w))
@@ -213,8 +221,7 @@ def write_deck(model: Model, path: Path | str, fmt: str = "fixed", split: bool =
         if split:
             mesh_path = targets[1]
             _atomic_write(mesh_path, [_header(fmt), *deck_lines(model, fmt, mesh=True, rest=False), "*END"])
-            body = [_header(fmt), *deck_lines(model, fmt, mesh=False, rest=True),
-                    "*INCLUDE", mesh_path.name, "*END"]
+            body = [_header(fmt), *deck_lines(model, fmt, mesh=False, rest=True), "*INCLUDE", mesh_path.name, "*END"]
         else:
             body = [_header(fmt), *deck_lines(model, fmt), "*END"]
         _atomic_write(path, body)

@@ -140,8 +140,9 @@ def _hex_rule_3d():
     N (27, 8), dN (27, 3, 8) (derivatives by ξ, η, ζ), weights (27,)."""
     q = np.stack([g.ravel() for g in np.meshgrid(_G1, _G1, _G1, indexing="ij")], axis=1)  # (27, 3)
     w = np.einsum("i,j,k->ijk", _W1, _W1, _W1).ravel()
-    corners = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
-                        [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], float)  # (8, 3)
+    corners = np.array(
+        [[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1], [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], float
+    )  # (8, 3)
     f = 1 + q[:, None, :] * corners[None]  # (27, 8, 3)
     N = 0.125 * f.prod(axis=2)
     dN = np.empty((27, 3, 8))
@@ -267,11 +268,11 @@ def beam_moments(xyz, conn, area, density) -> Moments:
         return _empty()
     xyz = np.asarray(xyz, dtype=float)
     a, b = xyz[c[:, 0]], xyz[c[:, 1]]
-    m = (_per_element(density, n, "density") * _per_element(area, n, "area")
-         * np.linalg.norm(b - a, axis=1))
+    m = _per_element(density, n, "density") * _per_element(area, n, "area") * np.linalg.norm(b - a, axis=1)
     ab = a[:, :, None] * b[:, None, :]
-    second = (m / 3.0)[:, None, None] * (a[:, :, None] * a[:, None, :] + b[:, :, None] * b[:, None, :]
-                                         + 0.5 * (ab + ab.transpose(0, 2, 1)))
+    second = (m / 3.0)[:, None, None] * (
+        a[:, :, None] * a[:, None, :] + b[:, :, None] * b[:, None, :] + 0.5 * (ab + ab.transpose(0, 2, 1))
+    )
     return Moments(m, (0.5 * m)[:, None] * (a + b), second)
 
 

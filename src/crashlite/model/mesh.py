@@ -32,8 +32,7 @@ class Table:
             return cls.empty()
         if len(tables) == 1:
             return tables[0]
-        return cls(**{f.name: np.concatenate([getattr(t, f.name) for t in tables])
-                      for f in fields(cls)})
+        return cls(**{f.name: np.concatenate([getattr(t, f.name) for t in tables]) for f in fields(cls)})
 
     @classmethod
     def empty(cls) -> Table:
@@ -116,8 +115,7 @@ class Beams(Table):
     def zeros(cls, n: int) -> Beams:
         rel = _i(n, 5)
         rel[:, 4] = 2
-        return cls(_i(n), _i(n), _i(n, 3, fill=-1, dtype=np.int32), rel, _f(n, 5), _i(n, 2),
-                   _f(n, 6), _f(n, 3))
+        return cls(_i(n), _i(n), _i(n, 3, fill=-1, dtype=np.int32), rel, _f(n, 5), _i(n, 2), _f(n, 6), _f(n, 3))
 
 
 @dataclass(eq=False)
@@ -132,8 +130,7 @@ class Discretes(Table):
 
     @classmethod
     def zeros(cls, n: int) -> Discretes:
-        return cls(_i(n), _i(n), _i(n, 2, fill=-1, dtype=np.int32), _i(n), _f(n, fill=1.0),
-                   _i(n), _f(n, fill=0.0))
+        return cls(_i(n), _i(n), _i(n, 2, fill=-1, dtype=np.int32), _i(n), _f(n, fill=1.0), _i(n), _f(n, fill=0.0))
 
 
 @dataclass(eq=False)
@@ -159,8 +156,7 @@ class Inertias(Table):
 
     @classmethod
     def zeros(cls, n: int) -> Inertias:
-        return cls(_i(n), _i(n, fill=-1, dtype=np.int32), _i(n), _f(n, 6, fill=0.0),
-                   _f(n, fill=0.0), _f(n, 3))
+        return cls(_i(n), _i(n, fill=-1, dtype=np.int32), _i(n), _f(n, 6, fill=0.0), _f(n, fill=0.0), _f(n, 3))
 
 
 def index_map(ids: np.ndarray):
@@ -185,8 +181,13 @@ def index_map(ids: np.ndarray):
             out = np.empty(q.shape, dtype=np.int64 if len(ids) >= 2**31 else np.int32)
             # (rows, columns) for the kernel; explicit sizes, since -1 cannot
             # be inferred for an empty query
-            q2 = q if q.ndim == 2 else q.reshape(q.size, 1) if q.ndim < 2 else \
-                q.reshape(q.shape[0], q.size // max(q.shape[0], 1))
+            q2 = (
+                q
+                if q.ndim == 2
+                else q.reshape(q.size, 1)
+                if q.ndim < 2
+                else q.reshape(q.shape[0], q.size // max(q.shape[0], 1))
+            )
             gather_index(table, q2, out.reshape(q2.shape))
             return out
 

@@ -23,8 +23,16 @@ if TYPE_CHECKING:
     from .mass import MassProperties
 
 MESH_TABLES = ("nodes", "shells", "solids", "beams", "discretes", "masses", "inertias")
-ENTITY_GROUPS = ("parts", "sections", "materials", "hourglasses", "curves", "vectors",
-                 "coordinate_systems", "transformations")
+ENTITY_GROUPS = (
+    "parts",
+    "sections",
+    "materials",
+    "hourglasses",
+    "curves",
+    "vectors",
+    "coordinate_systems",
+    "transformations",
+)
 
 
 @dataclass(eq=False)
@@ -84,7 +92,7 @@ class Model:
             return np.array(sorted(self.parts), dtype=np.int64)
         out = []
         titles = {str(r.get("heading", "")).strip().lower(): pid for pid, r in self.parts.items()}
-        for p in ([parts] if isinstance(parts, (int, str, np.integer)) else parts):
+        for p in [parts] if isinstance(parts, (int, str, np.integer)) else parts:
             if isinstance(p, str):
                 key = p.strip().lower()
                 if key not in titles:

@@ -74,8 +74,7 @@ def _part_moments(model, pid_sel):
     b = model.beams
     m = np.isin(b.pid, pid_sel)
     if m.any():
-        moments.append(mk.beam_moments(xyz, b.nodes[m][:, :2], _beam_area(model, b.pid[m]),
-                                       _density(model, b.pid[m])))
+        moments.append(mk.beam_moments(xyz, b.nodes[m][:, :2], _beam_area(model, b.pid[m]), _density(model, b.pid[m])))
     return moments
 
 
@@ -107,9 +106,14 @@ def mass_properties(model, parts=None) -> mk.MassProperties:
         part = model.parts[int(pid)]
         if "INERTIA" in part.options and float(part.get("tm", 0.0)) > 0:
             c = np.array([part.get("xc", 0.0), part.get("yc", 0.0), part.get("zc", 0.0)], float)
-            tensor = np.array([[part.get("ixx", 0.0), part.get("ixy", 0.0), part.get("ixz", 0.0)],
-                               [part.get("ixy", 0.0), part.get("iyy", 0.0), part.get("iyz", 0.0)],
-                               [part.get("ixz", 0.0), part.get("iyz", 0.0), part.get("izz", 0.0)]], float)
+            tensor = np.array(
+                [
+                    [part.get("ixx", 0.0), part.get("ixy", 0.0), part.get("ixz", 0.0)],
+                    [part.get("ixy", 0.0), part.get("iyy", 0.0), part.get("iyz", 0.0)],
+                    [part.get("ixz", 0.0), part.get("iyz", 0.0), part.get("izz", 0.0)],
+                ],
+                float,
+            )
             moments.append(mk.point_moments(c[None], np.array([part.get("tm")], float), tensor[None]))
             continue
         pm = _part_moments(model, np.array([pid]))
@@ -127,9 +131,14 @@ def mass_properties(model, parts=None) -> mk.MassProperties:
     if whole and len(it):
         pos = model.nodes.xyz[it.node] + np.nan_to_num(it.offset)
         t = it.tensor
-        tensor = np.stack([np.stack([t[:, 0], t[:, 1], t[:, 2]], 1),
-                           np.stack([t[:, 1], t[:, 3], t[:, 4]], 1),
-                           np.stack([t[:, 2], t[:, 4], t[:, 5]], 1)], 1)
+        tensor = np.stack(
+            [
+                np.stack([t[:, 0], t[:, 1], t[:, 2]], 1),
+                np.stack([t[:, 1], t[:, 3], t[:, 4]], 1),
+                np.stack([t[:, 2], t[:, 4], t[:, 5]], 1),
+            ],
+            1,
+        )
         moments.append(mk.point_moments(pos, it.mass, tensor))
     return mk.combine(*moments)
 

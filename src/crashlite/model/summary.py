@@ -16,8 +16,10 @@ def keyword_counts(model: Model) -> dict[str, int]:
     """Instances per keyword (mesh keywords count their rows)."""
     c: Counter = Counter()
     c["NODE"] = len(model.nodes)
-    for t, kw in zip(_ELEMENT_TABLES, ("ELEMENT_SHELL", "ELEMENT_SOLID", "ELEMENT_BEAM",
-                                       "ELEMENT_DISCRETE", "ELEMENT_MASS", "ELEMENT_INERTIA")):
+    for t, kw in zip(
+        _ELEMENT_TABLES,
+        ("ELEMENT_SHELL", "ELEMENT_SOLID", "ELEMENT_BEAM", "ELEMENT_DISCRETE", "ELEMENT_MASS", "ELEMENT_INERTIA"),
+    ):
         c[kw] += len(getattr(model, t))
     for g in ENTITY_GROUPS:
         for r in getattr(model, g).values():
@@ -36,17 +38,28 @@ def summary(model: Model) -> dict:
     """Everything ``crashlite info`` prints, as JSON-ready data."""
     parts = []
     for pid, rec in sorted(model.parts.items()):
-        n_el = {t: int(np.count_nonzero(getattr(model, t).pid == pid))
-                for t in ("shells", "solids", "beams", "discretes")}
+        n_el = {
+            t: int(np.count_nonzero(getattr(model, t).pid == pid)) for t in ("shells", "solids", "beams", "discretes")
+        }
         mp = model.mass_properties([pid])
-        parts.append({"id": pid, "title": rec.get("heading", ""), "secid": rec.get("secid"),
-                      "mid": rec.get("mid"), "elements": {k: v for k, v in n_el.items() if v},
-                      "mass": mp.mass, "cog": mp.cog.tolist()})
+        parts.append(
+            {
+                "id": pid,
+                "title": rec.get("heading", ""),
+                "secid": rec.get("secid"),
+                "mid": rec.get("mid"),
+                "elements": {k: v for k, v in n_el.items() if v},
+                "mass": mp.mass,
+                "cog": mp.cog.tolist(),
+            }
+        )
     total = model.mass_properties()
     xyz = model.nodes.xyz
-    bbox = ([xyz.min(0).tolist(), xyz.max(0).tolist()] if len(xyz) else None)
+    bbox = [xyz.min(0).tolist(), xyz.max(0).tolist()] if len(xyz) else None
     return {
-        "deck": model.source, "title": model.title, "files": model.files,
+        "deck": model.source,
+        "title": model.title,
+        "files": model.files,
         "units": model.unit_system(),
         "counts": {t: len(getattr(model, t)) for t in MESH_TABLES},
         "keywords": keyword_counts(model),
@@ -82,8 +95,10 @@ def format_summary(s: dict) -> str:
     out.append(f"parts ({len(s['parts'])})")
     out.append(f"  {'id':>8}  {'title':<28} {'elements':>9} {'mass':>12}  cog")
     for p in s["parts"]:
-        out.append(f"  {p['id']:>8}  {str(p['title'])[:28]:<28} {sum(p['elements'].values()):>9} "
-                   f"{p['mass']:>12.5g}  {_v(p['cog'])}")
+        out.append(
+            f"  {p['id']:>8}  {str(p['title'])[:28]:<28} {sum(p['elements'].values()):>9} "
+            f"{p['mass']:>12.5g}  {_v(p['cog'])}"
+        )
     if s["parameters"]:
         out.append("")
         out.append("parameters  " + ", ".join(f"{k}={v}" for k, v in s["parameters"].items()))

@@ -48,6 +48,7 @@ def pct(value) -> str:
 def table(header: list[str], rows: list[list], left: int = 1, classes: list[str] | None = None) -> str:
     """An HTML table; the first ``left`` columns left-aligned; cells are
     escaped text unless they are already HTML (wrapped in ``Raw``)."""
+
     def cell(tag, v, k):
         cls = ' class="l"' if k < left else ""
         return f"<{tag}{cls}>{v if isinstance(v, Raw) else esc(v)}</{tag}>"
@@ -69,6 +70,9 @@ def image(png: bytes, alt: str) -> str:
 
 
 def page(title: str, body: list[str]) -> str:
-    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"/>"
-            f"<title>{esc(title)}</title><style>{CSS}</style></head>\n<body>\n<h1>{esc(title)}</h1>\n"
-            + "\n".join(body) + "\n</body></html>\n")
+    return (
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8"/>'
+        f"<title>{esc(title)}</title><style>{CSS}</style></head>\n<body>\n<h1>{esc(title)}</h1>\n"
+        + "\n".join(body)
+        + "\n</body></html>\n"
+    )

@@ -38,8 +38,12 @@ def _draw(ax, x: np.ndarray, u: np.ndarray, lines, polys, norm, cmap) -> None:
         ax.scatter(x[::k, 0], x[::k, 1], x[::k, 2], c=cmap(norm(u[::k])), s=1, depthshade=False)
         return
     if len(polys):
-        col = Poly3DCollection([x[p] for p in polys], facecolors=cmap(norm([u[p].mean() for p in polys])),
-                               edgecolors="0.25", linewidths=0.2)
+        col = Poly3DCollection(
+            [x[p] for p in polys],
+            facecolors=cmap(norm([u[p].mean() for p in polys])),
+            edgecolors="0.25",
+            linewidths=0.2,
+        )
         ax.add_collection3d(col)
     if len(lines):
         col = Line3DCollection(x[lines], colors=cmap(norm(u[lines].mean(axis=1))), linewidths=1.5)

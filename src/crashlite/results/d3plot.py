@@ -61,20 +61,26 @@ def state(groups: Iterable[ElementGroup], x: np.ndarray, v: np.ndarray) -> dict:
     the half-step velocity before it (``complete`` adds the one after):
     float32 arrays by element group (deformable shells and solids, discrete
     elements), rows as the groups' ``ids``."""
-    out = {"v_before": v.copy(), "velocity": v.astype(np.float32),
-           "acceleration": np.zeros(v.shape, np.float32)}
+    out = {"v_before": v.copy(), "velocity": v.astype(np.float32), "acceleration": np.zeros(v.shape, np.float32)}
     for g in groups:
         if not len(g):
             continue
         if g.kind == "shell":
             nip = g.s.nip
-            out["shell"] = dict(ids=g.ids, stress=_shell_global(_layers(g.st.sig, nip), x, g.conn).astype(np.float32),
-                                plastic_strain=_layers(g.st.epsp, nip).astype(np.float32),
-                                thickness=g.st.thick.astype(np.float32), alive=(g.st.alive == 1).astype(np.float32))
+            out["shell"] = dict(
+                ids=g.ids,
+                stress=_shell_global(_layers(g.st.sig, nip), x, g.conn).astype(np.float32),
+                plastic_strain=_layers(g.st.epsp, nip).astype(np.float32),
+                thickness=g.st.thick.astype(np.float32),
+                alive=(g.st.alive == 1).astype(np.float32),
+            )
         elif g.kind == "solid":
-            out["solid"] = dict(ids=g.ids, stress=g.st.sig.astype(np.float32),
-                                plastic_strain=g.st.epsp.astype(np.float32),
-                                alive=(g.st.alive == 1).astype(np.float32))
+            out["solid"] = dict(
+                ids=g.ids,
+                stress=g.st.sig.astype(np.float32),
+                plastic_strain=g.st.epsp.astype(np.float32),
+                alive=(g.st.alive == 1).astype(np.float32),
+            )
         elif g.kind == "discrete":
             out["discrete"] = dict(ids=g.ids, axial_force=g.force.astype(np.float32))
     return out
@@ -146,8 +152,15 @@ def _per_state(fields: list, group: str, name: str, rows: np.ndarray, shape: tup
     return out
 
 
-def write(path: Path | str, model: Model, times: np.ndarray, coords: np.ndarray, fields: list,
-          energies: dict | None = None, title: str = "") -> Path:
+def write(
+    path: Path | str,
+    model: Model,
+    times: np.ndarray,
+    coords: np.ndarray,
+    fields: list,
+    energies: dict | None = None,
+    title: str = "",
+) -> Path:
     """The d3plot ``path`` (its states in ``path``01, as lasso-python
     writes them; earlier ``path``NN files are removed) of a model's field
     states: ``times`` (n_states,), ``coords`` (n_states, n_nodes, 3) and
@@ -171,8 +184,11 @@ def write(path: Path | str, model: Model, times: np.ndarray, coords: np.ndarray,
     arr[A.node_velocity] = np.stack([f["velocity"] for f in fields]) if n else np.zeros((0, len(nodes), 3))
     arr[A.node_acceleration] = np.stack([f["acceleration"] for f in fields]) if n else np.zeros((0, len(nodes), 3))
     if energies is not None and len(energies["time"]):
-        for key, name in ((A.global_kinetic_energy, "kinetic"), (A.global_internal_energy, "internal"),
-                          (A.global_total_energy, "total")):
+        for key, name in (
+            (A.global_kinetic_energy, "kinetic"),
+            (A.global_internal_energy, "internal"),
+            (A.global_total_energy, "total"),
+        ):
             arr[key] = np.interp(times, energies["time"], energies[name])
 
     shells, solids = model.shells, model.solids
@@ -182,8 +198,15 @@ def write(path: Path | str, model: Model, times: np.ndarray, coords: np.ndarray,
     part_ids = np.unique(np.concatenate([np.asarray(p, np.int64) for p in pids]))
     arr[A.part_ids] = part_ids
     arr[A.part_titles_ids] = part_ids
-    arr[A.part_titles] = np.array([str(model.parts[int(p)].get("heading", "") if int(p) in model.parts else "")
-                                   .strip().encode("ascii", "replace")[:72] for p in part_ids], dtype="S72")
+    arr[A.part_titles] = np.array(
+        [
+            str(model.parts[int(p)].get("heading", "") if int(p) in model.parts else "")
+            .strip()
+            .encode("ascii", "replace")[:72]
+            for p in part_ids
+        ],
+        dtype="S72",
+    )
 
     def part_index(pid):
         return np.searchsorted(part_ids, np.asarray(pid, np.int64))
@@ -210,24 +233,31 @@ def write(path: Path | str, model: Model, times: np.ndarray, coords: np.ndarray,
         rows = _rows(solids.ids, fields[0]["solid"]["ids"] if n and "solid" in fields[0] else [])
         arr[A.element_solid_stress] = _per_state(fields, "solid", "stress", rows, (6,))[:, :, None, :]
         arr[A.element_solid_effective_plastic_strain] = _per_state(fields, "solid", "plastic_strain", rows, ())[
-            :, :, None]
+            :, :, None
+        ]
         alive = _per_state(fields, "solid", "alive", rows, ())
         alive[:, rows < 0] = 1.0
         arr[A.element_solid_is_alive] = alive
     beams = model.beams.nodes[beam_ok].astype(np.int64)
     third = np.where(beams[:, 2] >= 0, beams[:, 2], beams[:, 0]) if len(beams) else np.zeros(0, np.int64)
     springs = model.discretes.nodes[disc_ok].astype(np.int64)
-    conn = np.concatenate([np.stack([beams[:, 0], beams[:, 1], third], axis=1).reshape(-1, 3),
-                           np.stack([springs[:, 0], springs[:, 1], springs[:, 0]], axis=1).reshape(-1, 3)])
+    conn = np.concatenate(
+        [
+            np.stack([beams[:, 0], beams[:, 1], third], axis=1).reshape(-1, 3),
+            np.stack([springs[:, 0], springs[:, 1], springs[:, 0]], axis=1).reshape(-1, 3),
+        ]
+    )
     if len(conn):
         arr[A.element_beam_node_indexes] = np.concatenate([conn, np.zeros((len(conn), 2), np.int64)], axis=1)
         arr[A.element_beam_part_indexes] = part_index(np.concatenate([pids[2], pids[3]]))
-        arr[A.element_beam_ids] = np.concatenate([model.beams.ids[beam_ok], model.discretes.ids[disc_ok]]
-                                                 ).astype(np.int64)
-        rows = _rows(model.discretes.ids[disc_ok], fields[0]["discrete"]["ids"]
-                     if n and "discrete" in fields[0] else [])
+        arr[A.element_beam_ids] = np.concatenate([model.beams.ids[beam_ok], model.discretes.ids[disc_ok]]).astype(
+            np.int64
+        )
+        rows = _rows(
+            model.discretes.ids[disc_ok], fields[0]["discrete"]["ids"] if n and "discrete" in fields[0] else []
+        )
         force = np.zeros((n, len(conn)), np.float32)
-        force[:, len(beams):] = _per_state(fields, "discrete", "axial_force", rows, ())
+        force[:, len(beams) :] = _per_state(fields, "discrete", "axial_force", rows, ())
         arr[A.element_beam_axial_force] = force
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)

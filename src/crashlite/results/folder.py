@@ -57,15 +57,17 @@ class OutputFolder:
                 files |= {f"{STATES}/{q.name}" for q in (states.iterdir() if states.is_dir() else ())}
                 files |= set(self._d3plot_files())
         except (OSError, ValueError, KeyError, TypeError) as e:
-            raise OutputFolderError(f"{m}: not a crashlite run manifest ({e}); remove it or choose another "
-                                    "folder") from None
+            raise OutputFolderError(
+                f"{m}: not a crashlite run manifest ({e}); remove it or choose another folder"
+            ) from None
         return {f for f in files if self._ours_by_name(f)}  # nothing outside the run's own names
 
     @staticmethod
     def _ours_by_name(rel: str) -> bool:
         parts = rel.split("/")
-        return (len(parts) == 1 and (parts[0] in FILE_NAMES or bool(_D3PLOT_FILE.match(parts[0])))) or \
-            (len(parts) == 2 and parts[0] == STATES and bool(_STATE_FILE.match(parts[1])))
+        return (len(parts) == 1 and (parts[0] in FILE_NAMES or bool(_D3PLOT_FILE.match(parts[0])))) or (
+            len(parts) == 2 and parts[0] == STATES and bool(_STATE_FILE.match(parts[1]))
+        )
 
     def candidates(self) -> list[str]:
         """Relative paths of the files here that a run may write (present now)."""
@@ -101,15 +103,19 @@ class OutputFolder:
         mine = {self._resolve(p / rel): rel for rel in self.candidates()}
         decks = [d for d in self.decks if self._resolve(d) in mine]
         if decks:
-            raise OutputFolderError(f"the output folder {p} holds the deck {decks[0]}, whose name is one a run "
-                                    f"writes ({mine[self._resolve(decks[0])]}): choose another folder "
-                                    "(-o); the deck is never overwritten")
+            raise OutputFolderError(
+                f"the output folder {p} holds the deck {decks[0]}, whose name is one a run "
+                f"writes ({mine[self._resolve(decks[0])]}): choose another folder "
+                "(-o); the deck is never overwritten"
+            )
         foreign = [rel for rel in self.candidates() if rel not in self.previous]
         if foreign and not self.force:
             shown = ", ".join(foreign[:8]) + (f" and {len(foreign) - 8} more" if len(foreign) > 8 else "")
-            raise OutputFolderError(f"the output folder {p} holds files of the names a run writes that no "
-                                    f"crashlite run listed in its {MANIFEST}: {shown}; choose another folder "
-                                    "(-o), remove them, or overwrite them with --force")
+            raise OutputFolderError(
+                f"the output folder {p} holds files of the names a run writes that no "
+                f"crashlite run listed in its {MANIFEST}: {shown}; choose another folder "
+                "(-o), remove them, or overwrite them with --force"
+            )
 
     @staticmethod
     def _resolve(path: Path) -> Path:
@@ -147,8 +153,12 @@ class OutputFolder:
         return files
 
     def _write(self, files: list[str], pending: bool) -> None:
-        data = {"written_by": "crashlite run", "decks": [str(d) for d in self.decks[:1]],
-                "complete": not pending, "files": files}
+        data = {
+            "written_by": "crashlite run",
+            "decks": [str(d) for d in self.decks[:1]],
+            "complete": not pending,
+            "files": files,
+        }
         if pending:  # state files are numbered by the run: any of the patterns belongs to it
             data["state_pattern"] = f"{STATES}/state_NNNN.vtk"
             data["d3plot_pattern"] = "d3plotNN"

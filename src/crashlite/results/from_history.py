@@ -25,8 +25,15 @@ if TYPE_CHECKING:
     from .history import History
 
 # category -> its time quantity
-_TIME = {"glstat": ("time",), "nodout": ("time",), "matsum": ("time",), "rwforc": ("forces", "time"),
-         "deforc": ("time",), "secforc": ("time",), "spcforc": ("time",)}
+_TIME = {
+    "glstat": ("time",),
+    "nodout": ("time",),
+    "matsum": ("time",),
+    "rwforc": ("forces", "time"),
+    "deforc": ("time",),
+    "secforc": ("time",),
+    "spcforc": ("time",),
+}
 
 
 def _get(history, category: str, *quantity):
@@ -72,8 +79,9 @@ def results_from_history(history: History, model: Model | None = None) -> Result
     times = {c: _get(history, c, *q) for c, q in _TIME.items() if c in have}
     times = {c: np.atleast_1d(v).ravel() for c, v in times.items() if v is not None}
     if not times:
-        raise ValueError(f"{history.source}: no time history (glstat, nodout, matsum, rwforc, deforc, secforc, "
-                         "spcforc) to read")
+        raise ValueError(
+            f"{history.source}: no time history (glstat, nodout, matsum, rwforc, deforc, secforc, spcforc) to read"
+        )
     ref = max(times, key=lambda c: (len(times[c]), c == "glstat"))
     t = times[ref]
     n = len(t)
@@ -168,31 +176,44 @@ def results_from_history(history: History, model: Model | None = None) -> Result
     step = series("glstat", "time_step")
     cycle = _get(history, "glstat", "cycle") if ref == "glstat" else None
     empty3 = np.zeros((0, 0, 3))
-    res = Results(time=t, kinetic=kinetic, internal=internal, wall=wall, external=external,
-                  discrete_force=dforce if dforce is not None else np.zeros((n, 0)),
-                  discrete_elong=delong if delong is not None else np.zeros((n, len(dids))),
-                  wall_force=wall_force if wall_force is not None else np.zeros((n, len(walls), 3)),
-                  wall_velocity=np.zeros((n, len(walls))),
-                  node_displacement=disp if disp is not None else np.zeros((n, k, 3)),
-                  node_velocity=vel if vel is not None else np.zeros((n, k, 3)),
-                  spc_force=spc_force if spc_force is not None else np.zeros((n, len(spc), 3)),
-                  spc_nodes=spc, history_nodes=hist, discrete_ids=dids,
-                  wall_ids=walls, section_ids=sids,
-                  section_force=sforce if sforce is not None else np.zeros((n, len(sids), 3)),
-                  part_ids=pids,
-                  part_internal=part_internal if part_internal is not None else np.zeros((n, 0)),
-                  states_time=np.zeros(0), states_x=empty3, final_x=final_x, final_v=final_v,
-                  part_kinetic=part_kinetic if part_kinetic is not None else np.zeros((0, 0)),
-                  part_hourglass=part_hourglass if part_hourglass is not None else np.zeros((0, 0)),
-                  section_moment=smoment if smoment is not None else np.zeros((0, 0, 3)),
-                  node_acceleration=acc if acc is not None else np.zeros((0, 0, 3)),
-                  node_coordinates=coor if coor is not None else np.zeros((0, 0, 3)),
-                  hourglass=series("glstat", "hourglass_energy"),
-                  sliding=series("glstat", "sliding_interface_energy"),
-                  time_step=step, discrete_force_vector=dvec if dvec is not None else np.zeros((0, 0, 3)),
-                  wall_normal_force=wall_normal if wall_normal is not None else np.zeros((0, 0)),
-                  node_ids=node_ids,
-                  info={"source": history.source, "time_axis": ref})
+    res = Results(
+        time=t,
+        kinetic=kinetic,
+        internal=internal,
+        wall=wall,
+        external=external,
+        discrete_force=dforce if dforce is not None else np.zeros((n, 0)),
+        discrete_elong=delong if delong is not None else np.zeros((n, len(dids))),
+        wall_force=wall_force if wall_force is not None else np.zeros((n, len(walls), 3)),
+        wall_velocity=np.zeros((n, len(walls))),
+        node_displacement=disp if disp is not None else np.zeros((n, k, 3)),
+        node_velocity=vel if vel is not None else np.zeros((n, k, 3)),
+        spc_force=spc_force if spc_force is not None else np.zeros((n, len(spc), 3)),
+        spc_nodes=spc,
+        history_nodes=hist,
+        discrete_ids=dids,
+        wall_ids=walls,
+        section_ids=sids,
+        section_force=sforce if sforce is not None else np.zeros((n, len(sids), 3)),
+        part_ids=pids,
+        part_internal=part_internal if part_internal is not None else np.zeros((n, 0)),
+        states_time=np.zeros(0),
+        states_x=empty3,
+        final_x=final_x,
+        final_v=final_v,
+        part_kinetic=part_kinetic if part_kinetic is not None else np.zeros((0, 0)),
+        part_hourglass=part_hourglass if part_hourglass is not None else np.zeros((0, 0)),
+        section_moment=smoment if smoment is not None else np.zeros((0, 0, 3)),
+        node_acceleration=acc if acc is not None else np.zeros((0, 0, 3)),
+        node_coordinates=coor if coor is not None else np.zeros((0, 0, 3)),
+        hourglass=series("glstat", "hourglass_energy"),
+        sliding=series("glstat", "sliding_interface_energy"),
+        time_step=step,
+        discrete_force_vector=dvec if dvec is not None else np.zeros((0, 0, 3)),
+        wall_normal_force=wall_normal if wall_normal is not None else np.zeros((0, 0)),
+        node_ids=node_ids,
+        info={"source": history.source, "time_axis": ref},
+    )
     if cycle is not None and len(np.atleast_1d(cycle)) == n:
         res.cycle_number = np.asarray(cycle).astype(np.int64).ravel()
         res.cycles = int(res.cycle_number[-1]) if n else 0

@@ -43,8 +43,9 @@ class History:
             return sorted(k if isinstance(k, str) else "/".join(k) for k in cat)
         key = quantity[0] if len(quantity) == 1 else tuple(quantity)
         if key not in cat:
-            raise KeyError(f"{self.source}: {category} has no {'/'.join(quantity)!r} "
-                           f"(has: {', '.join(self.read(category))})")
+            raise KeyError(
+                f"{self.source}: {category} has no {'/'.join(quantity)!r} (has: {', '.join(self.read(category))})"
+            )
         return cat[key]
 
     def categories(self) -> list[str]:
@@ -121,5 +122,7 @@ def load(path: Path | str) -> History:
             return _from_binout(p / "binout*")
         if ascii_files:
             return _from_ascii(read_folder(p), str(p))
-    raise FileNotFoundError(f"{p}: neither a crashlite results folder, an LS-DYNA binout nor LS-DYNA ASCII "
-                            f"history files ({', '.join(FILES)})")
+    raise FileNotFoundError(
+        f"{p}: neither a crashlite results folder, an LS-DYNA binout nor LS-DYNA ASCII "
+        f"history files ({', '.join(FILES)})"
+    )

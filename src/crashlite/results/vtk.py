@@ -53,8 +53,9 @@ def element_field(model: Model, ids: dict, values: dict) -> np.ndarray:
     return np.concatenate(out)
 
 
-def write_states(directory: Path | str, model: Model, times: np.ndarray, coords: np.ndarray,
-                 last_cells: dict | None = None) -> Path:
+def write_states(
+    directory: Path | str, model: Model, times: np.ndarray, coords: np.ndarray, last_cells: dict | None = None
+) -> Path:
     """``coords`` (n_states, n_nodes, 3); ``last_cells``: name -> (n_cells,)
     element values (``element_field``) written with the last state. Returns
     the .pvd collection."""
@@ -70,22 +71,33 @@ def write_states(directory: Path | str, model: Model, times: np.ndarray, coords:
     for k, (t, x) in enumerate(zip(times, coords)):
         name = f"state_{k:04d}.vtk"
         disp = x - x0
-        lines = ["# vtk DataFile Version 3.0", f"crashlite state {k} t={t:.9g}", "ASCII",
-                 "DATASET UNSTRUCTURED_GRID", f"POINTS {n} double",
-                 "\n".join(" ".join(f"{c:.9g}" for c in p) for p in x),
-                 f"CELLS {len(rows)} {size}", cell_text, f"CELL_TYPES {len(rows)}", type_text,
-                 f"POINT_DATA {n}", "VECTORS displacement double",
-                 "\n".join(" ".join(f"{c:.9g}" for c in p) for p in disp)]
+        lines = [
+            "# vtk DataFile Version 3.0",
+            f"crashlite state {k} t={t:.9g}",
+            "ASCII",
+            "DATASET UNSTRUCTURED_GRID",
+            f"POINTS {n} double",
+            "\n".join(" ".join(f"{c:.9g}" for c in p) for p in x),
+            f"CELLS {len(rows)} {size}",
+            cell_text,
+            f"CELL_TYPES {len(rows)}",
+            type_text,
+            f"POINT_DATA {n}",
+            "VECTORS displacement double",
+            "\n".join(" ".join(f"{c:.9g}" for c in p) for p in disp),
+        ]
         if last_cells and k == len(times) - 1:
             lines.append(f"CELL_DATA {len(rows)}")
             for field_name, vals in last_cells.items():
-                lines += [f"SCALARS {field_name} double 1", "LOOKUP_TABLE default",
-                          "\n".join(f"{c:.9g}" for c in vals)]
+                lines += [f"SCALARS {field_name} double 1", "LOOKUP_TABLE default", "\n".join(f"{c:.9g}" for c in vals)]
         (directory / name).write_text("\n".join(lines) + "\n")
         entries.append(f'    <DataSet timestep="{t:.9g}" file="{name}"/>')
     pvd = directory / "states.pvd"
-    pvd.write_text('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n'
-                   + "\n".join(entries) + "\n  </Collection>\n</VTKFile>\n")
+    pvd.write_text(
+        '<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1">\n  <Collection>\n'
+        + "\n".join(entries)
+        + "\n  </Collection>\n</VTKFile>\n"
+    )
     return pvd
 
 
@@ -94,7 +106,7 @@ def read_points(path: Path | str) -> tuple[np.ndarray, np.ndarray]:
     lines = Path(path).read_text().splitlines()
     i = next(k for k, ln in enumerate(lines) if ln.startswith("POINTS"))
     n = int(lines[i].split()[1])
-    pts = np.array([[float(c) for c in ln.split()] for ln in lines[i + 1:i + 1 + n]])
+    pts = np.array([[float(c) for c in ln.split()] for ln in lines[i + 1 : i + 1 + n]])
     j = next(k for k, ln in enumerate(lines) if ln.startswith("VECTORS"))
-    disp = np.array([[float(c) for c in ln.split()] for ln in lines[j + 1:j + 1 + n]])
+    disp = np.array([[float(c) for c in ln.split()] for ln in lines[j + 1 : j + 1 + n]])
     return pts, disp

@@ -82,13 +82,26 @@ def build_beams(model: Model, rigid_pids: np.ndarray, problems: list) -> BeamSet
         sec = model.sections.get(part.get("secid")) if part is not None else None
         mat = model.materials.get(part.get("mid")) if part is not None else None
         if sec is None or sec.keyword != "SECTION_BEAM" or mat is None or mat.keyword != "MAT_ELASTIC":
-            problems.append(Problem(model.source or "", 0, "ELEMENT_BEAM", "PID",
-                                    f"beams of part {int(p)}: the solver runs elastic beams "
-                                    "(*SECTION_BEAM with *MAT_ELASTIC) or rigid ones"))
+            problems.append(
+                Problem(
+                    model.source or "",
+                    0,
+                    "ELEMENT_BEAM",
+                    "PID",
+                    f"beams of part {int(p)}: the solver runs elastic beams "
+                    "(*SECTION_BEAM with *MAT_ELASTIC) or rigid ones",
+                )
+            )
             continue
         if int(sec.get("elform", 1) or 1) in (3, 6, 9):
-            problems.append(Problem(*sec.where("elform"), sec.name, "ELFORM",
-                                    f"beam formulation {sec.get('elform')} is not supported yet"))
+            problems.append(
+                Problem(
+                    *sec.where("elform"),
+                    sec.name,
+                    "ELFORM",
+                    f"beam formulation {sec.get('elform')} is not supported yet",
+                )
+            )
             continue
         props[m] = _properties(sec, mat)
         e, nu = float(mat["e"]), float(mat.get("pr", 0.0) or 0.0)
@@ -99,8 +112,20 @@ def build_beams(model: Model, rigid_pids: np.ndarray, problems: list) -> BeamSet
     frames = _frames(x, nodes[:, 0], nodes[:, 1], nodes[:, 2])
     length0 = np.linalg.norm(x[nodes[:, 1]] - x[nodes[:, 0]], axis=1)
     a, iss, itt, j = props.T
-    return BeamSet(ids, nodes[:, 0], nodes[:, 1], frames, frames.copy(), length0, young * a, shear * j,
-                   young * iss, young * itt, rho * a * length0, np.sqrt(young / np.where(rho > 0, rho, 1.0)))
+    return BeamSet(
+        ids,
+        nodes[:, 0],
+        nodes[:, 1],
+        frames,
+        frames.copy(),
+        length0,
+        young * a,
+        shear * j,
+        young * iss,
+        young * itt,
+        rho * a * length0,
+        np.sqrt(young / np.where(rho > 0, rho, 1.0)),
+    )
 
 
 def lumped(beams: BeamSet, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
@@ -126,10 +151,14 @@ def element_dt(beams: BeamSet, mass: np.ndarray, inertia: np.ndarray) -> np.ndar
     m_end = np.minimum(mass[beams.n1], mass[beams.n2])
     j_end = np.minimum(inertia[beams.n1], inertia[beams.n2])
     with np.errstate(divide="ignore", invalid="ignore"):
-        dts = np.stack([L / beams.wave,
-                        2.0 * np.sqrt(j_end / (2.0 * 6.0 * ei / L)),
-                        2.0 * np.sqrt(m_end / (2.0 * 2.0 * 12.0 * ei / L**3)),
-                        2.0 * np.sqrt(m_end / (2.0 * beams.ea / L))])
+        dts = np.stack(
+            [
+                L / beams.wave,
+                2.0 * np.sqrt(j_end / (2.0 * 6.0 * ei / L)),
+                2.0 * np.sqrt(m_end / (2.0 * 2.0 * 12.0 * ei / L**3)),
+                2.0 * np.sqrt(m_end / (2.0 * beams.ea / L)),
+            ]
+        )
     return np.nanmin(np.where(np.isfinite(dts), dts, np.nan), axis=0)
 
 

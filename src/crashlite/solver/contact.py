@@ -52,37 +52,61 @@ from .groups import ElementGroup
 from .kernels import contact as kc
 from .kernels.solid import N_CHUNKS, N_WORK, solid_volumes
 
-KINDS = ("CONTACT_AUTOMATIC_SINGLE_SURFACE", "CONTACT_AUTOMATIC_NODES_TO_SURFACE",
-         "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE")
+KINDS = (
+    "CONTACT_AUTOMATIC_SINGLE_SURFACE",
+    "CONTACT_AUTOMATIC_NODES_TO_SURFACE",
+    "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE",
+)
 BSORT_DEFAULT = 100
 
 # fields whose non-default values are not run: field -> (accepted values, what it does)
 _FIXED = {
-    "sboxid": ((0,), "box-limited slave surface"), "mboxid": ((0,), "box-limited master surface"),
-    "vc": ((0.0,), "viscous friction limit VC"), "penchk": ((0,), "penetration check"),
-    "lcidab": ((0,), "airbag thickness curve (SOFT = 2)"), "frcfrq": ((0, 1), "friction every FRCFRQ cycles"),
-    "penmax": ((0.0,), "release of deeply penetrated nodes"), "thkopt": ((0,), "thickness option"),
-    "isym": ((0,), "symmetry planes"), "i2d3d": ((0,), "2D/3D segment priority"),
-    "sldthk": ((0.0,), "solid contact thickness"), "sldstf": ((0.0,), "solid contact stiffness"),
+    "sboxid": ((0,), "box-limited slave surface"),
+    "mboxid": ((0,), "box-limited master surface"),
+    "vc": ((0.0,), "viscous friction limit VC"),
+    "penchk": ((0,), "penetration check"),
+    "lcidab": ((0,), "airbag thickness curve (SOFT = 2)"),
+    "frcfrq": ((0, 1), "friction every FRCFRQ cycles"),
+    "penmax": ((0.0,), "release of deeply penetrated nodes"),
+    "thkopt": ((0,), "thickness option"),
+    "isym": ((0,), "symmetry planes"),
+    "i2d3d": ((0,), "2D/3D segment priority"),
+    "sldthk": ((0.0,), "solid contact thickness"),
+    "sldstf": ((0.0,), "solid contact stiffness"),
     "dprfac": ((0.0,), "depth of penetration reduction"),
-    "cid_rcf": ((0,), "rcforc in a local system"), "q2tri": ((0,), "quad splitting"),
-    "dtpchk": ((0.0,), "penetration time step check"), "sfnbr": ((0.0,), "neighbour segment scale"),
-    "fnlscl": ((0.0,), "non-linear penalty"), "dnlscl": ((0.0,), "non-linear penalty depth"),
-    "tcso": ((0,), "segment-orientation option"), "tiedid": ((0,), "tied incremental displacement"),
-    "shledg": ((0,), "shell edge treatment"), "sharec": ((0,), "shared edge constraint"),
-    "cparm8": ((0,), "spot weld exclusion"), "ipback": ((0,), "backup penalty"),
-    "srnde": ((0,), "non-extended rounded edges"), "fricsf": ((1.0,), "friction scale on the tangent"),
-    "icor": ((0,), "coefficient of restitution"), "ftorq": ((0,), "friction torque"),
-    "region": ((0,), "contact region"), "pstiff": ((0,), "stiffness from the master segment only"),
-    "ignroff": ((0,), "ignore thickness offsets"), "twodbinr": ((0,), "2D binary output"),
-    "ssftyp": ((0,), "SSF type"), "swtpr": ((0,), "tapered shell thickness"), "tetfac": ((0.0,), "tetrahedra factor"),
+    "cid_rcf": ((0,), "rcforc in a local system"),
+    "q2tri": ((0,), "quad splitting"),
+    "dtpchk": ((0.0,), "penetration time step check"),
+    "sfnbr": ((0.0,), "neighbour segment scale"),
+    "fnlscl": ((0.0,), "non-linear penalty"),
+    "dnlscl": ((0.0,), "non-linear penalty depth"),
+    "tcso": ((0,), "segment-orientation option"),
+    "tiedid": ((0,), "tied incremental displacement"),
+    "shledg": ((0,), "shell edge treatment"),
+    "sharec": ((0,), "shared edge constraint"),
+    "cparm8": ((0,), "spot weld exclusion"),
+    "ipback": ((0,), "backup penalty"),
+    "srnde": ((0,), "non-extended rounded edges"),
+    "fricsf": ((1.0,), "friction scale on the tangent"),
+    "icor": ((0,), "coefficient of restitution"),
+    "ftorq": ((0,), "friction torque"),
+    "region": ((0,), "contact region"),
+    "pstiff": ((0,), "stiffness from the master segment only"),
+    "ignroff": ((0,), "ignore thickness offsets"),
+    "twodbinr": ((0,), "2D binary output"),
+    "ssftyp": ((0,), "SSF type"),
+    "swtpr": ((0,), "tapered shell thickness"),
+    "tetfac": ((0.0,), "tetrahedra factor"),
     "shloff": ((0.0,), "shell offset"),
 }
-_CONTROL_FIXED = {"sfric": ((0.0,), "default friction"),
-                  "penopt": ((0, 1), "penalty other than the smaller of segment and node (PENOPT 0/1)"),
-                  "thkchg": ((0,), "shell thickness changes in contact"),
-                  "dfric": ((0.0,), "default friction"), "edc": ((0.0,), "default friction decay"),
-                  "vfc": ((0.0,), "default viscous friction")}
+_CONTROL_FIXED = {
+    "sfric": ((0.0,), "default friction"),
+    "penopt": ((0, 1), "penalty other than the smaller of segment and node (PENOPT 0/1)"),
+    "thkchg": ((0,), "shell thickness changes in contact"),
+    "dfric": ((0.0,), "default friction"),
+    "edc": ((0.0,), "default friction decay"),
+    "vfc": ((0.0,), "default viscous friction"),
+}
 
 # LS-DYNA hexahedron faces (0-based, outward normals by the right-hand rule)
 _HEX_FACES = np.array([[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]])
@@ -104,8 +128,17 @@ class Surface:
 
     @staticmethod
     def empty() -> Surface:
-        return Surface(np.zeros((0, 4), np.int64), np.zeros(0), np.zeros(0), np.zeros(0, np.int8), np.zeros(0),
-                       np.zeros(0), np.zeros(0, np.int64), np.zeros(0, np.int8), np.zeros(0, np.int64))
+        return Surface(
+            np.zeros((0, 4), np.int64),
+            np.zeros(0),
+            np.zeros(0),
+            np.zeros(0, np.int8),
+            np.zeros(0),
+            np.zeros(0),
+            np.zeros(0, np.int64),
+            np.zeros(0, np.int8),
+            np.zeros(0, np.int64),
+        )
 
     def nodes(self) -> np.ndarray:
         return np.unique(self.seg)
@@ -123,8 +156,12 @@ class Surface:
 
 
 def concat(*surfs: Surface) -> Surface:
-    return Surface(*(np.concatenate([getattr(s, f) for s in surfs]) for f in
-                     ("seg", "thick", "k", "onesided", "depth", "size", "owner", "solid", "partner")))
+    return Surface(
+        *(
+            np.concatenate([getattr(s, f) for s in surfs])
+            for f in ("seg", "thick", "k", "onesided", "depth", "size", "owner", "solid", "partner")
+        )
+    )
 
 
 @dataclass
@@ -226,8 +263,9 @@ class ContactGroup(ElementGroup):
         mass = np.asarray(st.mass, float)
         self._smass = mass[c.snode]
         nn = np.where(c.seg[:, 2] == c.seg[:, 3], 3, 4)
-        self._mmass = (mass[c.seg[:, 0]] + mass[c.seg[:, 1]] + mass[c.seg[:, 2]]
-                       + np.where(nn == 4, mass[c.seg[:, 3]], 0.0)) / nn
+        self._mmass = (
+            mass[c.seg[:, 0]] + mass[c.seg[:, 1]] + mass[c.seg[:, 2]] + np.where(nn == 4, mass[c.seg[:, 3]], 0.0)
+        ) / nn
         self._sort(st.x)
 
     def forces(self, st) -> None:
@@ -237,7 +275,7 @@ class ContactGroup(ElementGroup):
         if c.soft == 1 and self.prm[kc.P_SOFT_K] == 0.0:
             dt0 = c.dt0 if np.isfinite(c.dt0) else st.dt
             if dt0 > 0:
-                self.prm[kc.P_SOFT_K] = 0.5 * c.sofscl / dt0 ** 2
+                self.prm[kc.P_SOFT_K] = 0.5 * c.sofscl / dt0**2
         self.prm[kc.P_ACTIVE] = 1.0 if c.birth <= st.t <= c.death else 0.0
         for rows, alive, el, across in self.links:
             kc.link_alive(rows, alive, el, across, self.alive)
@@ -246,9 +284,34 @@ class ContactGroup(ElementGroup):
             self._sort(st.x)
         p_old = kc.power(self.rows, self.rnode, self.gap, st.v)  # forces of t(n) at v(n+½)
         kc.segment_boxes(st.x, c.seg, self._reach, self._box)
-        kc.contact_forces(st.x, st.v, float(st.dt), c.snode, c.sthick, c.sk, self._smass, c.seg, c.mthick, c.mk,
-                          self._mmass, c.onesided, c.depth, c.msize, self.alive, self._box, self._cptr, self._cand,
-                          self.prm, self.ft, self.prev, self.side, self.rows, self.rnode, self.gap, self.offset)
+        kc.contact_forces(
+            st.x,
+            st.v,
+            float(st.dt),
+            c.snode,
+            c.sthick,
+            c.sk,
+            self._smass,
+            c.seg,
+            c.mthick,
+            c.mk,
+            self._mmass,
+            c.onesided,
+            c.depth,
+            c.msize,
+            self.alive,
+            self._box,
+            self._cptr,
+            self._cand,
+            self.prm,
+            self.ft,
+            self.prev,
+            self.side,
+            self.rows,
+            self.rnode,
+            self.gap,
+            self.offset,
+        )
         p_new = kc.scatter(self.rows, self.rnode, self.gap, st.v, c.node_side, st.f, self.resultant)
         # work of the contact forces over the step (trapezoid); stored and dissipated energy count positive
         self.energy[0] -= 0.5 * float(st.dt) * (p_old + p_new)
@@ -275,10 +338,34 @@ class ContactGroup(ElementGroup):
         prm[[kc.P_FS, kc.P_FD, kc.P_VDC, kc.P_SOFT_K]] = 0.0
         prm[kc.P_ACTIVE] = 1.0
         rows, rnode, gap = np.zeros((ns, 5, 3)), np.full((ns, 5), -1, np.int64), np.zeros(ns)
-        kc.contact_forces(x, np.zeros_like(x), 0.0, c.snode, c.sthick, c.sk, np.zeros(ns), c.seg, c.mthick, c.mk,
-                          np.zeros(nm), c.onesided, c.depth, c.msize, self.alive, box, self._cptr, self._cand, prm,
-                          np.zeros((ns, 3)), np.full(ns, -1, np.int64), np.zeros(ns, np.int8), rows, rnode, gap,
-                          np.zeros(ns))
+        kc.contact_forces(
+            x,
+            np.zeros_like(x),
+            0.0,
+            c.snode,
+            c.sthick,
+            c.sk,
+            np.zeros(ns),
+            c.seg,
+            c.mthick,
+            c.mk,
+            np.zeros(nm),
+            c.onesided,
+            c.depth,
+            c.msize,
+            self.alive,
+            box,
+            self._cptr,
+            self._cand,
+            prm,
+            np.zeros((ns, 3)),
+            np.full(ns, -1, np.int64),
+            np.zeros(ns, np.int8),
+            rows,
+            rnode,
+            gap,
+            np.zeros(ns),
+        )
         f = rows[:, 0, :]
         size = np.linalg.norm(f, axis=1)
         normal = np.where(size[:, None] > 0, f / np.where(size > 0, size, 1.0)[:, None], 0.0)
@@ -314,8 +401,11 @@ def _ignore(rec, problems: list) -> int:
     """IGNORE: 0 initial penetrations moved out, 1 tracked, 2 tracked (LS-DYNA also prints them)."""
     val = int(_num(rec, "ignore"))
     if val not in (0, 1, 2):
-        problems.append(_problem(rec, "ignore", f"IGNORE {val} is not supported (0 move nodes, 1 and 2 track "
-                                                "the initial penetrations)"))
+        problems.append(
+            _problem(
+                rec, "ignore", f"IGNORE {val} is not supported (0 move nodes, 1 and 2 track the initial penetrations)"
+            )
+        )
         return 0
     return val
 
@@ -344,8 +434,14 @@ def _bulk(model: Model, pid: int, problems: list, rec) -> float:
     mat = model.materials.get(part.get("mid")) if part is not None else None
     e, nu = _num(mat, "e"), _num(mat, "pr")
     if mat is None or e <= 0 or not -1.0 < nu < 0.5:
-        problems.append(_problem(rec, None, f"part {int(pid)} of the contact surface needs a material with "
-                                            "E > 0 and -1 < PR < 0.5 (the penalty uses its bulk modulus)"))
+        problems.append(
+            _problem(
+                rec,
+                None,
+                f"part {int(pid)} of the contact surface needs a material with "
+                "E > 0 and -1 < PR < 0.5 (the penalty uses its bulk modulus)",
+            )
+        )
         return 0.0
     return e / (3.0 * (1.0 - 2.0 * nu))
 
@@ -431,8 +527,9 @@ def _areas(x, seg):
     return 0.5 * np.linalg.norm(np.cross(u, w), axis=1)
 
 
-def build_surface(model: Model, pids, slsfac: float, sf: float, thick: float, thick_scale: float, problems: list,
-                  rec) -> Surface:
+def build_surface(
+    model: Model, pids, slsfac: float, sf: float, thick: float, thick_scale: float, problems: list, rec
+) -> Surface:
     """Segments of the parts ``pids``: shells and exterior solid faces, with
     their thickness (``thick`` > 0 replaces the shells'; else scaled by
     ``thick_scale``) and SOFT = 0 penalty stiffness scaled by slsfac·sf."""
@@ -452,12 +549,28 @@ def build_surface(model: Model, pids, slsfac: float, sf: float, thick: float, th
         area = _areas(x, conn)
         tri = conn[:, 2] == conn[:, 3]
         edges = np.stack([np.linalg.norm(x[conn[:, (j + 1) % 3]] - x[conn[:, j]], axis=1) for j in range(3)], 1)
-        diag = np.where(tri, edges.max(axis=1),
-                        np.minimum(np.linalg.norm(x[conn[:, 2]] - x[conn[:, 0]], axis=1),
-                                   np.linalg.norm(x[conn[:, 3]] - x[conn[:, 1]], axis=1)))
+        diag = np.where(
+            tri,
+            edges.max(axis=1),
+            np.minimum(
+                np.linalg.norm(x[conn[:, 2]] - x[conn[:, 0]], axis=1),
+                np.linalg.norm(x[conn[:, 3]] - x[conn[:, 1]], axis=1),
+            ),
+        )
         k = slsfac * sf * bulk * area / np.where(diag > 0, diag, 1.0)
-        out.append(Surface(conn, t, k, np.zeros(len(conn), np.int8), np.zeros(len(conn)), np.sqrt(area),
-                           np.flatnonzero(sel), np.zeros(len(conn), np.int8), np.full(len(conn), -1, np.int64)))
+        out.append(
+            Surface(
+                conn,
+                t,
+                k,
+                np.zeros(len(conn), np.int8),
+                np.zeros(len(conn)),
+                np.sqrt(area),
+                np.flatnonzero(sel),
+                np.zeros(len(conn), np.int8),
+                np.full(len(conn), -1, np.int64),
+            )
+        )
     so = model.solids
     sel = np.isin(so.pid, pids)
     if sel.any():
@@ -469,28 +582,54 @@ def build_surface(model: Model, pids, slsfac: float, sf: float, thick: float, th
         kb = np.array([bulk[int(p)] for p in so.pid[sel][owner]]) if len(owner) else np.zeros(0)
         area = _areas(x, faces)
         v = np.maximum(vol[owner], 1e-300)
-        out.append(Surface(faces, np.zeros(len(faces)), slsfac * sf * kb * area ** 2 / v,
-                           np.ones(len(faces), np.int8), 0.5 * v / np.maximum(area, 1e-300), np.sqrt(area),
-                           np.flatnonzero(sel)[owner], np.ones(len(faces), np.int8),
-                           np.where(partner >= 0, np.flatnonzero(sel)[np.maximum(partner, 0)], -1)))
+        out.append(
+            Surface(
+                faces,
+                np.zeros(len(faces)),
+                slsfac * sf * kb * area**2 / v,
+                np.ones(len(faces), np.int8),
+                0.5 * v / np.maximum(area, 1e-300),
+                np.sqrt(area),
+                np.flatnonzero(sel)[owner],
+                np.ones(len(faces), np.int8),
+                np.where(partner >= 0, np.flatnonzero(sel)[np.maximum(partner, 0)], -1),
+            )
+        )
     return concat(*out) if out else Surface.empty()
 
 
 def _part_ids(model: Model, rec, id_fld: str, typ_fld: str, allowed: tuple, problems: list):
     """('parts', pids) or ('nodes', node indices) of a contact side, or None."""
     sid, typ = int(_num(rec, id_fld)), int(_num(rec, typ_fld))
-    names = {0: "segment sets", 1: "shell element sets", 2: "part sets", 3: "parts", 4: "node sets",
-             5: "all parts", 6: "part sets to exclude"}
+    names = {
+        0: "segment sets",
+        1: "shell element sets",
+        2: "part sets",
+        3: "parts",
+        4: "node sets",
+        5: "all parts",
+        6: "part sets to exclude",
+    }
     if typ == 0 and sid == 0 and 0 in allowed:  # single surface: SSID 0 means every part
         typ = 5
     if typ not in allowed:
-        problems.append(_problem(rec, typ_fld, f"{typ_fld.upper()} {typ} ({names.get(typ, 'unknown type')}) is not "
-                                               "supported here (supported: "
-                                               + ", ".join(f"{a} {names[a]}" for a in allowed if a) + ")"))
+        problems.append(
+            _problem(
+                rec,
+                typ_fld,
+                f"{typ_fld.upper()} {typ} ({names.get(typ, 'unknown type')}) is not "
+                "supported here (supported: " + ", ".join(f"{a} {names[a]}" for a in allowed if a) + ")",
+            )
+        )
         return None
     if typ == 0:
-        problems.append(_problem(rec, typ_fld, f"{typ_fld.upper()} 0 (segment sets) is not supported yet; give the "
-                                               "parts (2 part set, 3 part)"))
+        problems.append(
+            _problem(
+                rec,
+                typ_fld,
+                f"{typ_fld.upper()} 0 (segment sets) is not supported yet; give the parts (2 part set, 3 part)",
+            )
+        )
         return None
     if typ == 5:
         return "parts", np.array(sorted(model.parts), np.int64)
@@ -540,8 +679,9 @@ def _options(rec, problems: list) -> dict | None:
         ok = False
     for fld in ("fs", "fd", "dc", "vdc", "sst", "mst"):
         if _num(rec, fld) < 0:
-            problems.append(_problem(rec, fld, f"{fld.upper()} < 0 (friction or thickness from other cards) is "
-                                               "not supported"))
+            problems.append(
+                _problem(rec, fld, f"{fld.upper()} < 0 (friction or thickness from other cards) is not supported")
+            )
             ok = False
     if _num(rec, "bt") < 0:
         problems.append(_problem(rec, "bt", "BT < 0 (birth during dynamic relaxation) is not supported"))
@@ -551,11 +691,27 @@ def _options(rec, problems: list) -> dict | None:
 
     def pos(fld, default):
         return _num(rec, fld, default) or default
-    return dict(fs=_num(rec, "fs"), fd=_num(rec, "fd"), dc=_num(rec, "dc"), vdc=_num(rec, "vdc"),
-                fsf=pos("fsf", 1.0), soft=soft, sofscl=pos("sofscl", 0.1), birth=_num(rec, "bt"),
-                death=pos("dt", 1e20), bsort=int(pos("bsort", BSORT_DEFAULT)), sfs=pos("sfs", 1.0),
-                sfm=pos("sfm", 1.0), sst=_num(rec, "sst"), mst=_num(rec, "mst"), sfst=pos("sfst", 1.0),
-                sfmt=pos("sfmt", 1.0), dtstif=_num(rec, "dtstif"), ignore=_ignore(rec, problems))
+
+    return dict(
+        fs=_num(rec, "fs"),
+        fd=_num(rec, "fd"),
+        dc=_num(rec, "dc"),
+        vdc=_num(rec, "vdc"),
+        fsf=pos("fsf", 1.0),
+        soft=soft,
+        sofscl=pos("sofscl", 0.1),
+        birth=_num(rec, "bt"),
+        death=pos("dt", 1e20),
+        bsort=int(pos("bsort", BSORT_DEFAULT)),
+        sfs=pos("sfs", 1.0),
+        sfm=pos("sfm", 1.0),
+        sst=_num(rec, "sst"),
+        mst=_num(rec, "mst"),
+        sfst=pos("sfst", 1.0),
+        sfmt=pos("sfmt", 1.0),
+        dtstif=_num(rec, "dtstif"),
+        ignore=_ignore(rec, problems),
+    )
 
 
 def _limit_thickness(surf: Surface, x: np.ndarray) -> None:
@@ -568,16 +724,23 @@ def _limit_thickness(surf: Surface, x: np.ndarray) -> None:
     surf.thick[shell] = np.minimum(surf.thick[shell], 0.4 * shortest[shell])
 
 
-def _interface(model: Model, rec, number: int, slsfac: float, problems: list, ssthk: int = 0,
-               ignore: int = 0) -> Interface | None:
+def _interface(
+    model: Model, rec, number: int, slsfac: float, problems: list, ssthk: int = 0, ignore: int = 0
+) -> Interface | None:
     """One interface; ``ssthk``, ``ignore``: *CONTROL_CONTACT's (the contact's
     own IGNORE wins where it is not 0)."""
     kind = rec.keyword
     n = len(model.nodes)
     o = _options(rec, problems)
     cid = int(rec.get("cid") or number)
-    slave = _part_ids(model, rec, "ssid", "sstyp",
-                      {KINDS[0]: (0, 2, 3, 5), KINDS[1]: (2, 3, 4, 5), KINDS[2]: (2, 3, 5)}[kind], problems)
+    slave = _part_ids(
+        model,
+        rec,
+        "ssid",
+        "sstyp",
+        {KINDS[0]: (0, 2, 3, 5), KINDS[1]: (2, 3, 4, 5), KINDS[2]: (2, 3, 5)}[kind],
+        problems,
+    )
     master = None
     if kind != KINDS[0]:
         master = _part_ids(model, rec, "msid", "mstyp", (2, 3), problems)
@@ -586,8 +749,11 @@ def _interface(model: Model, rec, number: int, slsfac: float, problems: list, ss
     if slave is None or o is None:
         return None
     before = len(problems)
-    s_surf = (build_surface(model, slave[1], slsfac, o["sfs"], o["sst"], o["sfst"], problems, rec)
-              if slave[0] == "parts" else Surface.empty())
+    s_surf = (
+        build_surface(model, slave[1], slsfac, o["sfs"], o["sst"], o["sfst"], problems, rec)
+        if slave[0] == "parts"
+        else Surface.empty()
+    )
     if kind == KINDS[0]:
         if o["sst"] <= 0 and not ssthk:
             _limit_thickness(s_surf, model.nodes.xyz)
@@ -601,8 +767,11 @@ def _interface(model: Model, rec, number: int, slsfac: float, problems: list, ss
         if kind == KINDS[1]:
             if slave[0] == "nodes":  # thickness of the shells on the nodes; stiffness from the master
                 nodes = slave[1]
-                t = (np.full(len(nodes), o["sst"]) if o["sst"] > 0 else
-                     o["sfst"] * _node_shell_thickness(model, nodes, problems, rec))
+                t = (
+                    np.full(len(nodes), o["sst"])
+                    if o["sst"] > 0
+                    else o["sfst"] * _node_shell_thickness(model, nodes, problems, rec)
+                )
                 k = np.full(len(nodes), np.inf)
             else:
                 nodes = _element_nodes(model, slave[1])
@@ -622,15 +791,43 @@ def _interface(model: Model, rec, number: int, slsfac: float, problems: list, ss
     if len(problems) > before:
         return None
     if not len(seg.seg):
-        problems.append(_problem(rec, "msid" if kind != KINDS[0] else "ssid",
-                                 "the contact surface has no segments (shells or solids)"))
+        problems.append(
+            _problem(
+                rec, "msid" if kind != KINDS[0] else "ssid", "the contact surface has no segments (shells or solids)"
+            )
+        )
         return None
-    return Interface(cid, rec.name, nodes.astype(np.int64), side, np.asarray(t, float), np.asarray(k, float),
-                     node_side, seg.seg, mside, seg.thick, seg.k, seg.onesided, seg.depth, seg.size, seg.owner,
-                     seg.solid, seg.partner,
-                     fs=o["fs"], fd=o["fd"], dc=o["dc"], vdc=o["vdc"], fsf=o["fsf"], soft=o["soft"],
-                     sofscl=o["sofscl"], dt0=o["dtstif"] if o["dtstif"] > 0 else np.inf, birth=o["birth"],
-                     death=o["death"], bsort=o["bsort"], ignore=o["ignore"] or ignore)
+    return Interface(
+        cid,
+        rec.name,
+        nodes.astype(np.int64),
+        side,
+        np.asarray(t, float),
+        np.asarray(k, float),
+        node_side,
+        seg.seg,
+        mside,
+        seg.thick,
+        seg.k,
+        seg.onesided,
+        seg.depth,
+        seg.size,
+        seg.owner,
+        seg.solid,
+        seg.partner,
+        fs=o["fs"],
+        fd=o["fd"],
+        dc=o["dc"],
+        vdc=o["vdc"],
+        fsf=o["fsf"],
+        soft=o["soft"],
+        sofscl=o["sofscl"],
+        dt0=o["dtstif"] if o["dtstif"] > 0 else np.inf,
+        birth=o["birth"],
+        death=o["death"],
+        bsort=o["bsort"],
+        ignore=o["ignore"] or ignore,
+    )
 
 
 def _initial_dt(model: Model, groups) -> float:
@@ -652,8 +849,15 @@ def build_contacts(model: Model, groups, problems: list) -> list[ContactGroup]:
         name = raw.keyword_line.split()[0].lstrip("*").upper() if hasattr(raw, "keyword_line") else ""
         if name.startswith(KINDS):  # e.g. _MPP, _TIEBREAK: the prefix is run, the option is not
             src = getattr(raw, "source", None) or (model.source or "", 0)
-            problems.append(Problem(str(src[0]), int(src[1]), name, None,
-                                    f"*{name} is not supported (supported: {', '.join(KINDS)} with _ID)"))
+            problems.append(
+                Problem(
+                    str(src[0]),
+                    int(src[1]),
+                    name,
+                    None,
+                    f"*{name} is not supported (supported: {', '.join(KINDS)} with _ID)",
+                )
+            )
     recs = [r for r in model.keywords if getattr(r, "keyword", "") in KINDS and hasattr(r, "get")]
     if not recs:
         return out

@@ -73,8 +73,10 @@ class DiscreteGroup(ElementGroup):
         self.plastic = np.zeros(ne)  # S08 plastic deflection [length]
         self.hist = np.zeros((ne, 4))  # S06 largest deflections and unloading shifts [length]
         zi, zf = np.zeros(ne, np.int64), np.zeros(ne)
-        self._s06 = tuple(a if a is not None else z for a, z in
-                          ((d.ucurve_start, zi), (d.ucurve_stop, zi), (d.yield_t, zf), (d.yield_c, zf)))
+        self._s06 = tuple(
+            a if a is not None else z
+            for a, z in ((d.ucurve_start, zi), (d.ucurve_stop, zi), (d.yield_t, zf), (d.yield_c, zf))
+        )
         self.energy = np.zeros(ne)
         self._ptr, self._elem, self._sign = incidence(n_nodes, d.n1, d.n2)
 
@@ -82,9 +84,30 @@ class DiscreteGroup(ElementGroup):
         d = self.d
         if not len(d.ids):
             return
-        discrete_forces(st.x, st.v, d.n1, d.n2, d.kind, d.k, d.scale, d.offset, d.length0, d.direction,
-                        d.curve_start, d.curve_stop, d.curve_x, d.curve_y, d.ground, d.ctf, *self._s06,
-                        self.plastic, self.hist, self.fe, self.force, self.elong)
+        discrete_forces(
+            st.x,
+            st.v,
+            d.n1,
+            d.n2,
+            d.kind,
+            d.k,
+            d.scale,
+            d.offset,
+            d.length0,
+            d.direction,
+            d.curve_start,
+            d.curve_stop,
+            d.curve_x,
+            d.curve_y,
+            d.ground,
+            d.ctf,
+            *self._s06,
+            self.plastic,
+            self.hist,
+            self.fe,
+            self.force,
+            self.elong,
+        )
         gather(self._ptr, self._elem, self._sign, self.fe, st.f)
 
     def start(self) -> None:
@@ -124,8 +147,23 @@ class BeamGroup(ElementGroup):
 
     def forces(self, st) -> None:
         bm = self.bm
-        beam_forces(st.x, st.rot, bm.n1, bm.n2, bm.q1, bm.q2, bm.length0, bm.ea, bm.gj, bm.ei2, bm.ei3,
-                    self.fe, self.me, self.gf, self.gd)
+        beam_forces(
+            st.x,
+            st.rot,
+            bm.n1,
+            bm.n2,
+            bm.q1,
+            bm.q2,
+            bm.length0,
+            bm.ea,
+            bm.gj,
+            bm.ei2,
+            bm.ei3,
+            self.fe,
+            self.me,
+            self.gf,
+            self.gd,
+        )
         gather_ends(self._ptr, self._corner_of, self.fe, st.f)
         gather_ends(self._ptr, self._corner_of, self.me, st.moment)
 

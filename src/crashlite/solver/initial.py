@@ -44,9 +44,15 @@ def _initial_velocity(model: Model, v: np.ndarray, problems: list) -> None:
             if len(fastest) and fastest.max() > c_max:
                 i = int(changed[np.argmax(fastest)])
                 field = "vx" if name != "INITIAL_VELOCITY_NODE" else None
-                problems.append(_problem(rec, field, f"node {int(model.nodes.ids[i])} starts at {fastest.max():.4g}, "
-                                                     f"faster than sound in any material of the deck "
-                                                     f"(sqrt(E/RO) at most {c_max:.4g})"))
+                problems.append(
+                    _problem(
+                        rec,
+                        field,
+                        f"node {int(model.nodes.ids[i])} starts at {fastest.max():.4g}, "
+                        f"faster than sound in any material of the deck "
+                        f"(sqrt(E/RO) at most {c_max:.4g})",
+                    )
+                )
 
 
 def _one_initial_velocity(model: Model, rec, name: str, v: np.ndarray, n: int) -> None:
@@ -100,8 +106,11 @@ def _initial_rotation(model: Model, n: int) -> np.ndarray:
             w[idx] = np.stack([rec.rows["vxr"], rec.rows["vyr"], rec.rows["vzr"]], axis=1)
         elif name == "INITIAL_VELOCITY_GENERATION" and rec.get("omega"):
             styp = int(rec.get("styp", 2))
-            nodes = (_node_set(model, rec["id"]) if styp == 3 else
-                     _part_nodes(model, [rec["id"]] if styp == 2 else model.set_members("PART", rec["id"])))
+            nodes = (
+                _node_set(model, rec["id"])
+                if styp == 3
+                else _part_nodes(model, [rec["id"]] if styp == 2 else model.set_members("PART", rec["id"]))
+            )
             axis = np.array([rec.get("nx", 0.0), rec.get("ny", 0.0), rec.get("nz", 0.0)], float)
             if np.linalg.norm(axis) > 0:
                 w[nodes] = float(rec["omega"]) * axis / np.linalg.norm(axis)

@@ -57,8 +57,9 @@ def build_nodal_loads(model: Model, rot_nodes: np.ndarray, problems: list) -> No
         for i in range(len(rows["dof"])):
             dof, lcid = int(rows["dof"][i]), int(rows["lcid"][i])
             if dof in (4, 8) or dof not in (1, 2, 3, 5, 6, 7):
-                problems.append(_problem(rec, "dof", f"DOF {dof}: only global forces (1-3) and moments (5-7) "
-                                                     "are supported"))
+                problems.append(
+                    _problem(rec, "dof", f"DOF {dof}: only global forces (1-3) and moments (5-7) are supported")
+                )
                 continue
             if int(rows["cid"][i]):
                 problems.append(_problem(rec, "cid", "loads in a local system are not supported yet"))
@@ -67,15 +68,23 @@ def build_nodal_loads(model: Model, rot_nodes: np.ndarray, problems: list) -> No
                 problems.append(_problem(rec, "lcid", f"curve {lcid} is not defined"))
                 continue
             try:
-                idx = (model.node_index(np.array([rows["nid"][i]])) if point
-                       else model.node_index(model.set_members("node", int(rows["nsid"][i]))))
+                idx = (
+                    model.node_index(np.array([rows["nid"][i]]))
+                    if point
+                    else model.node_index(model.set_members("node", int(rows["nsid"][i])))
+                )
             except KeyError as e:
                 problems.append(_problem(rec, "nid" if point else "nsid", str(e).strip("'\"")))
                 continue
             c = dof - 1 if dof <= 3 else dof - 2
             if c >= 3 and not rot_nodes[idx].all():
-                problems.append(_problem(rec, "dof", "a moment on a node without rotational degrees of "
-                                                     "freedom (no shell or beam attached)"))
+                problems.append(
+                    _problem(
+                        rec,
+                        "dof",
+                        "a moment on a node without rotational degrees of freedom (no shell or beam attached)",
+                    )
+                )
                 continue
             if lcid not in slot:
                 slot[lcid] = len(curves)
@@ -86,6 +95,10 @@ def build_nodal_loads(model: Model, rot_nodes: np.ndarray, problems: list) -> No
             curve.append(np.full(len(idx), slot[lcid]))
     if not node:
         return None
-    return NodalLoads(np.concatenate(node).astype(np.int64), np.concatenate(comp).astype(np.int64),
-                      np.concatenate(scale), np.concatenate(curve).astype(np.int64), curves)
-
+    return NodalLoads(
+        np.concatenate(node).astype(np.int64),
+        np.concatenate(comp).astype(np.int64),
+        np.concatenate(scale),
+        np.concatenate(curve).astype(np.int64),
+        curves,
+    )

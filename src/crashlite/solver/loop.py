@@ -69,8 +69,20 @@ def _state(s: Setup) -> State:
     project_out(v, s.skew_nodes, s.skew_held)
     project_out(w, s.skew_nodes, s.skew_held_rot)
     inv_mass = np.where(s.mass > 0, 1.0 / np.where(s.mass > 0, s.mass, 1.0), 0.0)
-    return State(s.x0.copy(), v, np.zeros((n, 3)), np.tile(np.eye(3), (n, 1, 1)), w, np.zeros((n, 3)),
-                 s.mass, inv_mass, rot_inertia, inv_j, s.fixed, fixed_rot)
+    return State(
+        s.x0.copy(),
+        v,
+        np.zeros((n, 3)),
+        np.tile(np.eye(3), (n, 1, 1)),
+        w,
+        np.zeros((n, 3)),
+        s.mass,
+        inv_mass,
+        rot_inertia,
+        inv_j,
+        s.fixed,
+        fixed_rot,
+    )
 
 
 def groups_of(s: Setup, n: int) -> list:
@@ -118,15 +130,34 @@ class _Recorder:
         ie = float(sum(g.energy.sum() for g in self.groups if g.kind != "contact"))
         se = float(sum(g.energy.sum() for g in self.groups if g.kind == "contact"))
         hg = float(sum(g.hourglass.sum() for g in self.groups if g.hourglass is not None))
-        self.add(time=t, kinetic=ke, internal=ie, hourglass=hg, sliding=se, wall=ew, external=work,
-                 time_step=st.dt, cycle=self.cycle,
-                 force=d.force.copy(), elong=d.elong.copy(), wall_force=self.walls.force[:, :3].copy(),
-                 wall_velocity=self.walls.velocity.copy(), disp=st.x[h] - self.s.x0[h], vel=v_mid[h].copy(),
-                 acc=acc[h].copy(), coord=st.x[h].copy(), spc=self._spc.copy(), sec=self._sec[0].copy(),
-                 sec_m=self._sec[1].copy(), part_ie=self.parts.internal(), part_hg=self.parts.hourglass(),
-                 part_ke=self.parts.kinetic(st.mass, v_mid), part_p=(p := self.parts.momentum(st.mass, v_mid)),
-                 part_rbv=self.parts.rigid_velocity(st.mass, p),
-                 contact_force=np.array([g.resultant for g in self.contacts]).reshape(-1, 3))
+        self.add(
+            time=t,
+            kinetic=ke,
+            internal=ie,
+            hourglass=hg,
+            sliding=se,
+            wall=ew,
+            external=work,
+            time_step=st.dt,
+            cycle=self.cycle,
+            force=d.force.copy(),
+            elong=d.elong.copy(),
+            wall_force=self.walls.force[:, :3].copy(),
+            wall_velocity=self.walls.velocity.copy(),
+            disp=st.x[h] - self.s.x0[h],
+            vel=v_mid[h].copy(),
+            acc=acc[h].copy(),
+            coord=st.x[h].copy(),
+            spc=self._spc.copy(),
+            sec=self._sec[0].copy(),
+            sec_m=self._sec[1].copy(),
+            part_ie=self.parts.internal(),
+            part_hg=self.parts.hourglass(),
+            part_ke=self.parts.kinetic(st.mass, v_mid),
+            part_p=(p := self.parts.momentum(st.mass, v_mid)),
+            part_rbv=self.parts.rigid_velocity(st.mass, p),
+            contact_force=np.array([g.resultant for g in self.contacts]).reshape(-1, 3),
+        )
         self._check_sliding(t, ie, ke)
         return ie + se + hg
 
@@ -144,9 +175,11 @@ class _Recorder:
             deep = deep[g.gap[deep] > 0]
             ids = self.s.node_ids if self.s.node_ids is not None else np.arange(len(self.st.x))
             nodes = ", ".join(f"{int(ids[g.c.snode[i]])} ({g.gap[i]:.3g})" for i in deep) or "none in contact now"
-            self.warnings.append(f"{self.s.source}: *{g.name} {g.cid}: sliding energy {e:.4g} at t = {t:.6g} is "
-                                 f"below -1 % of the internal energy {ie:.4g}: the contact gives back energy "
-                                 f"it did not store; deepest slave nodes now (penetration): {nodes}")
+            self.warnings.append(
+                f"{self.s.source}: *{g.name} {g.cid}: sliding energy {e:.4g} at t = {t:.6g} is "
+                f"below -1 % of the internal energy {ie:.4g}: the contact gives back energy "
+                f"it did not store; deepest slave nodes now (penetration): {nodes}"
+            )
 
     def array(self, key, shape):
         ns = len(self.rows["time"])
@@ -195,9 +228,12 @@ class CompileClock:
         return False
 
 
-def integrate(s: Setup, output_dt: float | None = None,
-              progress: Callable[[float, int, float, float], None] | None = None,
-              fields: list | None = None) -> Results:
+def integrate(
+    s: Setup,
+    output_dt: float | None = None,
+    progress: Callable[[float, int, float, float], None] | None = None,
+    fields: list | None = None,
+) -> Results:
     """Run the time loop on a Setup; states every ``output_dt`` (default:
     1/200 of the end time) and at the end. ``fields``: a list that receives
     the nodal and element fields of each field state (results.d3plot.state).
@@ -364,8 +400,10 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list 
                 if why is not None:
                     raise FloatingPointError(why[0] + f" (cycle {cycle}): the run is stopped")
             if s.dt_min > 0 and dt_new < s.dt_min * dt_first:
-                raise FloatingPointError(f"time step {dt_new:.4g} at t = {t:.6g} (cycle {cycle}) fell below "
-                                         f"DTMIN x first step = {s.dt_min * dt_first:.4g}: the run is stopped")
+                raise FloatingPointError(
+                    f"time step {dt_new:.4g} at t = {t:.6g} (cycle {cycle}) fell below "
+                    f"DTMIN x first step = {s.dt_min * dt_first:.4g}: the run is stopped"
+                )
             output = t >= next_out * (1 - 1e-9) or t >= s.end_time
             field_state = t >= next_state * (1 - 1e-9) or (t >= s.end_time and np.isfinite(next_state))
             if field_state:
@@ -393,32 +431,51 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list 
                 if not np.all(np.isfinite(v)):
                     bad = int(np.argwhere(~np.isfinite(v))[0, 0])
                     name = f"node {int(s.node_ids[bad])}" if s.node_ids is not None else f"node index {bad}"
-                    raise FloatingPointError(f"non-finite velocity at {name}, t = {t:.6g} "
-                                             f"(cycle {cycle}): the run diverged")
+                    raise FloatingPointError(
+                        f"non-finite velocity at {name}, t = {t:.6g} (cycle {cycle}): the run diverged"
+                    )
                 v_mid = 0.5 * (v_prev + v)
                 ke = kinetic(v_mid, 0.5 * (w_prev + st.w))
                 # the last work increment belongs to the half step after t: count half of it
                 rec.cycle = cycle
                 ie = rec(t, v_mid, (v - v_prev) / dt_v, ke, w_ext - 0.5 * dw, ew_total)
                 next_out += output_dt
-                supplied = sum(rec.rows[k][0] for k in ("kinetic", "internal", "sliding", "hourglass")) \
-                    + w_ext - 0.5 * dw
+                supplied = (
+                    sum(rec.rows[k][0] for k in ("kinetic", "internal", "sliding", "hourglass")) + w_ext - 0.5 * dw
+                )
                 ratio = (ke + ie + ew_total) / max(supplied, 1e-300)
                 if progress is not None:
                     progress(t, cycle, dt, ratio)
                 if s.end_energy > 0 and abs(ratio - 1.0) * 100.0 > s.end_energy:
-                    raise FloatingPointError(f"energy ratio {ratio:.4f} at t = {t:.6g} (cycle {cycle}) is "
-                                             f"beyond ENDENG = {s.end_energy} %: the run is stopped")
+                    raise FloatingPointError(
+                        f"energy ratio {ratio:.4f} at t = {t:.6g} (cycle {cycle}) is "
+                        f"beyond ENDENG = {s.end_energy} %: the run is stopped"
+                    )
     except FloatingPointError as e:
         stopped = str(e)
     except KeyboardInterrupt:
         stopped = f"interrupted at t = {t:.6g} (cycle {cycle})"
     with HeldInterrupts() as held:  # a further Ctrl-C now would lose the states: held until they are out
-        res = _results(s, rec, groups, parts, walls, st, locals_=dict(
-            cycles=cycle, dt=dt, wall_time=_time.perf_counter() - t_start, states_t=states_t, states_x=states_x,
-            loop_time=_time.perf_counter() - t_loop - (clock.seconds - compile_loop),
-            cpu_time=_time.process_time() - cpu_loop - (clock.seconds - compile_loop), compile_time=clock.seconds,
-            added_mass=added_mass, stopped=stopped))
+        res = _results(
+            s,
+            rec,
+            groups,
+            parts,
+            walls,
+            st,
+            locals_=dict(
+                cycles=cycle,
+                dt=dt,
+                wall_time=_time.perf_counter() - t_start,
+                states_t=states_t,
+                states_x=states_x,
+                loop_time=_time.perf_counter() - t_loop - (clock.seconds - compile_loop),
+                cpu_time=_time.process_time() - cpu_loop - (clock.seconds - compile_loop),
+                compile_time=clock.seconds,
+                added_mass=added_mass,
+                stopped=stopped,
+            ),
+        )
     if held.hit and not stopped:
         res.info["stopped"] = f"interrupted at t = {t:.6g} (cycle {cycle}), after the last cycle"
     return res
@@ -464,13 +521,21 @@ def _results(s, rec, groups, parts, walls, st, locals_) -> Results:
     d = groups[0]
     ne, nw, nh, nsec, npart = len(d), len(s.walls), len(s.history_nodes), len(s.sections), len(parts.part_ids)
     a = rec.array
-    extra = dict(part_kinetic=a("part_ke", (npart,)), part_momentum=a("part_p", (npart, 3)),
-                 part_rigid_velocity=a("part_rbv", (npart, 3)), part_hourglass=a("part_hg", (npart,)),
-                 section_moment=a("sec_m", (nsec, 3)), node_acceleration=a("acc", (nh, 3)),
-                 node_coordinates=a("coord", (nh, 3)), hourglass=a("hourglass", ()), sliding=a("sliding", ()),
-                 time_step=a("time_step", ()), cycle_number=a("cycle", ()).astype(np.int64),
-                 contact_force=a("contact_force", (len(rec.contacts), 3)),
-                 contact_ids=np.array([g.cid for g in rec.contacts], np.int64))
+    extra = dict(
+        part_kinetic=a("part_ke", (npart,)),
+        part_momentum=a("part_p", (npart, 3)),
+        part_rigid_velocity=a("part_rbv", (npart, 3)),
+        part_hourglass=a("part_hg", (npart,)),
+        section_moment=a("sec_m", (nsec, 3)),
+        node_acceleration=a("acc", (nh, 3)),
+        node_coordinates=a("coord", (nh, 3)),
+        hourglass=a("hourglass", ()),
+        sliding=a("sliding", ()),
+        time_step=a("time_step", ()),
+        cycle_number=a("cycle", ()).astype(np.int64),
+        contact_force=a("contact_force", (len(rec.contacts), 3)),
+        contact_ids=np.array([g.cid for g in rec.contacts], np.int64),
+    )
     for g in groups:
         eps = g.plastic_strain() if g.kind in ("shell", "solid") else None
         if eps is not None:
@@ -479,26 +544,54 @@ def _results(s, rec, groups, parts, walls, st, locals_) -> Results:
     known = {f.name for f in fields(Results)}
     n = len(st.x)
     return Results(
-        time=a("time", ()), kinetic=a("kinetic", ()), internal=a("internal", ()), wall=a("wall", ()),
-        external=a("external", ()), discrete_force=a("force", (ne,)), discrete_elong=a("elong", (ne,)),
-        wall_force=a("wall_force", (nw, 3)), wall_velocity=a("wall_velocity", (nw,)),
-        node_displacement=a("disp", (nh, 3)), node_velocity=a("vel", (nh, 3)),
-        spc_force=a("spc", (len(rec.spc_nodes), 3)), spc_nodes=rec.spc_nodes,
-        history_nodes=s.history_nodes, discrete_ids=d.ids,
-        wall_ids=np.array([w.wall_id for w in s.walls], np.int64), final_x=st.x, final_v=st.v,
-        cycles=locals_["cycles"], dt=locals_["dt"], wall_time=locals_["wall_time"],
-        loop_time=locals_["loop_time"], cpu_time=max(locals_["cpu_time"], 0.0),
-        setup_time=locals_["wall_time"] - locals_["loop_time"], compile_time=locals_["compile_time"],
-        section_ids=np.array([sec.csid for sec in s.sections], np.int64), section_force=a("sec", (nsec, 3)),
-        part_ids=parts.part_ids, part_internal=a("part_ie", (npart,)),
+        time=a("time", ()),
+        kinetic=a("kinetic", ()),
+        internal=a("internal", ()),
+        wall=a("wall", ()),
+        external=a("external", ()),
+        discrete_force=a("force", (ne,)),
+        discrete_elong=a("elong", (ne,)),
+        wall_force=a("wall_force", (nw, 3)),
+        wall_velocity=a("wall_velocity", (nw,)),
+        node_displacement=a("disp", (nh, 3)),
+        node_velocity=a("vel", (nh, 3)),
+        spc_force=a("spc", (len(rec.spc_nodes), 3)),
+        spc_nodes=rec.spc_nodes,
+        history_nodes=s.history_nodes,
+        discrete_ids=d.ids,
+        wall_ids=np.array([w.wall_id for w in s.walls], np.int64),
+        final_x=st.x,
+        final_v=st.v,
+        cycles=locals_["cycles"],
+        dt=locals_["dt"],
+        wall_time=locals_["wall_time"],
+        loop_time=locals_["loop_time"],
+        cpu_time=max(locals_["cpu_time"], 0.0),
+        setup_time=locals_["wall_time"] - locals_["loop_time"],
+        compile_time=locals_["compile_time"],
+        section_ids=np.array([sec.csid for sec in s.sections], np.int64),
+        section_force=a("sec", (nsec, 3)),
+        part_ids=parts.part_ids,
+        part_internal=a("part_ie", (npart,)),
         states_time=np.array(locals_["states_t"]) if s.state_dt > 0 else np.zeros(0),
         states_x=np.array(locals_["states_x"]) if s.state_dt > 0 else np.zeros((0, n, 3)),
-        info={"added_mass": locals_["added_mass"], "stopped": locals_["stopped"], "warnings": list(rec.warnings),
-              "elements": {g.kind: len(g) for g in groups if len(g)},
-              "bodies": {b.body_id: {"cog": b.cog.copy(), "velocity": b.velocity.copy(),
-                                     "momentum": b.momentum.copy(), "rotation": b.rot.copy()}
-                         for b in s.bodies}},
-        **{k: v for k, v in extra.items() if k in known})
+        info={
+            "added_mass": locals_["added_mass"],
+            "stopped": locals_["stopped"],
+            "warnings": list(rec.warnings),
+            "elements": {g.kind: len(g) for g in groups if len(g)},
+            "bodies": {
+                b.body_id: {
+                    "cog": b.cog.copy(),
+                    "velocity": b.velocity.copy(),
+                    "momentum": b.momentum.copy(),
+                    "rotation": b.rot.copy(),
+                }
+                for b in s.bodies
+            },
+        },
+        **{k: v for k, v in extra.items() if k in known},
+    )
 
 
 def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = None) -> Results:
@@ -531,8 +624,11 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
     from .support import PASSED
 
     passed = {w.keyword for w in s.warnings if w.message.startswith(PASSED)}  # said once, by the solver
-    res.info["warnings"] = ([str(w) for w in model.warnings if w.keyword not in passed]
-                            + [str(w) for w in s.warnings] + res.info.get("warnings", []))
+    res.info["warnings"] = (
+        [str(w) for w in model.warnings if w.keyword not in passed]
+        + [str(w) for w in s.warnings]
+        + res.info.get("warnings", [])
+    )
     if out is not None:
         with HeldInterrupts() as held:  # Ctrl-C while saving: every file is still written, then reported
             res.save(Path(out))  # also when the run stopped early: the states so far are kept
@@ -543,18 +639,28 @@ def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = N
             if len(res.states_time):
                 from ..results.vtk import element_field, write_states
 
-                eps = element_field(model, {"shells": res.shell_ids, "solids": res.solid_ids},
-                                    {"shells": res.shell_plastic_strain, "solids": res.solid_plastic_strain})
+                eps = element_field(
+                    model,
+                    {"shells": res.shell_ids, "solids": res.solid_ids},
+                    {"shells": res.shell_plastic_strain, "solids": res.solid_plastic_strain},
+                )
                 write_states(Path(out) / "states", model, res.states_time, res.states_x, {"plastic_strain": eps})
                 if fields is None:
                     res.info["warnings"].append(d3plot.MISSING)
                 else:
-                    d3plot.write(Path(out) / "d3plot", model, res.states_time, res.states_x, fields,
-                                 {"time": res.time, "kinetic": res.kinetic, "internal": res.internal,
-                                  "total": res.total})
+                    d3plot.write(
+                        Path(out) / "d3plot",
+                        model,
+                        res.states_time,
+                        res.states_x,
+                        fields,
+                        {"time": res.time, "kinetic": res.kinetic, "internal": res.internal, "total": res.total},
+                    )
         if held.hit and not res.info["stopped"]:
-            res.info["stopped"] = (f"interrupted at t = {res.time[-1]:.6g} (cycle {res.cycles}), while saving "
-                                   "the results (every file written)")
+            res.info["stopped"] = (
+                f"interrupted at t = {res.time[-1]:.6g} (cycle {res.cycles}), while saving "
+                "the results (every file written)"
+            )
     if res.info["stopped"] and not res.info["stopped"].startswith("interrupted"):
         raise RunError(res.info["stopped"], res)
     return res
@@ -576,9 +682,12 @@ class _progress_bar:
     def __init__(self, end_time: float):
         from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
-        self.p = Progress(TextColumn("t={task.fields[t]:.4g}"), BarColumn(),
-                          TextColumn("cycle {task.fields[cycle]} dt={task.fields[dt]:.3g} "
-                                     "E/E0={task.fields[ratio]:.4f}"), TimeRemainingColumn())
+        self.p = Progress(
+            TextColumn("t={task.fields[t]:.4g}"),
+            BarColumn(),
+            TextColumn("cycle {task.fields[cycle]} dt={task.fields[dt]:.3g} E/E0={task.fields[ratio]:.4f}"),
+            TimeRemainingColumn(),
+        )
         self.p.start()
         self.task = self.p.add_task("run", total=end_time, t=0.0, cycle=0, dt=0.0, ratio=1.0)
 

@@ -40,8 +40,23 @@ class Motions:
                 work += self._body(mo, st, t, dt_v, dt, place)
                 continue
             ct, cy = mo.curve
-            work += prescribe_nodes(st.v, st.f, st.x, self.x0, st.mass, st.inv_mass, mo.nodes, mo.direction,
-                                    int(mo.vad), ct, cy, float(mo.scale), float(t), float(dt_v), float(dt))
+            work += prescribe_nodes(
+                st.v,
+                st.f,
+                st.x,
+                self.x0,
+                st.mass,
+                st.inv_mass,
+                mo.nodes,
+                mo.direction,
+                int(mo.vad),
+                ct,
+                cy,
+                float(mo.scale),
+                float(t),
+                float(dt_v),
+                float(dt),
+            )
         return work
 
     def _body(self, mo, st, t, dt_v, dt, place) -> float:

@@ -19,8 +19,7 @@ from .groups import part_energy
 class PartAccount:
     def __init__(self, groups, bodies, n_nodes: int):
         self.groups = [g for g in groups if len(g) and getattr(g, "in_parts", True)]
-        pids = [np.asarray(g.pid, np.int64) for g in self.groups] + [np.array([b.body_id for b in bodies],
-                                                                              np.int64)]
+        pids = [np.asarray(g.pid, np.int64) for g in self.groups] + [np.array([b.body_id for b in bodies], np.int64)]
         self.part_ids = np.unique(np.concatenate(pids)) if pids else np.zeros(0, np.int64)
         self.bodies = bodies
         self._mass = None  # (n_parts,) part masses, summed at the first rigid_velocity
@@ -33,15 +32,19 @@ class PartAccount:
             conn = np.asarray(g.conn)
             k = conn.shape[1]
             part = np.repeat(np.searchsorted(self.part_ids, g.pid), k)
-            share = np.asarray(getattr(g, "corner_mass", None) if getattr(g, "corner_mass", None) is not None
-                               else np.ones(conn.shape), float).ravel()
+            share = np.asarray(
+                getattr(g, "corner_mass", None) if getattr(g, "corner_mass", None) is not None else np.ones(conn.shape),
+                float,
+            ).ravel()
             nodes = conn.ravel()
-            ok = (nodes >= 0)
+            ok = nodes >= 0
             ok[ok] &= ~in_body[nodes[ok]]
             rows.append(part[ok]), cols.append(nodes[ok]), vals.append(share[ok] + 1e-300)
         if rows:
-            w = sparse.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                                  shape=(len(self.part_ids), n_nodes))
+            w = sparse.csr_matrix(
+                (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
+                shape=(len(self.part_ids), n_nodes),
+            )
             col = np.asarray(w.sum(axis=0)).ravel()
             self.weights = w @ sparse.diags(np.where(col > 0, 1.0 / np.where(col > 0, col, 1.0), 0.0))
         else:

@@ -83,10 +83,17 @@ def report(moved: list[Moved], names: dict[int, str], node_ids: np.ndarray, sour
         kept = [m for m in mine if m.tracked]
         if kept:
             deep = max(kept, key=lambda m: m.depth)
-            out.append(Problem(source, 0, names.get(cid, "CONTACT"), None,
-                               f"contact {cid}: {len(kept)} slave node(s) start inside the contact thickness; "
-                               f"IGNORE keeps and tracks their penetration (deepest {deep.depth:.4g} at node "
-                               f"{int(node_ids[deep.node])}); every node in initial_penetrations.csv"))
+            out.append(
+                Problem(
+                    source,
+                    0,
+                    names.get(cid, "CONTACT"),
+                    None,
+                    f"contact {cid}: {len(kept)} slave node(s) start inside the contact thickness; "
+                    f"IGNORE keeps and tracks their penetration (deepest {deep.depth:.4g} at node "
+                    f"{int(node_ids[deep.node])}); every node in initial_penetrations.csv",
+                )
+            )
             continue
         done = [m for m in mine if m.moved]
         stuck = [m for m in mine if not m.moved]
@@ -95,9 +102,12 @@ def report(moved: list[Moved], names: dict[int, str], node_ids: np.ndarray, sour
             deep = max(done, key=lambda m: m.depth)
             text += f" (deepest {deep.depth:.4g} at node {int(node_ids[deep.node])})"
         if stuck:
-            text += (f"; {len(stuck)} could not move (held, rigid or driven): "
-                     + ", ".join(str(int(node_ids[m.node])) for m in stuck[:10]) + (" ..." if len(stuck) > 10 else "")
-                     + " — their contact pushes them out and creates energy")
+            text += (
+                f"; {len(stuck)} could not move (held, rigid or driven): "
+                + ", ".join(str(int(node_ids[m.node])) for m in stuck[:10])
+                + (" ..." if len(stuck) > 10 else "")
+                + " — their contact pushes them out and creates energy"
+            )
         text += "; every node in initial_penetrations.csv"
         out.append(Problem(source, 0, names.get(cid, "CONTACT"), None, text))
     return out
@@ -106,6 +116,8 @@ def report(moved: list[Moved], names: dict[int, str], node_ids: np.ndarray, sour
 def write_csv(path, moved: list[Moved], node_ids: np.ndarray) -> None:
     """contact, node ID, initial penetration, moved out (1) or not (0), tracked (1: IGNORE 1, 2)."""
     lines = ["contact,node,depth,moved,tracked"]
-    lines += [f"{m.cid},{int(node_ids[m.node])},{m.depth:.6g},{int(m.moved)},{int(m.tracked)}"
-              for m in sorted(moved, key=lambda m: (m.cid, int(node_ids[m.node])))]
+    lines += [
+        f"{m.cid},{int(node_ids[m.node])},{m.depth:.6g},{int(m.moved)},{int(m.tracked)}"
+        for m in sorted(moved, key=lambda m: (m.cid, int(node_ids[m.node])))
+    ]
     path.write_text("\n".join(lines) + "\n")

@@ -44,19 +44,31 @@ class Results:
     # optional histories (empty: not recorded; writers then omit or derive them)
     part_kinetic: np.ndarray = _empty(0)  # (n_states, n_parts) kinetic energy per part [energy]
     part_momentum: np.ndarray = _empty(0, 3)  # (n_states, n_parts, 3) momentum per part [mass*length/time]
-    part_rigid_velocity: np.ndarray = _empty(0, 3)  # (n_states, n_parts, 3) CoG velocity of each part (momentum / mass) [length/time]
+    part_rigid_velocity: np.ndarray = _empty(
+        0, 3
+    )  # (n_states, n_parts, 3) CoG velocity of each part (momentum / mass) [length/time]
     part_hourglass: np.ndarray = _empty(0)  # (n_states, n_parts) hourglass energy per part [energy]
     section_moment: np.ndarray = _empty(0, 3)  # (n_states, n_sections, 3) moment through each section [force*length]
     node_acceleration: np.ndarray = _empty(0, 3)  # (n_states, n_hist, 3) of the history nodes [length/time^2]
-    node_coordinates: np.ndarray = _empty(0, 3)  # (n_states, n_hist, 3) current coordinates of the history nodes [length]
+    node_coordinates: np.ndarray = _empty(
+        0, 3
+    )  # (n_states, n_hist, 3) current coordinates of the history nodes [length]
     hourglass: np.ndarray = _empty()  # (n_states,) global hourglass energy [energy]
     sliding: np.ndarray = _empty()  # (n_states,) global sliding interface (contact) energy [energy]
     time_step: np.ndarray = _empty()  # (n_states,) time step at each state [time]
-    cycle_number: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (n_states,) int64 cycle of each state
-    discrete_force_vector: np.ndarray = _empty(0, 3)  # (n_states, n_discrete, 3) force of each discrete element in global axes [force]
+    cycle_number: np.ndarray = field(
+        default_factory=lambda: np.zeros(0, np.int64)
+    )  # (n_states,) int64 cycle of each state
+    discrete_force_vector: np.ndarray = _empty(
+        0, 3
+    )  # (n_states, n_discrete, 3) force of each discrete element in global axes [force]
     wall_normal_force: np.ndarray = _empty(0)  # (n_states, n_walls) force along each wall's normal [force]
-    contact_force: np.ndarray = _empty(0, 3)  # (n_states, n_contacts, 3) force on the slave side of each contact interface (rcforc) [force]
-    contact_ids: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (n_contacts,) contact interface IDs
+    contact_force: np.ndarray = _empty(
+        0, 3
+    )  # (n_states, n_contacts, 3) force on the slave side of each contact interface (rcforc) [force]
+    contact_ids: np.ndarray = field(
+        default_factory=lambda: np.zeros(0, np.int64)
+    )  # (n_contacts,) contact interface IDs
     # effective plastic strain of each deformable shell and solid at the end (the largest over its
     # integration points; it never decreases, so it is the peak of the run), rows by deck element ID
     shell_ids: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))
@@ -115,11 +127,18 @@ class Results:
         arrays = {k: v for k, v in self.__dict__.items() if isinstance(v, np.ndarray)}
         added = self.info.get("added_mass") or {}
         elements = {f"info_elements_{k}": np.int64(v) for k, v in (self.info.get("elements") or {}).items()}
-        np.savez_compressed(path, cycles=self.cycles, dt=self.dt, **{k: getattr(self, k) for k in self.TIMES},
-                            info_added_mass_parts=np.array(list(added), np.int64),
-                            info_added_mass=np.array(list(added.values()), float),
-                            info_title=np.array(str(self.info.get("title", ""))),
-                            info_stopped=np.array(str(self.info.get("stopped") or "")), **elements, **arrays)
+        np.savez_compressed(
+            path,
+            cycles=self.cycles,
+            dt=self.dt,
+            **{k: getattr(self, k) for k in self.TIMES},
+            info_added_mass_parts=np.array(list(added), np.int64),
+            info_added_mass=np.array(list(added.values()), float),
+            info_title=np.array(str(self.info.get("title", ""))),
+            info_stopped=np.array(str(self.info.get("stopped") or "")),
+            **elements,
+            **arrays,
+        )
         from ..results.lsdyna_ascii import write_all
 
         write_all(directory, categories(self), title if title is not None else self.info.get("title", ""))
@@ -128,8 +147,12 @@ class Results:
     def timing(self) -> dict:
         """Run facts for time accounting: elements by type, last time step,
         cycles and the times [s]."""
-        return {"elements": dict(self.info.get("elements") or {}), "time_step": float(self.dt),
-                "cycles": int(self.cycles), **{k: float(getattr(self, k)) for k in self.TIMES}}
+        return {
+            "elements": dict(self.info.get("elements") or {}),
+            "time_step": float(self.dt),
+            "cycles": int(self.cycles),
+            **{k: float(getattr(self, k)) for k in self.TIMES},
+        }
 
     @classmethod
     def load(cls, path) -> Results:
@@ -144,11 +167,14 @@ class Results:
             info["title"] = str(data["info_title"])
         if "info_stopped" in data and str(data["info_stopped"]):
             info["stopped"] = str(data["info_stopped"])
-        elements = {k[len("info_elements_"):]: int(data[k]) for k in data if k.startswith("info_elements_")}
+        elements = {k[len("info_elements_") :]: int(data[k]) for k in data if k.startswith("info_elements_")}
         if elements:
             info["elements"] = elements
-        scalars = {"cycles": int(data.pop("cycles")), "dt": float(data.pop("dt")),
-                   **{k: float(data.pop(k)) for k in cls.TIMES if k in data}}
+        scalars = {
+            "cycles": int(data.pop("cycles")),
+            "dt": float(data.pop("dt")),
+            **{k: float(data.pop(k)) for k in cls.TIMES if k in data},
+        }
         known = {f.name for f in fields(cls)}
         return cls(**{k: v for k, v in data.items() if k in known}, **scalars, info=info)
 
@@ -167,10 +193,18 @@ def categories(res) -> dict:
     cycle = {"cycle": res.cycle_number} if rec("cycle_number") else {}
 
     added = (res.info or {}).get("added_mass") or {}
-    glstat = {"time": t, **cycle, "time_step": res.time_step if rec("time_step") else np.full(n, res.dt),
-              "kinetic_energy": res.kinetic, "internal_energy": res.internal,
-              "stonewall_energy": res.wall, "spring_and_damper_energy": res.internal,
-              "external_work": res.external, "total_energy": res.total, "energy_ratio": res.energy_ratio}
+    glstat = {
+        "time": t,
+        **cycle,
+        "time_step": res.time_step if rec("time_step") else np.full(n, res.dt),
+        "kinetic_energy": res.kinetic,
+        "internal_energy": res.internal,
+        "stonewall_energy": res.wall,
+        "spring_and_damper_energy": res.internal,
+        "external_work": res.external,
+        "total_energy": res.total,
+        "energy_ratio": res.energy_ratio,
+    }
     if rec("hourglass"):
         glstat["hourglass_energy"] = res.hourglass
     if rec("sliding"):
@@ -199,14 +233,19 @@ def categories(res) -> dict:
     if added:
         matsum["mass"] = np.tile([float(added.get(int(p), 0.0)) for p in pids], (n, 1)).reshape(n, len(pids))
 
-    deforc = {"time": t, "ids": np.asarray(res.discrete_ids), "resultant_force": res.discrete_force,
-              "displacement": res.discrete_elong}
+    deforc = {
+        "time": t,
+        "ids": np.asarray(res.discrete_ids),
+        "resultant_force": res.discrete_force,
+        "displacement": res.discrete_elong,
+    }
     if rec("discrete_force_vector"):
         _xyz(deforc, res.discrete_force_vector, "{}_force")
 
     rw = {("forces", "time"): t, ("forces", "ids"): np.asarray(res.wall_ids)}
-    rw[("forces", "normal_force")] = (res.wall_normal_force if rec("wall_normal_force")
-                                      else np.linalg.norm(res.wall_force, axis=2))
+    rw[("forces", "normal_force")] = (
+        res.wall_normal_force if rec("wall_normal_force") else np.linalg.norm(res.wall_force, axis=2)
+    )
     for k, axis in enumerate("xyz"):
         rw[("forces", f"{axis}_force")] = res.wall_force[:, :, k]
 
@@ -221,13 +260,25 @@ def categories(res) -> dict:
     if rec("section_moment"):
         _xyz(sec, res.section_moment, "{}_moment")
         sec["total_moment"] = np.linalg.norm(res.section_moment, axis=2)
-    return {"glstat": glstat, "matsum": matsum, "nodout": nod, "rwforc": rw, "deforc": deforc,
-            "secforc": sec, "spcforc": spc}
+    return {
+        "glstat": glstat,
+        "matsum": matsum,
+        "nodout": nod,
+        "rwforc": rw,
+        "deforc": deforc,
+        "secforc": sec,
+        "spcforc": spc,
+    }
 
 
 def element_counts(model) -> dict[str, int]:
     """Elements of a Model by LS-DYNA element type, as a d3hsp counts them
     (rigid ones included; point masses as "mass")."""
-    counts = {"solid": len(model.solids), "shell": len(model.shells), "beam": len(model.beams),
-              "discrete": len(model.discretes), "mass": len(model.masses)}
+    counts = {
+        "solid": len(model.solids),
+        "shell": len(model.shells),
+        "beam": len(model.beams),
+        "discrete": len(model.discretes),
+        "mass": len(model.masses),
+    }
     return {k: int(v) for k, v in counts.items() if v}

@@ -61,8 +61,14 @@ class RigidBody:
         with S the cross-product matrix of r [1/mass]."""
         r = np.atleast_2d(np.asarray(r, float))
         z = np.zeros(len(r))
-        skew = np.stack([np.stack([z, -r[:, 2], r[:, 1]], 1), np.stack([r[:, 2], z, -r[:, 0]], 1),
-                         np.stack([-r[:, 1], r[:, 0], z], 1)], 1)
+        skew = np.stack(
+            [
+                np.stack([z, -r[:, 2], r[:, 1]], 1),
+                np.stack([r[:, 2], z, -r[:, 0]], 1),
+                np.stack([-r[:, 1], r[:, 0], z], 1),
+            ],
+            1,
+        )
         a = np.einsum("kji,jl,klm->kim", skew, np.linalg.inv(self.inertia_body), skew)
         return 1.0 / self.mass + np.linalg.eigvalsh(a)[:, -1]
 
@@ -87,8 +93,9 @@ class RigidBody:
     def omega(self, rot: np.ndarray | None = None, mom: np.ndarray | None = None) -> np.ndarray:
         """(3,) angular velocity R I⁻¹ Rᵀ L (at ``rot`` and ``mom`` if given)."""
         out = np.empty(3)
-        body_omega(self.rot if rot is None else rot, self.inverse_inertia_body(),
-                   self.momentum if mom is None else mom, out)
+        body_omega(
+            self.rot if rot is None else rot, self.inverse_inertia_body(), self.momentum if mom is None else mom, out
+        )
         return out
 
     def kinetic(self) -> float:
@@ -134,7 +141,7 @@ class RigidBody:
             return
         # free axes: the orthonormal complement of the held ones
         q = np.linalg.qr(np.vstack([held, np.eye(3)]).T)[0].T
-        free = q[len(held):3]
+        free = q[len(held) : 3]
         inertia = self.rot @ self.inertia_body @ self.rot.T
         a = np.linalg.solve(free @ inertia @ free.T, free @ self.momentum)
         self.momentum[:] = inertia @ (free.T @ a)
@@ -147,8 +154,7 @@ class RigidBody:
             scratch = self._drift_scratch = np.zeros((3, 3, 3))
         body_drift(self.cog, self.velocity, self.momentum, self.rot, self.inverse_inertia_body(), dt, scratch)
 
-    def place(self, x: np.ndarray, v: np.ndarray, rot: np.ndarray | None = None,
-              w: np.ndarray | None = None) -> None:
+    def place(self, x: np.ndarray, v: np.ndarray, rot: np.ndarray | None = None, w: np.ndarray | None = None) -> None:
         """Write member node positions and velocities (and, for nodes with
         rotations, their orientation and angular velocity) from the body."""
         omega = self.omega()
@@ -157,9 +163,16 @@ class RigidBody:
             place_rotations(rot, w, self.nodes, self.rot, omega)
 
 
-def build_body(body_id: int, nodes: np.ndarray, x: np.ndarray, v: np.ndarray, mass: np.ndarray,
-               given: dict | None = None, node_inertia: np.ndarray | None = None,
-               node_rot: np.ndarray | None = None) -> RigidBody:
+def build_body(
+    body_id: int,
+    nodes: np.ndarray,
+    x: np.ndarray,
+    v: np.ndarray,
+    mass: np.ndarray,
+    given: dict | None = None,
+    node_inertia: np.ndarray | None = None,
+    node_rot: np.ndarray | None = None,
+) -> RigidBody:
     """A body from its nodes' lumped masses (plus the inertia tensors of
     *ELEMENT_INERTIA on them, ``node_inertia`` (n, 3, 3) global, and the
     isotropic rotary inertia of shell and beam nodes, ``node_rot`` (n,):
@@ -196,8 +209,17 @@ def build_body(body_id: int, nodes: np.ndarray, x: np.ndarray, v: np.ndarray, ma
         wt = m if m.sum() > 0 else np.ones(len(nodes))  # massless nodes (element mass): equal weights
         vel = (wt[:, None] * v[nodes]).sum(axis=0) / wt.sum()
         ang = np.cross(r, wt[:, None] * (v[nodes] - vel)).sum(axis=0)
-        i_nodes = np.einsum("k,kij->ij", wt, (r * r).sum(1)[:, None, None] * np.eye(3)
-                            - r[:, :, None] * r[:, None, :])
+        i_nodes = np.einsum("k,kij->ij", wt, (r * r).sum(1)[:, None, None] * np.eye(3) - r[:, :, None] * r[:, None, :])
         w = np.linalg.lstsq(i_nodes, ang, rcond=None)[0]
-    return RigidBody(body_id, nodes.astype(np.int64), float(total), cog.copy(), inertia.copy(), r.copy(),
-                     vel.copy(), inertia @ w, np.eye(3), no_inertia=no_inertia)
+    return RigidBody(
+        body_id,
+        nodes.astype(np.int64),
+        float(total),
+        cog.copy(),
+        inertia.copy(),
+        r.copy(),
+        vel.copy(),
+        inertia @ w,
+        np.eye(3),
+        no_inertia=no_inertia,
+    )

@@ -14,8 +14,7 @@ from ..model.model import Model
 from .rigid import RigidBody, build_body
 
 # translational constraint codes (CON1) -> held global directions
-_CON = {0: (0, 0, 0), 1: (1, 0, 0), 2: (0, 1, 0), 3: (0, 0, 1), 4: (1, 1, 0), 5: (0, 1, 1),
-        6: (1, 0, 1), 7: (1, 1, 1)}
+_CON = {0: (0, 0, 0), 1: (1, 0, 0), 2: (0, 1, 0), 3: (0, 0, 1), 4: (1, 1, 0), 5: (0, 1, 1), 6: (1, 0, 1), 7: (1, 1, 1)}
 
 
 def rigid_part_ids(model: Model) -> set[int]:
@@ -36,8 +35,7 @@ def _elements_nodes(model: Model, pids) -> np.ndarray:
     return nodes[nodes >= 0]
 
 
-def part_bodies(model: Model, x: np.ndarray, v: np.ndarray, mass: np.ndarray,
-                problems: list) -> list[RigidBody]:
+def part_bodies(model: Model, x: np.ndarray, v: np.ndarray, mass: np.ndarray, problems: list) -> list[RigidBody]:
     rigid = rigid_part_ids(model)
     if not rigid:
         return []
@@ -48,15 +46,17 @@ def part_bodies(model: Model, x: np.ndarray, v: np.ndarray, mass: np.ndarray,
         if kw == "CONSTRAINED_RIGID_BODIES":
             for pl, pc in zip(rec.rows["pidl"], rec.rows["pidc"]):
                 if int(pl) not in rigid or int(pc) not in rigid:
-                    problems.append(Problem(*rec.where(None), rec.name, "PIDL",
-                                            f"parts {int(pl)} and {int(pc)} must both be rigid"))
+                    problems.append(
+                        Problem(*rec.where(None), rec.name, "PIDL", f"parts {int(pl)} and {int(pc)} must both be rigid")
+                    )
                     continue
                 lead[int(pc)] = int(pl)
         elif kw == "CONSTRAINED_EXTRA_NODES":
             ids = rec.rows["nid"] if "nid" in rec.rows else rec.rows["nsid"]
             for pid, i in zip(rec.rows["pid"], ids):
-                nodes = (model.node_index([i]) if "nid" in rec.rows
-                         else model.node_index(model.set_members("NODE", int(i))))
+                nodes = (
+                    model.node_index([i]) if "nid" in rec.rows else model.node_index(model.set_members("NODE", int(i)))
+                )
                 extra.setdefault(int(pid), []).append(nodes)
     bodies = []
     for pid_lead in sorted(set(lead.values())):
@@ -73,12 +73,12 @@ def part_bodies(model: Model, x: np.ndarray, v: np.ndarray, mass: np.ndarray,
             r = x[nodes]
             c = (point[:, None] * r).sum(0) / point.sum()
             d = r - c
-            inertia = np.einsum("k,kij->ij", point, (d * d).sum(1)[:, None, None] * np.eye(3)
-                                - d[:, :, None] * d[:, None, :])
+            inertia = np.einsum(
+                "k,kij->ij", point, (d * d).sum(1)[:, None, None] * np.eye(3) - d[:, :, None] * d[:, None, :]
+            )
             props = props + MassProperties(float(point.sum()), c, inertia)
         if props.mass <= 0:
-            problems.append(Problem(model.source or "", 0, "MAT_RIGID", "RO",
-                                    f"rigid part {pid_lead} has no mass"))
+            problems.append(Problem(model.source or "", 0, "MAT_RIGID", "RO", f"rigid part {pid_lead} has no mass"))
             continue
         lead_part = model.parts[pid_lead]
         mat = model.materials[lead_part["mid"]]
@@ -91,8 +91,14 @@ def part_bodies(model: Model, x: np.ndarray, v: np.ndarray, mass: np.ndarray,
         con1, con2 = int(mat.get("con1", 0) or 0), int(mat.get("con2", 0) or 0)
         if cmo == 1:
             if con1 not in _CON or con2 not in _CON:
-                problems.append(Problem(*mat.where("con1"), mat.name, "CON1",
-                                        f"constraint codes CON1 = {con1}, CON2 = {con2}: 0 to 7 expected"))
+                problems.append(
+                    Problem(
+                        *mat.where("con1"),
+                        mat.name,
+                        "CON1",
+                        f"constraint codes CON1 = {con1}, CON2 = {con2}: 0 to 7 expected",
+                    )
+                )
             body.held_v = np.diag(np.array(_CON.get(con1, (0, 0, 0)), float))
             body.held_w = np.diag(np.array(_CON.get(con2, (0, 0, 0)), float))
         elif cmo == -1:  # CON1: local system, CON2: SPC code "xyzXYZ" as digits (100000: x held)

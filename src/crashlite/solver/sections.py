@@ -88,10 +88,12 @@ def _region(rec, point: np.ndarray, normal: np.ndarray):
     radius = float(rec.get("radius") or 0.0)
     lenl, lenm = float(rec.get("lenl") or 0.0), float(rec.get("lenm") or 0.0)
     if radius > 0:
+
         def inside(c):
             d = c - point
             d -= np.outer(d @ normal, normal)
             return np.linalg.norm(d, axis=1) <= radius
+
         return inside
     if lenl > 0 and lenm > 0:
         edge = np.array([rec.get("xhev", 0.0), rec.get("yhev", 0.0), rec.get("zhev", 0.0)], float) - point
@@ -105,6 +107,7 @@ def _region(rec, point: np.ndarray, normal: np.ndarray):
             d = c - point
             a, b = d @ el, d @ em
             return (a >= 0) & (a <= lenl) & (b >= 0) & (b <= lenm)
+
         return inside
     return None
 
@@ -137,8 +140,7 @@ def build_sections(model: Model, beam_ids: np.ndarray, problems: list, groups=()
             psid = int(rec.get("psid") or 0)
             pids = model.set_members("PART", psid) if psid else np.array(sorted(model.parts))
             dsel = np.flatnonzero(np.isin(d.pid, pids))
-            bsel = [bpos[int(e)] for e, p in zip(model.beams.ids, model.beams.pid)
-                    if int(e) in bpos and p in pids]
+            bsel = [bpos[int(e)] for e, p in zip(model.beams.ids, model.beams.pid) if int(e) in bpos and p in pids]
             on = lambda n: bool(side[n])  # noqa: B023, E731
             corners = _continuum_cuts(model, rec, groups, side, pids, _region(rec, point, normal))
         de, dend = [], []
@@ -155,8 +157,16 @@ def build_sections(model: Model, beam_ids: np.ndarray, problems: list, groups=()
             if on(a) != on(b):
                 be.append(i)
                 bend.append(0 if on(a) else 1)
-        out.append(Section(csid, np.array(de, np.int64), np.array(dend, np.int64),
-                           np.array(be, np.int64), np.array(bend, np.int64), corners))
+        out.append(
+            Section(
+                csid,
+                np.array(de, np.int64),
+                np.array(dend, np.int64),
+                np.array(be, np.int64),
+                np.array(bend, np.int64),
+                corners,
+            )
+        )
     return out
 
 

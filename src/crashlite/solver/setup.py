@@ -22,8 +22,7 @@ from .loads import build_nodal_loads
 from .records import _curve, _node_set, _problem
 
 # constraint code of *NODE TC (and RC, same numbering) -> held (x, y, z)
-_TC = {0: (0, 0, 0), 1: (1, 0, 0), 2: (0, 1, 0), 3: (0, 0, 1), 4: (1, 1, 0), 5: (0, 1, 1),
-       6: (1, 0, 1), 7: (1, 1, 1)}
+_TC = {0: (0, 0, 0), 1: (1, 0, 0), 2: (0, 1, 0), 3: (0, 0, 1), 4: (1, 1, 0), 5: (0, 1, 1), 6: (1, 0, 1), 7: (1, 1, 1)}
 
 
 @dataclass
@@ -152,6 +151,7 @@ def _discrete(model: Model, problems: list) -> Discrete:
         cy.append(o)
         used += len(a)
         return used - len(a), used
+
     for pid in np.unique(d.pid):
         sel = d.pid == pid
         part = model.parts.get(int(pid))
@@ -164,8 +164,14 @@ def _discrete(model: Model, problems: list) -> Discrete:
             continue
         for fld, what in (("k", "stiffness K"), ("dc", "damping constant DC"), ("ku", "unloading stiffness KU")):
             if mat.keyword in _SPRING_CONSTANTS.get(fld, ()) and float(mat.get(fld, 0.0) or 0.0) < 0:
-                problems.append(_problem(mat, fld, f"material {mat.get('mid')}: {what} = {float(mat[fld]):g} < 0 "
-                                                   "gives energy instead of storing it: it must be >= 0"))
+                problems.append(
+                    _problem(
+                        mat,
+                        fld,
+                        f"material {mat.get('mid')}: {what} = {float(mat[fld]):g} < 0 "
+                        "gives energy instead of storing it: it must be >= 0",
+                    )
+                )
         if mat.keyword == "MAT_SPRING_ELASTIC":
             kind[sel], k[sel] = LINEAR, float(mat["k"])
         elif mat.keyword == "MAT_DAMPER_VISCOUS":
@@ -183,12 +189,12 @@ def _discrete(model: Model, problems: list) -> Discrete:
         elif mat.keyword == "MAT_SPRING_GENERAL_NONLINEAR":
             bad = [f for f in ("lcdl", "lcdu") if mat.get(f) and int(mat[f]) not in model.curves]
             if not mat.get("lcdl") or bad:
-                problems.append(_problem(mat, (bad or ["lcdl"])[0], f"curve {mat.get((bad or ['lcdl'])[0])} "
-                                                                    "is not defined"))
+                problems.append(
+                    _problem(mat, (bad or ["lcdl"])[0], f"curve {mat.get((bad or ['lcdl'])[0])} is not defined")
+                )
                 continue
             if float(mat.get("beta", 0.0) or 0.0) != 0.0:
-                problems.append(_problem(mat, "beta", "BETA other than 0 (coupled hardening) is not "
-                                                      "supported yet"))
+                problems.append(_problem(mat, "beta", "BETA other than 0 (coupled hardening) is not supported yet"))
                 continue
             kind[sel] = GENERAL
             starts[sel], stops[sel] = add_curve(int(mat["lcdl"]))
@@ -197,8 +203,14 @@ def _discrete(model: Model, problems: list) -> Discrete:
             yield_t[sel] = abs(float(mat.get("tyi", 0.0) or 0.0))
             yield_c[sel] = -abs(float(mat.get("cyi", 0.0) or 0.0))
         else:
-            problems.append(_problem(mat, None, f"*{mat.keyword} is not supported by the solver yet "
-                                                "(supported: MAT_S01, MAT_S02, MAT_S04, MAT_S06, MAT_S08)"))
+            problems.append(
+                _problem(
+                    mat,
+                    None,
+                    f"*{mat.keyword} is not supported by the solver yet "
+                    "(supported: MAT_S01, MAT_S02, MAT_S04, MAT_S06, MAT_S08)",
+                )
+            )
     x = model.nodes.xyz
     n1 = d.nodes[:, 0].astype(np.int64)
     n2 = d.nodes[:, 1].astype(np.int64)
@@ -207,8 +219,15 @@ def _discrete(model: Model, problems: list) -> Discrete:
     for vid in np.unique(d.vid[d.vid > 0]):
         rec = orient.get(int(vid))
         if rec is None:
-            problems.append(Problem(model.source or "", 0, "ELEMENT_DISCRETE", "VID",
-                                    f"*DEFINE_SD_ORIENTATION {int(vid)} is not defined"))
+            problems.append(
+                Problem(
+                    model.source or "",
+                    0,
+                    "ELEMENT_DISCRETE",
+                    "VID",
+                    f"*DEFINE_SD_ORIENTATION {int(vid)} is not defined",
+                )
+            )
             continue
         if int(rec.get("iop", 0)) != 0:
             problems.append(_problem(rec, "iop", "only IOP = 0 (a fixed vector) is supported yet"))
@@ -225,13 +244,38 @@ def _discrete(model: Model, problems: list) -> Discrete:
     length0 = np.where(fixed_dir, np.einsum("ij,ij->i", rel, direction), np.linalg.norm(rel, axis=1))
     # two nodes at one point and no orientation: the element has no direction to act along
     for e in np.flatnonzero((n2 >= 0) & ~fixed_dir & (np.linalg.norm(rel, axis=1) == 0))[:10]:
-        problems.append(Problem(model.source or "", 0, "ELEMENT_DISCRETE", "VID",
-                                f"discrete element {int(d.ids[e])}: nodes {int(model.nodes.ids[n1[e]])} and "
-                                f"{int(model.nodes.ids[n2[e]])} lie at one point and no orientation (VID, "
-                                "*DEFINE_SD_ORIENTATION) gives its direction"))
-    return Discrete(d.ids, n1, n2, kind, k, d.scale.astype(float), d.offset.astype(float), length0,
-                    direction, ground, starts, stops, np.concatenate(cx), np.concatenate(cy), ctf,
-                    ustart, ustop, yield_t, yield_c)
+        problems.append(
+            Problem(
+                model.source or "",
+                0,
+                "ELEMENT_DISCRETE",
+                "VID",
+                f"discrete element {int(d.ids[e])}: nodes {int(model.nodes.ids[n1[e]])} and "
+                f"{int(model.nodes.ids[n2[e]])} lie at one point and no orientation (VID, "
+                "*DEFINE_SD_ORIENTATION) gives its direction",
+            )
+        )
+    return Discrete(
+        d.ids,
+        n1,
+        n2,
+        kind,
+        k,
+        d.scale.astype(float),
+        d.offset.astype(float),
+        length0,
+        direction,
+        ground,
+        starts,
+        stops,
+        np.concatenate(cx),
+        np.concatenate(cy),
+        ctf,
+        ustart,
+        ustop,
+        yield_t,
+        yield_c,
+    )
 
 
 def _constraints(model: Model, problems: list) -> tuple[np.ndarray, np.ndarray, dict]:
@@ -250,8 +294,9 @@ def _constraints(model: Model, problems: list) -> tuple[np.ndarray, np.ndarray, 
             continue
         rows = rec.rows
         for i in range(len(rows["cid"])):
-            nodes = (model.node_index([rows["nid"][i]]) if name.endswith("NODE")
-                     else _node_set(model, int(rows["nsid"][i])))
+            nodes = (
+                model.node_index([rows["nid"][i]]) if name.endswith("NODE") else _node_set(model, int(rows["nsid"][i]))
+            )
             held = np.array([rows["dofx"][i], rows["dofy"][i], rows["dofz"][i]], bool)
             held_rot = np.array([rows["dofrx"][i], rows["dofry"][i], rows["dofrz"][i]], bool)
             if rows["cid"][i]:
@@ -290,10 +335,19 @@ def _walls(model: Model, problems: list) -> list[Wall]:
             continue
         normal /= np.linalg.norm(normal)
         if kw == "RIGIDWALL_GEOMETRIC_CYLINDER":
-            walls.append(Wall(int(rec.get("rwid") or len(walls) + 1), nodes.astype(np.int64), tail, normal,
-                              float(rec.get("birth", 0.0)), float(rec.get("death", 1e20)),
-                              float(rec.get("fric", 0.0)), radius=float(rec.get("radcyl") or 0.0),
-                              length=float(rec.get("lencyl") or 0.0)))
+            walls.append(
+                Wall(
+                    int(rec.get("rwid") or len(walls) + 1),
+                    nodes.astype(np.int64),
+                    tail,
+                    normal,
+                    float(rec.get("birth", 0.0)),
+                    float(rec.get("death", 1e20)),
+                    float(rec.get("fric", 0.0)),
+                    radius=float(rec.get("radcyl") or 0.0),
+                    length=float(rec.get("lencyl") or 0.0),
+                )
+            )
             if walls[-1].radius <= 0:
                 problems.append(_problem(rec, "radcyl", "the cylinder needs a radius > 0"))
             continue
@@ -302,16 +356,24 @@ def _walls(model: Model, problems: list) -> list[Wall]:
         if moving and not rec.get("mass", 0.0) > 0:
             problems.append(_problem(rec, "mass", "a moving rigid wall needs a mass > 0"))
             continue
-        wall = Wall(int(rec.get("rwid") or len(walls) + 1), nodes.astype(np.int64), point, normal,
-                    float(rec.get("birth", 0.0)), float(rec.get("death", 1e20)),
-                    float(rec.get("fric", 0.0)), float(rec.get("mass", 0.0)) if moving else 0.0,
-                    float(rec.get("v0", 0.0)) if moving else 0.0)
+        wall = Wall(
+            int(rec.get("rwid") or len(walls) + 1),
+            nodes.astype(np.int64),
+            point,
+            normal,
+            float(rec.get("birth", 0.0)),
+            float(rec.get("death", 1e20)),
+            float(rec.get("fric", 0.0)),
+            float(rec.get("mass", 0.0)) if moving else 0.0,
+            float(rec.get("v0", 0.0)) if moving else 0.0,
+        )
         if "FINITE" in rec.options:
             edge = np.array([rec.get("xhev", 0.0), rec.get("yhev", 0.0), rec.get("zhev", 0.0)], float) - tail
             edge -= (edge @ normal) * normal
             if not np.linalg.norm(edge) or not rec.get("lenl") or not rec.get("lenm"):
-                problems.append(_problem(rec, "xhev", "a finite wall needs an edge vector not along the "
-                                                      "normal and LENL, LENM > 0"))
+                problems.append(
+                    _problem(rec, "xhev", "a finite wall needs an edge vector not along the normal and LENL, LENM > 0")
+                )
                 continue
             wall.edge_l = edge / np.linalg.norm(edge)
             wall.edge_m = np.cross(normal, wall.edge_l)
@@ -336,8 +398,9 @@ def _motions(model: Model, problems: list) -> list[Motion]:
                 direction = np.array([vec["xh"] - vec["xt"], vec["yh"] - vec["yt"], vec["zh"] - vec["zt"]], float)
                 direction /= np.linalg.norm(direction)
             else:
-                problems.append(_problem(rec, "dof", f"DOF {dof} is not supported yet (1, 2, 3 and 4 with "
-                                                     "a vector are)"))
+                problems.append(
+                    _problem(rec, "dof", f"DOF {dof} is not supported yet (1, 2, 3 and 4 with a vector are)")
+                )
                 continue
             if vad not in (0, 1, 2):
                 problems.append(_problem(rec, "vad", f"VAD {vad} is not supported (0, 1, 2 are)"))
@@ -349,10 +412,26 @@ def _motions(model: Model, problems: list) -> list[Motion]:
             if name.endswith("RIGID"):
                 nodes, body_pid = np.zeros(0, np.int64), int(rows["pid"][i])
             else:
-                nodes, body_pid = (model.node_index([rows["nid"][i]]) if name.endswith("NODE")
-                                   else _node_set(model, int(rows["nsid"][i]))), 0
-            out.append(Motion(nodes.astype(np.int64), direction, vad, _curve(model, lcid),
-                              float(rows["sf"][i]), float(rows["birth"][i]), float(rows["death"][i]), body_pid))
+                nodes, body_pid = (
+                    (
+                        model.node_index([rows["nid"][i]])
+                        if name.endswith("NODE")
+                        else _node_set(model, int(rows["nsid"][i]))
+                    ),
+                    0,
+                )
+            out.append(
+                Motion(
+                    nodes.astype(np.int64),
+                    direction,
+                    vad,
+                    _curve(model, lcid),
+                    float(rows["sf"][i]),
+                    float(rows["birth"][i]),
+                    float(rows["death"][i]),
+                    body_pid,
+                )
+            )
     return out
 
 
@@ -361,11 +440,24 @@ def node_inertia(model: Model, problems: list) -> np.ndarray:
     out = np.zeros((len(model.nodes), 3, 3))
     it = model.inertias
     if np.any(it.csid != 0):
-        problems.append(Problem(model.source or "", 0, "ELEMENT_INERTIA", "CSID",
-                                "inertia tensors in a local system are not supported yet"))
+        problems.append(
+            Problem(
+                model.source or "",
+                0,
+                "ELEMENT_INERTIA",
+                "CSID",
+                "inertia tensors in a local system are not supported yet",
+            )
+        )
     t = it.tensor
-    tensor = np.stack([np.stack([t[:, 0], t[:, 1], t[:, 2]], 1), np.stack([t[:, 1], t[:, 3], t[:, 4]], 1),
-                       np.stack([t[:, 2], t[:, 4], t[:, 5]], 1)], 1)
+    tensor = np.stack(
+        [
+            np.stack([t[:, 0], t[:, 1], t[:, 2]], 1),
+            np.stack([t[:, 1], t[:, 3], t[:, 4]], 1),
+            np.stack([t[:, 2], t[:, 4], t[:, 5]], 1),
+        ],
+        1,
+    )
     np.add.at(out, it.node, tensor)
     return out
 
@@ -373,8 +465,12 @@ def node_inertia(model: Model, problems: list) -> np.ndarray:
 def element_on(model: Model, node: int) -> str:
     """'*ELEMENT_DISCRETE 7'-style name of the first element on a node
     (index), for messages; '' when none."""
-    for name, table in (("DISCRETE", model.discretes), ("BEAM", model.beams), ("SHELL", model.shells),
-                        ("SOLID", model.solids)):
+    for name, table in (
+        ("DISCRETE", model.discretes),
+        ("BEAM", model.beams),
+        ("SHELL", model.shells),
+        ("SOLID", model.solids),
+    ):
         nodes = table.nodes[:, :2] if name == "BEAM" else table.nodes
         rows = np.flatnonzero((nodes == node).any(axis=1))
         if len(rows):
@@ -396,21 +492,34 @@ def _no_inertia_problem(model: Model, rec, body, used, mass) -> Problem | None:
         if not used[i] or lever.max() <= 1e-9 * size:
             continue
         heavy = [int(ids[j]) for j in body.nodes if mass[j] > 0]
-        where = (f"at node {heavy[0]}" if len(body.no_inertia) == 3 and len(heavy) == 1 else
-                 "at one point" if len(body.no_inertia) == 3 else "on one line")
-        axis = ("any axis" if len(body.no_inertia) == 3 else
-                "the axis (" + ", ".join(f"{c:.3g}" for c in body.no_inertia[0]) + ")")
+        where = (
+            f"at node {heavy[0]}"
+            if len(body.no_inertia) == 3 and len(heavy) == 1
+            else "at one point"
+            if len(body.no_inertia) == 3
+            else "on one line"
+        )
+        axis = (
+            "any axis"
+            if len(body.no_inertia) == 3
+            else "the axis (" + ", ".join(f"{c:.3g}" for c in body.no_inertia[0]) + ")"
+        )
         what = element_on(model, int(i)) or "elements"
-        return _problem(rec, "nsid", f"nodal rigid body {body.body_id}: its mass ({body.mass:g}) sits {where}, so "
-                        f"it has no rotational inertia about {axis}; node {int(ids[i])} carries {what} "
-                        f"at {float(lever.max()):.4g} from it, whose stable time step would be 0 (the run "
-                        "would never end). Give the body its inertia (_INERTIA), or mass (*ELEMENT_MASS, "
-                        "*ELEMENT_INERTIA) on its other nodes")
+        return _problem(
+            rec,
+            "nsid",
+            f"nodal rigid body {body.body_id}: its mass ({body.mass:g}) sits {where}, so "
+            f"it has no rotational inertia about {axis}; node {int(ids[i])} carries {what} "
+            f"at {float(lever.max()):.4g} from it, whose stable time step would be 0 (the run "
+            "would never end). Give the body its inertia (_INERTIA), or mass (*ELEMENT_MASS, "
+            "*ELEMENT_INERTIA) on its other nodes",
+        )
     return None
 
 
-def _bodies(model: Model, x, v, mass, problems: list, used: np.ndarray | None = None,
-            rot_inertia: np.ndarray | None = None) -> list:
+def _bodies(
+    model: Model, x, v, mass, problems: list, used: np.ndarray | None = None, rot_inertia: np.ndarray | None = None
+) -> list:
     from .rigid import build_body
 
     bodies = []
@@ -421,8 +530,9 @@ def _bodies(model: Model, x, v, mass, problems: list, used: np.ndarray | None = 
             continue
         nodes = _node_set(model, int(rec["nsid"]))
         if np.any(owner[nodes] >= 0):
-            problems.append(_problem(rec, "nsid", "a node belongs to two nodal rigid bodies; merge them "
-                                                  "(one set) instead"))
+            problems.append(
+                _problem(rec, "nsid", "a node belongs to two nodal rigid bodies; merge them (one set) instead")
+            )
             continue
         if "SPC" in rec.options or int(rec.get("cid", 0) or 0):
             problems.append(_problem(rec, None, "SPC and CID of nodal rigid bodies are not supported yet"))
@@ -433,12 +543,17 @@ def _bodies(model: Model, x, v, mass, problems: list, used: np.ndarray | None = 
                 problems.append(_problem(rec, "ircs", "inertia in a local system is not supported yet"))
                 continue
             g = {k: float(rec.get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
-            given = {"tm": float(rec.get("tm", 0.0)),
-                     "cog": [rec.get("xc", 0.0), rec.get("yc", 0.0), rec.get("zc", 0.0)],
-                     "inertia": [[g["ixx"], g["ixy"], g["ixz"]], [g["ixy"], g["iyy"], g["iyz"]],
-                                 [g["ixz"], g["iyz"], g["izz"]]],
-                     "v": [rec.get("vtx", 0.0), rec.get("vty", 0.0), rec.get("vtz", 0.0)],
-                     "w": [rec.get("vrx", 0.0), rec.get("vry", 0.0), rec.get("vrz", 0.0)]}
+            given = {
+                "tm": float(rec.get("tm", 0.0)),
+                "cog": [rec.get("xc", 0.0), rec.get("yc", 0.0), rec.get("zc", 0.0)],
+                "inertia": [
+                    [g["ixx"], g["ixy"], g["ixz"]],
+                    [g["ixy"], g["iyy"], g["iyz"]],
+                    [g["ixz"], g["iyz"], g["izz"]],
+                ],
+                "v": [rec.get("vtx", 0.0), rec.get("vty", 0.0), rec.get("vtz", 0.0)],
+                "w": [rec.get("vrx", 0.0), rec.get("vry", 0.0), rec.get("vrz", 0.0)],
+            }
         try:
             bodies.append(build_body(int(rec["pid"]), nodes, x, v, mass, given, inertia, rot_inertia))
         except ValueError as e:
@@ -457,7 +572,7 @@ def row_line(model: Model, keyword: str, eid: int) -> tuple[str, int]:
     when not found. Only called when there is something to report."""
     from pathlib import Path
 
-    for f in (model.files or [model.source or ""]):
+    for f in model.files or [model.source or ""]:
         try:
             lines = Path(f).read_text(errors="replace").splitlines()
         except OSError:
@@ -489,8 +604,14 @@ def _massless_cards(model: Model, rigid: np.ndarray) -> list[Problem]:
     m = model.masses
     for i in np.flatnonzero(m.mass < 0)[:10]:
         eid, nid = int(m.ids[i]), int(model.nodes.ids[m.node[i]]) if m.node[i] >= 0 else -1
-        out.append(Problem(*row_line(model, "ELEMENT_MASS", eid), "ELEMENT_MASS", "MASS",
-                           f"element {eid} on node {nid} has mass {float(m.mass[i]):g} < 0: a mass must be >= 0"))
+        out.append(
+            Problem(
+                *row_line(model, "ELEMENT_MASS", eid),
+                "ELEMENT_MASS",
+                "MASS",
+                f"element {eid} on node {nid} has mass {float(m.mass[i]):g} < 0: a mass must be >= 0",
+            )
+        )
     sh = model.shells
     for p in np.unique(sh.pid[~np.isin(sh.pid, rigid)]):
         part = model.parts.get(int(p))
@@ -506,9 +627,15 @@ def _massless_cards(model: Model, rigid: np.ndarray) -> list[Problem]:
         bad = rows[tn.mean(axis=1) <= 0]
         if len(bad):
             ids = ", ".join(str(int(e)) for e in sh.ids[bad[:5]]) + (", ..." if len(bad) > 5 else "")
-            out.append(Problem(*sec.where("t1"), sec.name, "T1",
-                               f"section {sec.get('secid')} (part {int(p)}): shell thickness T1 = {t1:g} <= 0 and "
-                               f"{len(bad)} shell(s) give none of their own ({ids}): a shell needs a thickness > 0"))
+            out.append(
+                Problem(
+                    *sec.where("t1"),
+                    sec.name,
+                    "T1",
+                    f"section {sec.get('secid')} (part {int(p)}): shell thickness T1 = {t1:g} <= 0 and "
+                    f"{len(bad)} shell(s) give none of their own ({ids}): a shell needs a thickness > 0",
+                )
+            )
     bm = model.beams
     for p in np.unique(bm.pid[~np.isin(bm.pid, rigid)]):
         part = model.parts.get(int(p))
@@ -522,10 +649,15 @@ def _massless_cards(model: Model, rigid: np.ndarray) -> list[Problem]:
             given = int(sec.get("elform", 1) or 1) in (2, 12, 13) or sec.get("ts1") is None
             fld = "A" if given else "TS1"
             n = int((bm.pid == p).sum())
-            out.append(Problem(*sec.where(fld.lower()), sec.name, fld,
-                               f"section {sec.get('secid')} (part {int(p)}, {n} beam(s)): cross-section area "
-                               f"{a:g} <= 0: a beam needs an area > 0"
-                               + ("" if given else " (from TS1, TT1 and CST)")))
+            out.append(
+                Problem(
+                    *sec.where(fld.lower()),
+                    sec.name,
+                    fld,
+                    f"section {sec.get('secid')} (part {int(p)}, {n} beam(s)): cross-section area "
+                    f"{a:g} <= 0: a beam needs an area > 0" + ("" if given else " (from TS1, TT1 and CST)"),
+                )
+            )
     so = model.solids
     deformable = np.flatnonzero(~np.isin(so.pid, rigid) & np.all(so.nodes[:, :4] >= 0, axis=1))
     if len(deformable):
@@ -537,9 +669,15 @@ def _massless_cards(model: Model, rigid: np.ndarray) -> list[Problem]:
         solid_volumes(model.nodes.xyz.astype(float), conn, np.zeros((N_CHUNKS, N_WORK)), vol)
         for i in np.flatnonzero(vol <= 0)[:10]:
             eid = int(so.ids[deformable[i]])
-            out.append(Problem(*row_line(model, "ELEMENT_SOLID", eid), "ELEMENT_SOLID", "N1",
-                               f"solid {eid} has volume {vol[i]:.4g} <= 0: its nodes N1-N4 and N5-N8 are "
-                               "in inverted order (or the element is flat)"))
+            out.append(
+                Problem(
+                    *row_line(model, "ELEMENT_SOLID", eid),
+                    "ELEMENT_SOLID",
+                    "N1",
+                    f"solid {eid} has volume {vol[i]:.4g} <= 0: its nodes N1-N4 and N5-N8 are "
+                    "in inverted order (or the element is flat)",
+                )
+            )
     return out
 
 
@@ -588,8 +726,15 @@ def _constraint_objects(model: Model, mass, rot_inertia, v0, w0, in_body, proble
         linked.append(("CONSTRAINED_SPOTWELD", welds.nodes))
     for kw, nodes in linked:
         if in_body[nodes].any():
-            problems.append(Problem(model.source or "", 0, kw, None, "tied contacts and welds on nodal rigid body "
-                                                                     "or rigid part nodes are not supported yet"))
+            problems.append(
+                Problem(
+                    model.source or "",
+                    0,
+                    kw,
+                    None,
+                    "tied contacts and welds on nodal rigid body or rigid part nodes are not supported yet",
+                )
+            )
     return ties + ([welds] if welds is not None else [])
 
 
@@ -616,9 +761,16 @@ def _build(model: Model) -> Setup:
     for t in _UNSUPPORTED_TABLES:
         deformable = ~np.isin(getattr(model, t).pid, rigid)
         if deformable.any():
-            problems.append(Problem(model.source or "", 0, f"ELEMENT_{t[:-1].upper()}", None,
-                                    f"{int(deformable.sum())} deformable {t}: this solver stage runs "
-                                    "masses, springs, dampers and rigid parts only"))
+            problems.append(
+                Problem(
+                    model.source or "",
+                    0,
+                    f"ELEMENT_{t[:-1].upper()}",
+                    None,
+                    f"{int(deformable.sum())} deformable {t}: this solver stage runs "
+                    "masses, springs, dampers and rigid parts only",
+                )
+            )
     n = len(model.nodes)
     mass = np.zeros(n)
     np.add.at(mass, model.masses.node, model.masses.mass)
@@ -653,34 +805,69 @@ def _build(model: Model) -> Setup:
     body_of = {b.body_id: b for b in bodies}
     for mo in motions:
         if mo.body_pid and mo.body_pid not in body_of:
-            problems.append(Problem(model.source or "", 0, "BOUNDARY_PRESCRIBED_MOTION_RIGID", "PID",
-                                    f"part {mo.body_pid} is not a rigid part (or not the lead of a merged body)"))
+            problems.append(
+                Problem(
+                    model.source or "",
+                    0,
+                    "BOUNDARY_PRESCRIBED_MOTION_RIGID",
+                    "PID",
+                    f"part {mo.body_pid} is not a rigid part (or not the lead of a merged body)",
+                )
+            )
     count = np.zeros(n, np.int64)
     for b in bodies:
         count[b.nodes] += 1
     for i in np.flatnonzero(count > 1)[:10]:
-        problems.append(Problem(model.source or "", 0, "CONSTRAINED_NODAL_RIGID_BODY", None,
-                                f"node {int(model.nodes.ids[i])} belongs to two rigid bodies"))
+        problems.append(
+            Problem(
+                model.source or "",
+                0,
+                "CONSTRAINED_NODAL_RIGID_BODY",
+                None,
+                f"node {int(model.nodes.ids[i])} belongs to two rigid bodies",
+            )
+        )
     in_body = np.zeros(n, bool)
     for b in bodies:
         in_body[b.nodes] = True
     driven = in_body.copy()
     for mo in motions:
         if in_body[mo.nodes].any():
-            problems.append(Problem(model.source or "", 0, "BOUNDARY_PRESCRIBED_MOTION", None,
-                                    "prescribed motion of nodal rigid body nodes is not supported yet"))
+            problems.append(
+                Problem(
+                    model.source or "",
+                    0,
+                    "BOUNDARY_PRESCRIBED_MOTION",
+                    None,
+                    "prescribed motion of nodal rigid body nodes is not supported yet",
+                )
+            )
         driven[mo.nodes] = True
     for w in walls:  # rigid-body nodes: the wall pushes their body (walls.Walls)
         w.watch = w.nodes[in_body[w.nodes]]
         w.nodes = w.nodes[~in_body[w.nodes]]
     skew_nodes = np.array(sorted(skew), np.int64)
     if (fixed & in_body[:, None]).any() or in_body[skew_nodes].any():
-        problems.append(Problem(model.source or "", 0, "BOUNDARY_SPC", None,
-                                "constraints on nodal rigid body nodes are not supported yet"))
+        problems.append(
+            Problem(
+                model.source or "",
+                0,
+                "BOUNDARY_SPC",
+                None,
+                "constraints on nodal rigid body nodes are not supported yet",
+            )
+        )
     massless = np.flatnonzero(used & (mass <= 0) & ~fixed.all(axis=1) & ~driven)
     for i in massless[:10]:
-        problems.append(Problem(model.source or "", 0, "ELEMENT_MASS", None,
-                                f"node {int(model.nodes.ids[i])} carries elements but has no mass"))
+        problems.append(
+            Problem(
+                model.source or "",
+                0,
+                "ELEMENT_MASS",
+                None,
+                f"node {int(model.nodes.ids[i])} carries elements but has no mass",
+            )
+        )
     x0 = model.nodes.xyz.copy()
     from .contact import ContactGroup
     from .penetrations import remove_initial_penetrations, report
@@ -694,18 +881,26 @@ def _build(model: Model) -> Setup:
     ts = model.find("CONTROL_TIMESTEP")
     end_time = float(term[0].get("endtim", 0.0)) if term else 0.0
     if end_time <= 0:
-        problems.append(Problem(model.source or "", 0, "CONTROL_TERMINATION", "ENDTIM",
-                                "an end time > 0 is needed"))
+        problems.append(Problem(model.source or "", 0, "CONTROL_TERMINATION", "ENDTIM", "an end time > 0 is needed"))
     end_cycle = int(term[0].get("endcyc", 0) or 0) if term else 0
     if end_cycle < 0:  # as LS-DYNA: the cycle limit applies only when ENDCYC > 0
-        warnings.append(_problem(term[0], "endcyc", f"ENDCYC = {end_cycle} < 0 is read as 0: no cycle limit, "
-                                                    "the run ends at ENDTIM"))
+        warnings.append(
+            _problem(
+                term[0], "endcyc", f"ENDCYC = {end_cycle} < 0 is read as 0: no cycle limit, the run ends at ENDTIM"
+            )
+        )
         end_cycle = 0
     tssfac = float(ts[0].get("tssfac", 0.9) or 0.9) if ts else 0.9
     if not 0 < tssfac <= 1:
-        problems.append(_problem(ts[0], "tssfac", f"TSSFAC = {tssfac:g}: the time step scale factor must lie in "
-                                                  "(0, 1]; above 1 the steps exceed the stable step and the "
-                                                  "run goes unstable (0.9 is LS-DYNA's default)"))
+        problems.append(
+            _problem(
+                ts[0],
+                "tssfac",
+                f"TSSFAC = {tssfac:g}: the time step scale factor must lie in "
+                "(0, 1]; above 1 the steps exceed the stable step and the "
+                "run goes unstable (0.9 is LS-DYNA's default)",
+            )
+        )
     hist_idx = history_nodes(model)  # IDs, _ID rows and _SET members
     dt_max = None
     if ts and ts[0].get("lctm"):
@@ -721,8 +916,11 @@ def _build(model: Model) -> Setup:
                 problems.append(_problem(rec, "lcid", f"curve {rec.get('lcid')} is not defined"))
                 continue
             if int(rec.get("cid", 0) or 0) or int(rec.get("lciddr", 0) or 0):
-                problems.append(_problem(rec, "cid", "body loads in a local system or with dynamic "
-                                                     "relaxation are not supported yet"))
+                problems.append(
+                    _problem(
+                        rec, "cid", "body loads in a local system or with dynamic relaxation are not supported yet"
+                    )
+                )
                 continue
             axis = np.eye(3)["XYZ".index(name[-1])]
             loads.append((axis, _curve(model, int(rec["lcid"])), float(rec.get("sf", 1.0))))
@@ -730,25 +928,53 @@ def _build(model: Model) -> Setup:
     nodal_loads = build_nodal_loads(model, rot_inertia > 0, problems)
     sections = build_sections(model, beams.ids if beams is not None else np.zeros(0, np.int64), problems, groups)
     if ts and float(ts[0].get("dt2ms", 0.0) or 0.0) != 0.0 and groups:
-        problems.append(_problem(ts[0], "dt2ms", "mass scaling (DT2MS) of "
-                                 + ", ".join(sorted({g.kind + "s" for g in groups})) + " is not supported yet"))
+        problems.append(
+            _problem(
+                ts[0],
+                "dt2ms",
+                "mass scaling (DT2MS) of "
+                + ", ".join(sorted({g.kind + "s" for g in groups}))
+                + " is not supported yet",
+            )
+        )
     if problems:
         raise SetupError(problems)
     return Setup(
-        x0=x0, v0=v0, mass=mass, fixed=fixed, discrete=disc, walls=walls,
-        end_time=end_time, end_cycle=end_cycle, tssfac=tssfac,
-        history_nodes=hist_idx[hist_idx >= 0], dt_max=dt_max, motions=motions, bodies=bodies,
-        body_loads=loads, nodal_loads=nodal_loads, dt2ms=float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0,
-        beams=beams, rot_inertia=rot_inertia, fixed_rot=fixed_rot,
-        w0=w0, constraints=constraints,
+        x0=x0,
+        v0=v0,
+        mass=mass,
+        fixed=fixed,
+        discrete=disc,
+        walls=walls,
+        end_time=end_time,
+        end_cycle=end_cycle,
+        tssfac=tssfac,
+        history_nodes=hist_idx[hist_idx >= 0],
+        dt_max=dt_max,
+        motions=motions,
+        bodies=bodies,
+        body_loads=loads,
+        nodal_loads=nodal_loads,
+        dt2ms=float(ts[0].get("dt2ms", 0.0) or 0.0) if ts else 0.0,
+        beams=beams,
+        rot_inertia=rot_inertia,
+        fixed_rot=fixed_rot,
+        w0=w0,
+        constraints=constraints,
         discrete_pid=model.discretes.pid.astype(np.int64),
         sections=sections,
         beam_pid=model.beams.pid[~np.isin(model.beams.pid, rigid)].astype(np.int64),
         state_dt=float(model.find("DATABASE_BINARY_D3PLOT")[0].get("dt", 0.0) or 0.0)
-        if model.find("DATABASE_BINARY_D3PLOT") else 0.0,
+        if model.find("DATABASE_BINARY_D3PLOT")
+        else 0.0,
         dt_min=float(term[0].get("dtmin", 0.0) or 0.0) if term else 0.0,
         end_energy=float(term[0].get("endeng", 0.0) or 0.0) if term else 0.0,
-        node_ids=model.nodes.ids.astype(np.int64), source=str(model.source or ""),
-        skew_nodes=skew_nodes, skew_held=np.array([skew[i][0] for i in skew_nodes]).reshape(-1, 3, 3),
-        skew_held_rot=np.array([skew[i][1] for i in skew_nodes]).reshape(-1, 3, 3), groups=groups,
-        warnings=warnings, moved=moved)
+        node_ids=model.nodes.ids.astype(np.int64),
+        source=str(model.source or ""),
+        skew_nodes=skew_nodes,
+        skew_held=np.array([skew[i][0] for i in skew_nodes]).reshape(-1, 3, 3),
+        skew_held_rot=np.array([skew[i][1] for i in skew_nodes]).reshape(-1, 3, 3),
+        groups=groups,
+        warnings=warnings,
+        moved=moved,
+    )

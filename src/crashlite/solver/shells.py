@@ -102,18 +102,69 @@ def new_state(s: ShellSet, n_nodes: int) -> ShellState:
     n = len(s)
     k = int(s.nip.max()) if n else 1
     ptr, corner_of = corner_incidence(n_nodes, s.conn)
-    return ShellState(np.zeros((n, k, 5)), np.zeros((n, k, 5)), np.zeros((n, k)), np.zeros((n, k), np.int8),
-                      s.thick0.copy(), np.ones(n, np.int8), np.zeros((n, 5)), np.zeros(n), np.zeros(n),
-                      np.zeros((n, 4, 3)), np.zeros((n, 4, 3)), np.full(n, np.inf), *scratch(k), ptr, corner_of)
+    return ShellState(
+        np.zeros((n, k, 5)),
+        np.zeros((n, k, 5)),
+        np.zeros((n, k)),
+        np.zeros((n, k), np.int8),
+        s.thick0.copy(),
+        np.ones(n, np.int8),
+        np.zeros((n, 5)),
+        np.zeros(n),
+        np.zeros(n),
+        np.zeros((n, 4, 3)),
+        np.zeros((n, 4, 3)),
+        np.full(n, np.inf),
+        *scratch(k),
+        ptr,
+        corner_of,
+    )
 
 
 def compute_forces(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
     """Advance the shells' state to t(n+1) and fill st.fe, st.me."""
-    shell_forces(x, v, w, float(dt), s.conn, s.tri, s.mat_of, s.mtype, s.props, s.mcurve, s.curve_start,
-                 s.curve_stop, s.curve_x, s.curve_y, s.nip, s.rule, s.shrf, s.hg_kind, s.hg_qm, s.hg_qb, s.hg_qw,
-                 s.rho, int(s.istupd == 1), int(s.bwc == 1), s.isdo, st.sig, st.back, st.epsp, st.ipfail, st.thick,
-                 st.alive, st.hgq, st.energy, st.hg_energy, st.points, st.geometry, st.point_k, st.fe, st.me,
-                 st.step)
+    shell_forces(
+        x,
+        v,
+        w,
+        float(dt),
+        s.conn,
+        s.tri,
+        s.mat_of,
+        s.mtype,
+        s.props,
+        s.mcurve,
+        s.curve_start,
+        s.curve_stop,
+        s.curve_x,
+        s.curve_y,
+        s.nip,
+        s.rule,
+        s.shrf,
+        s.hg_kind,
+        s.hg_qm,
+        s.hg_qb,
+        s.hg_qw,
+        s.rho,
+        int(s.istupd == 1),
+        int(s.bwc == 1),
+        s.isdo,
+        st.sig,
+        st.back,
+        st.epsp,
+        st.ipfail,
+        st.thick,
+        st.alive,
+        st.hgq,
+        st.energy,
+        st.hg_energy,
+        st.points,
+        st.geometry,
+        st.point_k,
+        st.fe,
+        st.me,
+        st.step,
+    )
 
 
 def element_areas(x: np.ndarray, conn: np.ndarray, tri: np.ndarray) -> np.ndarray:
@@ -143,8 +194,9 @@ def lumped(s: ShellSet, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
 def element_dt(s: ShellSet, x: np.ndarray, alive: np.ndarray | None = None) -> np.ndarray:
     """(n,) critical step of each shell at positions x (LS-DYNA rule, before TSSFAC)."""
     out = np.empty(len(s))
-    shell_timestep(x, s.conn, s.tri, np.ones(len(s), np.int8) if alive is None else alive, s.mat_of, s.props,
-                   s.isdo, out)
+    shell_timestep(
+        x, s.conn, s.tri, np.ones(len(s), np.int8) if alive is None else alive, s.mat_of, s.props, s.isdo, out
+    )
     return out
 
 
@@ -182,7 +234,7 @@ class _Curves:
     def arrays(self):
         sizes = np.array([len(a) for a in self.xs], np.int64)
         stop = np.cumsum(sizes)
-        cat = (lambda xs: np.concatenate(xs) if xs else np.zeros(0))  # noqa: E731
+        cat = lambda xs: np.concatenate(xs) if xs else np.zeros(0)  # noqa: E731
         return stop - sizes, stop, cat(self.xs), cat(self.ys)
 
 
@@ -197,8 +249,11 @@ def _curve(model, mat, fld, curves, problems):
     if lc == 0:
         return -1
     if lc not in model.curves:
-        problems.append(_problem(mat, fld, f"curve {lc} is not defined (a *DEFINE_CURVE is needed; tables are "
-                                           "not supported for shells)"))
+        problems.append(
+            _problem(
+                mat, fld, f"curve {lc} is not defined (a *DEFINE_CURVE is needed; tables are not supported for shells)"
+            )
+        )
         return None
     return curves.get(lc)
 
@@ -207,14 +262,23 @@ def _material(model: Model, mat, curves: _Curves, problems: list):
     """(kind, props row, curve slots) of one material, or None if refused."""
     kw = mat.keyword
     if kw not in ("MAT_ELASTIC", "MAT_PLASTIC_KINEMATIC", "MAT_PIECEWISE_LINEAR_PLASTICITY"):
-        problems.append(_problem(mat, None, f"*{kw} is not supported for shells (supported: MAT_001, MAT_003, "
-                                            "MAT_024, MAT_020 rigid)"))
+        problems.append(
+            _problem(
+                mat, None, f"*{kw} is not supported for shells (supported: MAT_001, MAT_003, MAT_024, MAT_020 rigid)"
+            )
+        )
         return None
     e, nu, ro = _num(mat, "e"), _num(mat, "pr"), _num(mat, "ro")
     if e <= 0 or ro <= 0 or not 0.0 <= nu < 0.5:
         bad = "ro" if ro <= 0 else "e" if e <= 0 else "pr"
-        problems.append(_problem(mat, bad, f"material {mat.get('mid')}: RO > 0, E > 0 and 0 <= PR < 0.5 are "
-                                           f"needed for shells ({bad.upper()} = {_num(mat, bad):g})"))
+        problems.append(
+            _problem(
+                mat,
+                bad,
+                f"material {mat.get('mid')}: RO > 0, E > 0 and 0 <= PR < 0.5 are "
+                f"needed for shells ({bad.upper()} = {_num(mat, bad):g})",
+            )
+        )
         return None
     row = np.zeros(ps.N_PROPS)
     mc = np.full(ps.N_CURVES, -1, np.int64)
@@ -272,8 +336,9 @@ def _material(model: Model, mat, curves: _Curves, problems: list):
         if np.any(es > 0):
             n = int(np.flatnonzero(es > 0)[-1]) + 1
             if n < 2 or np.any(np.diff(eps[:n]) <= 0):
-                problems.append(_problem(mat, "eps1", "EPS1-EPS8 / ES1-ES8 need at least two points with "
-                                                      "rising strains"))
+                problems.append(
+                    _problem(mat, "eps1", "EPS1-EPS8 / ES1-ES8 need at least two points with rising strains")
+                )
                 ok = False
             else:
                 mc[ps.C_LCSS] = curves.add(eps[:n], es[:n], ("mat", mat.get("mid")))
@@ -322,18 +387,33 @@ def _section(sec, part, p, intgrd, problems, warns):
     elform = int(sec.get("elform") if sec.get("elform") is not None else 2)
     if elform in _AS_BT:
         if elform not in (0, 2):
-            warns.append(_problem(sec, "elform", f"ELFORM {elform} of part {p} runs as ELFORM 2 (Belytschko-Lin-"
-                                                 "Tsay, one point, hourglass control)"))
+            warns.append(
+                _problem(
+                    sec,
+                    "elform",
+                    f"ELFORM {elform} of part {p} runs as ELFORM 2 (Belytschko-Lin-Tsay, one point, hourglass control)",
+                )
+            )
     else:
-        problems.append(_problem(sec, "elform", f"shell formulation {elform} is not supported (2; 0, 1, 4, 6-8, "
-                                                "10, 11, 16-18, 20 run as 2)"))
+        problems.append(
+            _problem(
+                sec,
+                "elform",
+                f"shell formulation {elform} is not supported (2; 0, 1, 4, 6-8, 10, 11, 16-18, 20 run as 2)",
+            )
+        )
         ok = False
     nip = int(_num(sec, "nip", 2)) or 2
     if not 1 <= nip <= 10:
         problems.append(_problem(sec, "nip", f"NIP {nip}: 1 to 10 points through the thickness are supported"))
         ok = False
-    for fld, what in (("qr", "QR/IRID (user integration rule)"), ("icomp", "ICOMP = 1 (composite layers)"),
-                      ("nloc", "NLOC (reference surface offset)"), ("idof", "IDOF"), ("edgset", "EDGSET")):
+    for fld, what in (
+        ("qr", "QR/IRID (user integration rule)"),
+        ("icomp", "ICOMP = 1 (composite layers)"),
+        ("nloc", "NLOC (reference surface offset)"),
+        ("idof", "IDOF"),
+        ("edgset", "EDGSET"),
+    ):
         if _num(sec, fld) != 0:
             problems.append(_problem(sec, fld, f"{what} is not supported for shells"))
             ok = False
@@ -356,12 +436,22 @@ def _hourglass(model, part, p, ihq0, qh0, problems, warns):
     qb = _num(hg, "qb", 0.0) if hg is not None else 0.0
     qw = _num(hg, "qw", 0.0) if hg is not None else 0.0
     if ihq in (6, 8):
-        warns.append(_problem(hg if hg is not None else part, "ihq",
-                              f"IHQ {ihq} of part {p} runs as IHQ 4 (Belytschko-Tsay stiffness form)"))
+        warns.append(
+            _problem(
+                hg if hg is not None else part,
+                "ihq",
+                f"IHQ {ihq} of part {p} runs as IHQ 4 (Belytschko-Tsay stiffness form)",
+            )
+        )
         ihq = 4
     if not 1 <= ihq <= 5:
-        problems.append(_problem(hg if hg is not None else part, "ihq",
-                                 f"hourglass type {ihq} is not supported for shells (1-5; 6, 8 as 4)"))
+        problems.append(
+            _problem(
+                hg if hg is not None else part,
+                "ihq",
+                f"hourglass type {ihq} is not supported for shells (1-5; 6, 8 as 4)",
+            )
+        )
         return None
     return (VISCOUS if ihq <= 3 else STIFFNESS), qm, (qb or qm), (qw or qm)
 
@@ -384,10 +474,15 @@ def build_shell_set(model: Model, rigid_pids, problems: list, warnings: list | N
         problems.append(Problem(src, 0, "ELEMENT_SHELL", None, "shell elements need their nodes N1-N3 defined"))
         return None
     tri = (conn[:, 2] == conn[:, 3]).astype(np.int8)
-    if np.any((conn[:, 0] == conn[:, 1]) | (conn[:, 1] == conn[:, 2]) | (conn[:, 0] == conn[:, 2])
-              | ((tri == 0) & ((conn[:, 3] == conn[:, 0]) | (conn[:, 3] == conn[:, 1])))):
-        problems.append(Problem(src, 0, "ELEMENT_SHELL", None, "degenerate shells must repeat node 3 as node 4 "
-                                                               "(n1 n2 n3 n3)"))
+    if np.any(
+        (conn[:, 0] == conn[:, 1])
+        | (conn[:, 1] == conn[:, 2])
+        | (conn[:, 0] == conn[:, 2])
+        | ((tri == 0) & ((conn[:, 3] == conn[:, 0]) | (conn[:, 3] == conn[:, 1])))
+    ):
+        problems.append(
+            Problem(src, 0, "ELEMENT_SHELL", None, "degenerate shells must repeat node 3 as node 4 (n1 n2 n3 n3)")
+        )
         return None
     offset = sh.offset[sel]
     if np.any(np.nan_to_num(offset) != 0.0):
@@ -410,8 +505,15 @@ def build_shell_set(model: Model, rigid_pids, problems: list, warnings: list | N
         sec = model.sections.get(part.get("secid")) if part is not None else None
         mat = model.materials.get(part.get("mid")) if part is not None else None
         if part is None or sec is None or sec.keyword != "SECTION_SHELL" or mat is None:
-            problems.append(Problem(src, 0, "ELEMENT_SHELL", "PID",
-                                    f"shells of part {int(p)} need a *PART with a *SECTION_SHELL and a material"))
+            problems.append(
+                Problem(
+                    src,
+                    0,
+                    "ELEMENT_SHELL",
+                    "PID",
+                    f"shells of part {int(p)} need a *PART with a *SECTION_SHELL and a material",
+                )
+            )
             continue
         got = _section(sec, part, int(p), intgrd, problems, warns)
         hg = _hourglass(model, part, int(p), ihq0, qh0, problems, warns)
@@ -449,15 +551,50 @@ def build_shell_set(model: Model, rigid_pids, problems: list, warnings: list | N
     for i in np.flatnonzero(collapsed)[:10]:
         a = int(np.argmin(edge[i]))
         n1, n2 = model.nodes.ids[conn[i, a]], model.nodes.ids[conn[i, (a + 1) % 4]]
-        problems.append(Problem(src, 0, "ELEMENT_SHELL", f"N{a + 1}",
-                                f"shell {int(ids[i])}: nodes {int(n1)} and {int(n2)} lie at one point (a collapsed "
-                                "edge): merge them, or write the element as a triangle (N3 = N4)"))
+        problems.append(
+            Problem(
+                src,
+                0,
+                "ELEMENT_SHELL",
+                f"N{a + 1}",
+                f"shell {int(ids[i])}: nodes {int(n1)} and {int(n2)} lie at one point (a collapsed "
+                "edge): merge them, or write the element as a triangle (N3 = N4)",
+            )
+        )
     props_a = np.array(props)
     rho = props_a[mat_of, ps.P_RO] + np.where(thick0 > 0, marea / np.where(thick0 > 0, thick0, 1.0), 0.0)
     cs, ce, cx, cy = curves.arrays()
-    s = ShellSet(ids, pid, conn, tri, mat_of, np.array(mat_ids, np.int64), np.array(mtypes, np.int64), props_a,
-                 np.array(mcurves, np.int64).reshape(-1, ps.N_CURVES), cs, ce, cx, cy, thick0, area0, nip, rule,
-                 shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, marea, istupd, bwc, rotascl, warns, _isdo(model, problems))
+    s = ShellSet(
+        ids,
+        pid,
+        conn,
+        tri,
+        mat_of,
+        np.array(mat_ids, np.int64),
+        np.array(mtypes, np.int64),
+        props_a,
+        np.array(mcurves, np.int64).reshape(-1, ps.N_CURVES),
+        cs,
+        ce,
+        cx,
+        cy,
+        thick0,
+        area0,
+        nip,
+        rule,
+        shrf,
+        hg_kind,
+        hg_qm,
+        hg_qb,
+        hg_qw,
+        rho,
+        marea,
+        istupd,
+        bwc,
+        rotascl,
+        warns,
+        _isdo(model, problems),
+    )
     if warnings is not None:
         warnings.extend(warns)
     return s

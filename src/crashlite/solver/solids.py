@@ -93,18 +93,62 @@ class SolidState:
 def new_state(s: SolidSet, n_nodes: int) -> SolidState:
     n = len(s)
     ptr, corner_of = corner_incidence(n_nodes, s.conn)
-    return SolidState(np.zeros((n, 6)), np.zeros((n, 6)), np.zeros(n), np.zeros((n, sm.N_HIST)), s.axes0.copy(),
-                      np.zeros((n, 3, 4)), np.ones(n, np.int8), s.vol0.copy(), np.zeros(n),
-                      s.props[s.mat_of, sm.P_WAVE].copy(), np.zeros(n), np.zeros(n), np.zeros((n, 8, 3)),
-                      np.zeros((N_CHUNKS, N_WORK)), ptr, corner_of)
+    return SolidState(
+        np.zeros((n, 6)),
+        np.zeros((n, 6)),
+        np.zeros(n),
+        np.zeros((n, sm.N_HIST)),
+        s.axes0.copy(),
+        np.zeros((n, 3, 4)),
+        np.ones(n, np.int8),
+        s.vol0.copy(),
+        np.zeros(n),
+        s.props[s.mat_of, sm.P_WAVE].copy(),
+        np.zeros(n),
+        np.zeros(n),
+        np.zeros((n, 8, 3)),
+        np.zeros((N_CHUNKS, N_WORK)),
+        ptr,
+        corner_of,
+    )
 
 
 def compute_forces(s: SolidSet, st: SolidState, x: np.ndarray, v: np.ndarray, dt: float) -> None:
     """Advance the solids' state to t(n+1) and fill st.fe (see kernels.solid)."""
-    solid_forces(x, v, float(dt), s.conn, s.mat_of, s.mtype, s.props, s.mcurve, s.curve_start, s.curve_stop,
-                 s.curve_x, s.curve_y, s.rho0, s.vol0, s.hg_type, s.hg_qm, s.q1, s.q2, st.sig, st.sv, st.epsp,
-                 st.hist, st.axes, st.hgq, st.alive, st.vol, st.rate, st.cmod, st.energy, st.hg_energy, st.work,
-                 st.fe)
+    solid_forces(
+        x,
+        v,
+        float(dt),
+        s.conn,
+        s.mat_of,
+        s.mtype,
+        s.props,
+        s.mcurve,
+        s.curve_start,
+        s.curve_stop,
+        s.curve_x,
+        s.curve_y,
+        s.rho0,
+        s.vol0,
+        s.hg_type,
+        s.hg_qm,
+        s.q1,
+        s.q2,
+        st.sig,
+        st.sv,
+        st.epsp,
+        st.hist,
+        st.axes,
+        st.hgq,
+        st.alive,
+        st.vol,
+        st.rate,
+        st.cmod,
+        st.energy,
+        st.hg_energy,
+        st.work,
+        st.fe,
+    )
 
 
 def lumped_mass(s: SolidSet, n_nodes: int) -> np.ndarray:
@@ -127,11 +171,21 @@ def element_dt(s: SolidSet, x: np.ndarray, st: SolidState | None = None) -> np.n
     if st is None:
         vol = np.empty(len(s))
         solid_volumes(x, s.conn, np.zeros((N_CHUNKS, N_WORK)), vol)
-        solid_timestep(x, s.conn, np.ones(len(s), np.int8), vol, s.rho0, s.vol0, s.props[s.mat_of, sm.P_WAVE],
-                       np.zeros(len(s)), s.q1, s.q2, out)
+        solid_timestep(
+            x,
+            s.conn,
+            np.ones(len(s), np.int8),
+            vol,
+            s.rho0,
+            s.vol0,
+            s.props[s.mat_of, sm.P_WAVE],
+            np.zeros(len(s)),
+            s.q1,
+            s.q2,
+            out,
+        )
     else:
-        solid_timestep(x, s.conn, st.alive, st.vol, s.rho0, s.vol0, np.maximum(st.cmod, 0.0), st.rate, s.q1,
-                       s.q2, out)
+        solid_timestep(x, s.conn, st.alive, st.vol, s.rho0, s.vol0, np.maximum(st.cmod, 0.0), st.rate, s.q1, s.q2, out)
     return out
 
 
@@ -173,7 +227,7 @@ class _Curves:
     def arrays(self):
         sizes = np.array([len(a) for a in self.xs], np.int64)
         stop = np.cumsum(sizes)
-        cat = (lambda xs: np.concatenate(xs) if xs else np.zeros(0))  # noqa: E731
+        cat = lambda xs: np.concatenate(xs) if xs else np.zeros(0)  # noqa: E731
         return stop - sizes, stop, cat(self.xs), cat(self.ys)
 
 
@@ -181,8 +235,14 @@ def _elastic_constants(mat, row, problems) -> bool:
     e, nu, ro = float(mat.get("e", 0.0)), float(mat.get("pr", 0.0)), float(mat.get("ro", 0.0))
     if e <= 0 or ro <= 0 or not -1.0 < nu < 0.5:
         bad, value = ("ro", ro) if ro <= 0 else ("e", e) if e <= 0 else ("pr", nu)
-        problems.append(_problem(mat, bad, f"material {mat.get('mid')}: RO > 0, E > 0 and -1 < PR < 0.5 "
-                                            f"are needed for solids ({bad.upper()} = {value:g})"))
+        problems.append(
+            _problem(
+                mat,
+                bad,
+                f"material {mat.get('mid')}: RO > 0, E > 0 and -1 < PR < 0.5 "
+                f"are needed for solids ({bad.upper()} = {value:g})",
+            )
+        )
         return False
     k, g = e / (3.0 * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu))
     row[sm.P_RO], row[sm.P_E], row[sm.P_PR], row[sm.P_K], row[sm.P_G] = ro, e, nu, k, g
@@ -207,8 +267,9 @@ def _material(model: Model, mat, curves: _Curves, problems: list):
     mc = np.full(sm.N_CURVES, -1, np.int64)
     kw = mat.keyword
     if kw not in ("MAT_ELASTIC", "MAT_PIECEWISE_LINEAR_PLASTICITY", "MAT_HONEYCOMB", "MAT_CRUSHABLE_FOAM"):
-        problems.append(_problem(mat, None, f"*{kw} is not supported for solids (supported: MAT_001, MAT_024, "
-                                            "MAT_026, MAT_063)"))
+        problems.append(
+            _problem(mat, None, f"*{kw} is not supported for solids (supported: MAT_001, MAT_024, MAT_026, MAT_063)")
+        )
         return None
     if not _elastic_constants(mat, row, problems):
         return None
@@ -276,22 +337,33 @@ def _honeycomb(model, mat, curves, row, mc, problems):
         problems.append(_problem(mat, "macf", "MACF other than 1 (material axes change) is not supported"))
         ok = False
     if float(mat.get("aopt", 0.0) or 0.0) not in (0.0, 2.0):
-        problems.append(_problem(mat, "aopt", "AOPT 0 (element nodes 1, 2, 4) and 2 (vectors A, D) are "
-                                              "supported"))
+        problems.append(_problem(mat, "aopt", "AOPT 0 (element nodes 1, 2, 4) and 2 (vectors A, D) are supported"))
         ok = False
     if not _curve_ok(model, mat, "lca", problems):
         return None
     lc = {"lca": int(mat["lca"])}
-    for fld, default in (("lcb", "lca"), ("lcc", "lca"), ("lcs", "lca"), ("lcab", "lcs"), ("lcbc", "lcs"),
-                         ("lcca", "lcs")):
+    for fld, default in (
+        ("lcb", "lca"),
+        ("lcc", "lca"),
+        ("lcs", "lca"),
+        ("lcab", "lcs"),
+        ("lcbc", "lcs"),
+        ("lcca", "lcs"),
+    ):
         v = int(mat.get(fld, 0) or 0)
         if v and not _curve_ok(model, mat, fld, problems):
             ok = False
         lc[fld] = v or lc[default]
     if not ok:
         return None
-    for slot, fld in ((sm.C_A, "lca"), (sm.C_B, "lcb"), (sm.C_C, "lcc"), (sm.C_AB, "lcab"), (sm.C_BC, "lcbc"),
-                      (sm.C_CA, "lcca")):
+    for slot, fld in (
+        (sm.C_A, "lca"),
+        (sm.C_B, "lcb"),
+        (sm.C_C, "lcc"),
+        (sm.C_AB, "lcab"),
+        (sm.C_BC, "lcbc"),
+        (sm.C_CA, "lcca"),
+    ):
         mc[slot] = curves.get(lc[fld])
     row[sm.P_SIGY], row[sm.P_VF] = float(mat.get("sigy", 0.0) or 0.0), vf
     # BULK = 1: artificial bulk viscosity instead of the material viscosity MU (LS-DYNA sets μ = 0)
@@ -303,7 +375,7 @@ def _honeycomb(model, mat, curves, row, mc, problems):
     row[sm.P_TSEF] = float(mat.get("tsef", 0.0) or 0.0)
     row[sm.P_SSEF] = float(mat.get("ssef", 0.0) or 0.0)
     # the time step follows the stiffest state (compacted, or a stiffer uncompacted modulus)
-    row[sm.P_WAVE] = max(row[sm.P_WAVE], *row[sm.P_EAAU:sm.P_EAAU + 6])
+    row[sm.P_WAVE] = max(row[sm.P_WAVE], *row[sm.P_EAAU : sm.P_EAAU + 6])
     return sm.HONEYCOMB, row, mc
 
 
@@ -315,7 +387,7 @@ def _bulk_viscosity(model: Model) -> tuple[float, float]:
             if not lines:
                 break
             ln = lines[0]
-            fields = ln.split(",") if "," in ln else [ln[i:i + 10] for i in range(0, 30, 10)]
+            fields = ln.split(",") if "," in ln else [ln[i : i + 10] for i in range(0, 30, 10)]
             vals = [float(f) if f.strip() else None for f in fields[:2]] + [None, None]
             return (vals[0] if vals[0] is not None else 1.5), (vals[1] if vals[1] is not None else 0.06)
         if getattr(rec, "keyword", "") == "CONTROL_BULK_VISCOSITY" and hasattr(rec, "get"):
@@ -381,16 +453,29 @@ def build_solids(model: Model, rigid_pids, problems: list, warnings: list | None
         sec = model.sections.get(part.get("secid")) if part is not None else None
         mat = model.materials.get(part.get("mid")) if part is not None else None
         if part is None or sec is None or sec.keyword != "SECTION_SOLID" or mat is None:
-            problems.append(Problem(src, 0, "ELEMENT_SOLID", "PID",
-                                    f"solids of part {int(p)} need a *PART with a *SECTION_SOLID and a material"))
+            problems.append(
+                Problem(
+                    src,
+                    0,
+                    "ELEMENT_SOLID",
+                    "PID",
+                    f"solids of part {int(p)} need a *PART with a *SECTION_SOLID and a material",
+                )
+            )
             continue
         elform = int(sec.get("elform", 1) if sec.get("elform") is not None else 1)
         if elform in _AS_ONE_POINT:
-            warns.append(_problem(sec, "elform", f"ELFORM {elform} of part {int(p)} runs as ELFORM 1 (one-point "
-                                                 "integration with hourglass control)"))
+            warns.append(
+                _problem(
+                    sec,
+                    "elform",
+                    f"ELFORM {elform} of part {int(p)} runs as ELFORM 1 (one-point integration with hourglass control)",
+                )
+            )
         elif elform != 1:
-            problems.append(_problem(sec, "elform", f"solid formulation {elform} is not supported (1; 0, 2, -1, "
-                                                    "-2 run as 1)"))
+            problems.append(
+                _problem(sec, "elform", f"solid formulation {elform} is not supported (1; 0, 2, -1, -2 run as 1)")
+            )
             continue
         mid = int(mat.get("mid"))
         if mid not in mat_rows:
@@ -414,8 +499,14 @@ def build_solids(model: Model, rigid_pids, problems: list, warnings: list | None
                 continue
             q = _axes(x, conn[m], aopt, a_vec, d_vec)
             if not np.all(np.isfinite(q)):
-                problems.append(_problem(mat, "aopt", f"part {int(p)}: material axes from element nodes 1, 2, 4 "
-                                                      "are undefined for a collapsed element"))
+                problems.append(
+                    _problem(
+                        mat,
+                        "aopt",
+                        f"part {int(p)}: material axes from element nodes 1, 2, 4 "
+                        "are undefined for a collapsed element",
+                    )
+                )
                 continue
             axes[m] = q
         hgid = int(part.get("hgid", 0) or 0)
@@ -427,12 +518,22 @@ def build_solids(model: Model, rigid_pids, problems: list, warnings: list | None
         ihq = ihq or ihq0
         qm = float(hg.get("qm", 0.1)) if hg is not None else qh0
         if ihq == 6:
-            warns.append(_problem(hg if hg is not None else part, "ihq",
-                                  f"IHQ 6 of part {int(p)} runs as IHQ 5 (Flanagan-Belytschko stiffness)"))
+            warns.append(
+                _problem(
+                    hg if hg is not None else part,
+                    "ihq",
+                    f"IHQ 6 of part {int(p)} runs as IHQ 5 (Flanagan-Belytschko stiffness)",
+                )
+            )
             ihq = 5
         elif not 1 <= ihq <= 5:
-            problems.append(_problem(hg if hg is not None else part, "ihq",
-                                     f"hourglass type {ihq} is not supported for solids (1-5, 6 as 5)"))
+            problems.append(
+                _problem(
+                    hg if hg is not None else part,
+                    "ihq",
+                    f"hourglass type {ihq} is not supported for solids (1-5, 6 as 5)",
+                )
+            )
             continue
         hg_type[m], hg_qm[m] = ihq, qm
         if hg is not None:
@@ -443,17 +544,45 @@ def build_solids(model: Model, rigid_pids, problems: list, warnings: list | None
     solid_volumes(x, conn, np.zeros((N_CHUNKS, N_WORK)), vol0)
     bad = np.flatnonzero(vol0 <= 0)
     for i in bad[:10]:
-        problems.append(Problem(src, 0, "ELEMENT_SOLID", None,
-                                f"solid {int(ids[i])} has volume {vol0[i]:.4g} <= 0 (inverted node order?)"))
+        problems.append(
+            Problem(
+                src,
+                0,
+                "ELEMENT_SOLID",
+                None,
+                f"solid {int(ids[i])} has volume {vol0[i]:.4g} <= 0 (inverted node order?)",
+            )
+        )
     cs, ce, cx, cy = curves.arrays()
     if warnings is not None:
         warnings.extend(warns)
     ts, term = model.find("CONTROL_TIMESTEP"), model.find("CONTROL_TERMINATION")
     erode = bool(ts) and int(ts[0].get("erode", 0) or 0) == 1
     dtmin = float(term[0].get("dtmin", 0.0) or 0.0) if term else 0.0
-    return SolidSet(ids, pid, conn, mat_of, np.array(mat_ids, np.int64), np.array(mtypes, np.int64),
-                    np.array(props), np.array(mcurves, np.int64).reshape(-1, sm.N_CURVES), cs, ce, cx, cy, rho0,
-                    vol0, axes, hg_type, hg_qm, q1, q2, warns, erode, dtmin if erode else 0.0)
+    return SolidSet(
+        ids,
+        pid,
+        conn,
+        mat_of,
+        np.array(mat_ids, np.int64),
+        np.array(mtypes, np.int64),
+        np.array(props),
+        np.array(mcurves, np.int64).reshape(-1, sm.N_CURVES),
+        cs,
+        ce,
+        cx,
+        cy,
+        rho0,
+        vol0,
+        axes,
+        hg_type,
+        hg_qm,
+        q1,
+        q2,
+        warns,
+        erode,
+        dtmin if erode else 0.0,
+    )
 
 
 # --- in the time loop ----------------------------------------------------------------------------
@@ -484,8 +613,10 @@ class SolidGroup(ElementGroup):
         if self.st.alive.min() < 0:  # LS-DYNA stops on a negative volume too (unless ERODE = 1)
             bad = np.flatnonzero(self.st.alive < 0)
             more = f" ({len(bad)} elements)" if len(bad) > 1 else ""
-            raise FloatingPointError(f"solid element {int(self.ids[bad[0]])} turned inside out (negative volume) at "
-                                     f"t = {getattr(st, 't', 0.0):.6g}{more}: the run is stopped")
+            raise FloatingPointError(
+                f"solid element {int(self.ids[bad[0]])} turned inside out (negative volume) at "
+                f"t = {getattr(st, 't', 0.0):.6g}{more}: the run is stopped"
+            )
         gather_corners(self.st.node_ptr, self.st.corner_of, self._rows, st.f)
 
     def corner_forces(self) -> np.ndarray:

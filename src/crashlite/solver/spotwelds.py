@@ -76,8 +76,7 @@ def _solve(inert, tr, b0, b1, b2):
 
 
 @njit(cache=True)
-def weld_forces(ptr, nodes, alive, x, f, moment, mass, jrot, normal0, along, sn, ss, en, em, fn_out, fs_out,
-                crit_out):
+def weld_forces(ptr, nodes, alive, x, f, moment, mass, jrot, normal0, along, sn, ss, en, em, fn_out, fs_out, crit_out):
     """Rigid-body share of the summed force and moment for each live weld,
     the weld force on its nodes split into normal fn and shear fs (the
     node with the largest failure measure), and that measure crit_out.
@@ -237,8 +236,25 @@ class SpotWelds:
         t = float(getattr(st, "t", 0.0))
         for k in np.flatnonzero(self.alive & (t >= self.tfail)):
             self._fail(k, t, "time")
-        weld_forces(self.ptr, self.nodes, self.alive, st.x, st.f, st.moment, st.mass, self._rot(st), self.normal0,
-                    self.along, self.sn, self.ss, self.en, self.em, self.fn, self.fs, self.crit)
+        weld_forces(
+            self.ptr,
+            self.nodes,
+            self.alive,
+            st.x,
+            st.f,
+            st.moment,
+            st.mass,
+            self._rot(st),
+            self.normal0,
+            self.along,
+            self.sn,
+            self.ss,
+            self.en,
+            self.em,
+            self.fn,
+            self.fs,
+            self.crit,
+        )
         for k in np.flatnonzero(self.alive & (self.crit >= 1.0)):
             self._fail(k, t, "force")
 
@@ -251,15 +267,23 @@ class SpotWelds:
         momentum kept (the kinetic energy of the relative motion is lost,
         as in a plastic impact)."""
         if self.alive.any():
-            weld_velocities(self.ptr, self.nodes, self.alive & (self.tfail > 0), x, v, w, mass,
-                            np.asarray(rot_inertia, float))
+            weld_velocities(
+                self.ptr, self.nodes, self.alive & (self.tfail > 0), x, v, w, mass, np.asarray(rot_inertia, float)
+            )
 
     def _fail(self, k: int, t: float, cause: str) -> None:
         self.alive[k] = False
         self.fail_time[k] = t
         self.log.append((int(self.ids[k]), t, cause))
-        _LOG.info("*%s %d failed at t = %.6g (%s; fn = %.4g, fs = %.4g)", self.keyword[k], int(self.ids[k]), t,
-                  cause, self.fn[k], self.fs[k])
+        _LOG.info(
+            "*%s %d failed at t = %.6g (%s; fn = %.4g, fs = %.4g)",
+            self.keyword[k],
+            int(self.ids[k]),
+            t,
+            cause,
+            self.fn[k],
+            self.fs[k],
+        )
 
 
 # --- from the Model ------------------------------------------------------------------------------
@@ -297,22 +321,31 @@ def build_spotwelds(model: Model, problems: list) -> SpotWelds | None:
     rows = []  # (id, keyword, node indices, sn, ss, n, m, tfail, rec)
     for rec in model.find("CONSTRAINED_SPOTWELD"):
         r = rec.rows if rec.rows else None
-        entries = ([{k: r[k][i] for k in r} for i in range(len(r["n1"]))] if r else [rec])
+        entries = [{k: r[k][i] for k in r} for i in range(len(r["n1"]))] if r else [rec]
         for _i, e in enumerate(entries):
             get = (lambda k, d=None, e=e: e.get(k, d)) if isinstance(e, dict) else e.get
             n1, n2 = int(get("n1") or 0), int(get("n2") or 0)
             idx = model.node_index([n1, n2])
             if n1 <= 0 or n2 <= 0 or np.any(idx < 0) or n1 == n2:
-                problems.append(_problem(rec, "n1", f"a spot weld needs two distinct defined nodes (N1 {n1}, "
-                                                    f"N2 {n2})"))
+                problems.append(_problem(rec, "n1", f"a spot weld needs two distinct defined nodes (N1 {n1}, N2 {n2})"))
                 continue
             if float(get("ep", 1e20) or 1e20) < 1e20:
-                problems.append(_problem(rec, "ep", "plastic-strain failure (EP) of spot welds is not supported "
-                                                    "yet"))
+                problems.append(_problem(rec, "ep", "plastic-strain failure (EP) of spot welds is not supported yet"))
                 continue
             wid = int(get("wid") or 0) or len(rows) + 1
-            rows.append((wid, rec.keyword, idx.astype(np.int64), get("sn", 0.0), get("ss", 0.0), get("n", 0.0),
-                         get("m", 0.0), get("tf", 1e20), rec))
+            rows.append(
+                (
+                    wid,
+                    rec.keyword,
+                    idx.astype(np.int64),
+                    get("sn", 0.0),
+                    get("ss", 0.0),
+                    get("n", 0.0),
+                    get("m", 0.0),
+                    get("tf", 1e20),
+                    rec,
+                )
+            )
     for rec in model.find("CONSTRAINED_GENERALIZED_WELD"):
         if rec.keyword != "CONSTRAINED_GENERALIZED_WELD_SPOT":
             problems.append(_problem(rec, None, f"*{rec.keyword} is not supported (GENERALIZED_WELD_SPOT is)"))
@@ -323,8 +356,14 @@ def build_spotwelds(model: Model, problems: list) -> SpotWelds | None:
             continue
         idx = model.node_index(model.set_members("NODE", nsid))
         if len(idx) < 2 or np.any(idx < 0):
-            problems.append(_problem(rec, "nsid", f"a generalized spot weld needs at least 2 defined nodes; "
-                                                  f"*SET_NODE {nsid} has {int((idx >= 0).sum())}"))
+            problems.append(
+                _problem(
+                    rec,
+                    "nsid",
+                    f"a generalized spot weld needs at least 2 defined nodes; "
+                    f"*SET_NODE {nsid} has {int((idx >= 0).sum())}",
+                )
+            )
             continue
         if int(rec.get("cid") or 0):
             problems.append(_problem(rec, "cid", "failure forces in a local system (CID) are not supported yet"))
@@ -333,8 +372,19 @@ def build_spotwelds(model: Model, problems: list) -> SpotWelds | None:
             problems.append(_problem(rec, "epsf", "plastic-strain failure (EPSF) is not supported yet"))
             continue
         wid = int(rec.get("wid") or 0) or len(rows) + 1
-        rows.append((wid, rec.keyword, idx.astype(np.int64), rec.get("sn", 0.0), rec.get("ss", 0.0),
-                     rec.get("n", 0.0), rec.get("m", 0.0), rec.get("tfail", 1e20), rec))
+        rows.append(
+            (
+                wid,
+                rec.keyword,
+                idx.astype(np.int64),
+                rec.get("sn", 0.0),
+                rec.get("ss", 0.0),
+                rec.get("n", 0.0),
+                rec.get("m", 0.0),
+                rec.get("tfail", 1e20),
+                rec,
+            )
+        )
     if not rows:
         return None
     x = model.nodes.xyz
@@ -349,13 +399,19 @@ def build_spotwelds(model: Model, problems: list) -> SpotWelds | None:
         tf[j] = float(a_tf if a_tf not in (None, 0.0) else 1e20)
         for fld, s_, e_ in (("n", sn[j], en[j]), ("m", ss[j], em[j])):
             if s_ < 0 or (s_ > 0 and e_ <= 0):
-                problems.append(_problem(rec, fld, f"weld {wid}: SN/SS >= 0 and exponents N, M > 0 with them are "
-                                                   "needed"))
+                problems.append(
+                    _problem(rec, fld, f"weld {wid}: SN/SS >= 0 and exponents N, M > 0 with them are needed")
+                )
         for i in idx:
             if int(i) in owner:
-                problems.append(_problem(rec, "n1" if kw == "CONSTRAINED_SPOTWELD" else "nsid",
-                                         f"node {int(model.nodes.ids[i])} is in two welds ({owner[int(i)]} and "
-                                         f"{wid}); join them in one generalized weld instead"))
+                problems.append(
+                    _problem(
+                        rec,
+                        "n1" if kw == "CONSTRAINED_SPOTWELD" else "nsid",
+                        f"node {int(model.nodes.ids[i])} is in two welds ({owner[int(i)]} and "
+                        f"{wid}); join them in one generalized weld instead",
+                    )
+                )
             owner[int(i)] = wid
         d = x[idx[-1]] - x[idx[0]]
         if np.linalg.norm(d) > 1e-9 * max(1.0, float(np.abs(x[idx]).max())):
@@ -365,12 +421,27 @@ def build_spotwelds(model: Model, problems: list) -> SpotWelds | None:
                 normals = _shell_normals(model)
             nrm = normals[idx].sum(axis=0)
             if np.linalg.norm(nrm) == 0:
-                problems.append(_problem(rec, "n1" if kw == "CONSTRAINED_SPOTWELD" else "nsid",
-                                         f"weld {wid}: the nodes coincide and no shell gives a normal for the "
-                                         "failure forces"))
+                problems.append(
+                    _problem(
+                        rec,
+                        "n1" if kw == "CONSTRAINED_SPOTWELD" else "nsid",
+                        f"weld {wid}: the nodes coincide and no shell gives a normal for the failure forces",
+                    )
+                )
             else:
                 normal0[j] = nrm / np.linalg.norm(nrm)
     ptr = np.zeros(k + 1, np.int64)
     ptr[1:] = np.cumsum([len(r[2]) for r in rows])
-    return SpotWelds(np.array([r[0] for r in rows], np.int64), [r[1] for r in rows], ptr,
-                     np.concatenate([r[2] for r in rows]).astype(np.int64), sn, ss, en, em, tf, normal0, along)
+    return SpotWelds(
+        np.array([r[0] for r in rows], np.int64),
+        [r[1] for r in rows],
+        ptr,
+        np.concatenate([r[2] for r in rows]).astype(np.int64),
+        sn,
+        ss,
+        en,
+        em,
+        tf,
+        normal0,
+        along,
+    )

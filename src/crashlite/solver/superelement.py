@@ -42,7 +42,7 @@ class SuperelementGroup(ElementGroup):
         width = max((len(n) for n in self.nodes), default=0)
         self.conn = np.full((len(self.ids), width), -1, np.int64)
         for e, n in enumerate(self.nodes):
-            self.conn[e, :len(n)] = n
+            self.conn[e, : len(n)] = n
         self.energy = np.zeros(len(self.ids))
         self._f = [np.zeros(len(n)) for n in dof_nodes]  # force on each DOF
         self._u = [np.zeros(len(n)) for n in dof_nodes]
@@ -70,8 +70,11 @@ class SuperelementGroup(ElementGroup):
                 m = 0.5 * st.mass[n]  # shared with the elements beside it
                 free = m > 0  # massless DOFs (rigid-body nodes) move with something heavier
                 s = 1.0 / np.sqrt(m[free])
-                lam = float(np.linalg.eigvalsh(k[np.ix_(free, free)] * s[:, None] * s[None, :])[-1]) \
-                    if free.any() else 0.0
+                lam = (
+                    float(np.linalg.eigvalsh(k[np.ix_(free, free)] * s[:, None] * s[None, :])[-1])
+                    if free.any()
+                    else 0.0
+                )
                 if lam > 0:
                     self._dt[e] = 2.0 / np.sqrt(lam)
         return float(self._dt.min()) if len(self._dt) else np.inf

@@ -53,8 +53,11 @@ def _solve3(a00, a01, a02, a11, a12, a22, b0, b1, b2):
     c11 = a00 * a22 - a02 * a02
     c12 = a01 * a02 - a00 * a12
     c22 = a00 * a11 - a01 * a01
-    return ((c00 * b0 + c01 * b1 + c02 * b2) / det, (c01 * b0 + c11 * b1 + c12 * b2) / det,
-            (c02 * b0 + c12 * b1 + c22 * b2) / det)
+    return (
+        (c00 * b0 + c01 * b1 + c02 * b2) / det,
+        (c01 * b0 + c11 * b1 + c12 * b2) / det,
+        (c02 * b0 + c12 * b1 + c22 * b2) / det,
+    )
 
 
 @njit(cache=True)
@@ -226,13 +229,15 @@ class TiedContact:
 
     def forces(self, st) -> None:
         if len(self.slave):
-            tie_forces(self.slave, self.seg, self.w, self.nn, self.offset, self.rotations, self.mrot, st.x, st.f,
-                       st.moment)
+            tie_forces(
+                self.slave, self.seg, self.w, self.nn, self.offset, self.rotations, self.mrot, st.x, st.f, st.moment
+            )
 
     def velocities(self, st) -> None:
         if len(self.slave):
-            tie_velocities(self.slave, self.seg, self.w, self.nn, self.offset, self.rotations, self.mrot, st.x,
-                           st.v, st.w)
+            tie_velocities(
+                self.slave, self.seg, self.w, self.nn, self.offset, self.rotations, self.mrot, st.x, st.v, st.w
+            )
 
     def lump(self, mass: np.ndarray, rot_inertia: np.ndarray, x: np.ndarray) -> None:
         """Move the slave masses (and, where the tie turns them, rotary
@@ -370,8 +375,13 @@ def _segments(model: Model, rec, problems: list) -> np.ndarray | None:
         solids = model.solids.nodes[np.isin(model.solids.pid, pids)].astype(np.int64)
         seg = np.concatenate([seg.reshape(-1, 4), exterior_faces(solids)])
     else:
-        problems.append(_problem(rec, "mstyp", f"MSTYP {typ} is not supported for tied contacts (0 segment set, "
-                                               "1 shell set, 2 part set, 3 part)"))
+        problems.append(
+            _problem(
+                rec,
+                "mstyp",
+                f"MSTYP {typ} is not supported for tied contacts (0 segment set, 1 shell set, 2 part set, 3 part)",
+            )
+        )
         return None
     if len(seg) == 0:
         problems.append(_problem(rec, "msid", f"the master surface {sid} (MSTYP {typ}) has no segments"))
@@ -405,11 +415,21 @@ def _slaves(model: Model, rec, problems: list) -> np.ndarray | None:
         pids = _parts(model, rec, typ, sid, "ssid", problems)
         if pids is None:
             return None
-        nodes = np.concatenate([t.nodes[np.isin(t.pid, pids)][:, :k].ravel().astype(np.int64)
-                                for t, k in ((model.shells, 4), (model.solids, 8), (model.beams, 2))])
+        nodes = np.concatenate(
+            [
+                t.nodes[np.isin(t.pid, pids)][:, :k].ravel().astype(np.int64)
+                for t, k in ((model.shells, 4), (model.solids, 8), (model.beams, 2))
+            ]
+        )
     else:
-        problems.append(_problem(rec, "sstyp", f"SSTYP {typ} is not supported for tied contacts (4 node set, "
-                                               "0 segment set, 1 shell set, 2 part set, 3 part)"))
+        problems.append(
+            _problem(
+                rec,
+                "sstyp",
+                f"SSTYP {typ} is not supported for tied contacts (4 node set, "
+                "0 segment set, 1 shell set, 2 part set, 3 part)",
+            )
+        )
         return None
     if np.any(nodes < -1) or (typ == 4 and np.any(nodes < 0)):
         problems.append(_problem(rec, "ssid", "the slave set names an undefined node"))
@@ -519,9 +539,15 @@ def refuse_unread(model: Model, prefixes: tuple, problems: list) -> None:
         name = _name(raw)
         if name.startswith(prefixes):
             file, line = _where(raw)
-            problems.append(Problem(file or model.source or "", line, name, None,
-                                    f"*{name} is not run by the crashlite solver yet; remove it or run the deck in "
-                                    "LS-DYNA"))
+            problems.append(
+                Problem(
+                    file or model.source or "",
+                    line,
+                    name,
+                    None,
+                    f"*{name} is not run by the crashlite solver yet; remove it or run the deck in LS-DYNA",
+                )
+            )
 
 
 def build_tied(model: Model, problems: list, warnings: list | None = None) -> list[TiedContact]:
@@ -535,8 +561,13 @@ def build_tied(model: Model, problems: list, warnings: list | None = None) -> li
     for k, rec in enumerate(model.find("CONTACT_TIED_")):
         kw = rec.keyword
         if kw not in ("CONTACT_TIED_NODES_TO_SURFACE", "CONTACT_TIED_SHELL_EDGE_TO_SURFACE"):
-            problems.append(_problem(rec, None, f"*{kw} is not supported (TIED_NODES_TO_SURFACE and "
-                                                "TIED_SHELL_EDGE_TO_SURFACE, with _OFFSET, are)"))
+            problems.append(
+                _problem(
+                    rec,
+                    None,
+                    f"*{kw} is not supported (TIED_NODES_TO_SURFACE and TIED_SHELL_EDGE_TO_SURFACE, with _OFFSET, are)",
+                )
+            )
             continue
         slaves, seg = _slaves(model, rec, problems), _segments(model, rec, problems)
         if slaves is None or seg is None:
@@ -558,19 +589,35 @@ def build_tied(model: Model, problems: list, warnings: list | None = None) -> li
         cid = int(rec.get("cid") or k + 1)
         for s in cand[ok]:
             if int(s) in taken:
-                problems.append(_problem(rec, "ssid", f"node {int(model.nodes.ids[s])} is tied twice (also by "
-                                                      f"contact {taken[int(s)]})"))
+                problems.append(
+                    _problem(
+                        rec, "ssid", f"node {int(model.nodes.ids[s])} is tied twice (also by contact {taken[int(s)]})"
+                    )
+                )
             taken[int(s)] = cid
         untied = model.nodes.ids[cand[~ok]].astype(np.int64)
-        tie = TiedContact(cid, kw, cand[ok].astype(np.int64), seg[idx[ok]].astype(np.int64), w[ok],
-                          np.where(seg[idx[ok], 2] == seg[idx[ok], 3], 3, 4).astype(np.int64), dist[ok],
-                          offset="OFFSET" in rec.options or kw == "CONTACT_TIED_SHELL_EDGE_TO_SURFACE",
-                          rotations=kw == "CONTACT_TIED_SHELL_EDGE_TO_SURFACE", untied=untied)
+        tie = TiedContact(
+            cid,
+            kw,
+            cand[ok].astype(np.int64),
+            seg[idx[ok]].astype(np.int64),
+            w[ok],
+            np.where(seg[idx[ok], 2] == seg[idx[ok], 3], 3, 4).astype(np.int64),
+            dist[ok],
+            offset="OFFSET" in rec.options or kw == "CONTACT_TIED_SHELL_EDGE_TO_SURFACE",
+            rotations=kw == "CONTACT_TIED_SHELL_EDGE_TO_SURFACE",
+            untied=untied,
+        )
         if len(untied):
             more = f" and {len(untied) - 10} more" if len(untied) > 10 else ""
-            tie.warnings.append(_problem(rec, "ssid", f"{len(untied)} slave node(s) not tied (farther from the "
-                                                      "master surface than the search distance): "
-                                         + " ".join(str(int(i)) for i in untied[:10]) + more))
+            tie.warnings.append(
+                _problem(
+                    rec,
+                    "ssid",
+                    f"{len(untied)} slave node(s) not tied (farther from the "
+                    "master surface than the search distance): " + " ".join(str(int(i)) for i in untied[:10]) + more,
+                )
+            )
         if warnings is not None:
             warnings.extend(tie.warnings)
         out.append(tie)
@@ -580,7 +627,14 @@ def build_tied(model: Model, problems: list, warnings: list | None = None) -> li
     for t in out:
         both = [int(s) for s in t.slave if int(s) in masters]
         if both:
-            problems.append(Problem(model.source or "", 0, t.keyword, "SSID",
-                                    f"contact {t.cid}: node {int(model.nodes.ids[both[0]])} is both a tied slave "
-                                    "and a master node of a tied contact (chained ties are not supported)"))
+            problems.append(
+                Problem(
+                    model.source or "",
+                    0,
+                    t.keyword,
+                    "SSID",
+                    f"contact {t.cid}: node {int(model.nodes.ids[both[0]])} is both a tied slave "
+                    "and a master node of a tied contact (chained ties are not supported)",
+                )
+            )
     return out

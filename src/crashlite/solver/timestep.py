@@ -105,8 +105,12 @@ def smallest_step(s: Setup, groups, st) -> tuple[float, str]:
             return
         bad = np.isnan(dts)
         e = int(np.flatnonzero(bad)[0]) if bad.any() else int(np.argmin(dts))
-        found.append((float(dts[e]) * s.tssfac, f"*ELEMENT_{name} {int(eids[e])} on "
-                      + ", ".join(node(i) for i in nodes_of(e) if i >= 0)))
+        found.append(
+            (
+                float(dts[e]) * s.tssfac,
+                f"*ELEMENT_{name} {int(eids[e])} on " + ", ".join(node(i) for i in nodes_of(e) if i >= 0),
+            )
+        )
 
     d = s.discrete
     if len(d.ids):
@@ -133,8 +137,10 @@ def step_problem(dt: float, t: float, end_time: float, end_cycle: int) -> str | 
         return f"the stable time step at t = {t:.6g} is {dt:.4g}"
     cycles = (end_time - t) / dt
     if cycles > MAX_CYCLES and not (0 < end_cycle <= MAX_CYCLES):
-        return (f"the stable time step at t = {t:.6g} is {dt:.4g}: {cycles:.3g} more cycles to the end time "
-                f"{end_time:.6g}, the run would not end")
+        return (
+            f"the stable time step at t = {t:.6g} is {dt:.4g}: {cycles:.3g} more cycles to the end time "
+            f"{end_time:.6g}, the run would not end"
+        )
     return None
 
 
@@ -163,8 +169,9 @@ def scale_masses(s: Setup, model_pids: np.ndarray | None = None) -> dict[int, fl
     # a fully constrained node acts as ground and gets no mass
     held = s.fixed.all(axis=1)
     grounded = (d.n2 < 0) | held[d.n1] | held[np.maximum(d.n2, 0)]
-    need = np.where(d.kind == DAMPER, k * target * (np.where(grounded, 0.5, 1.0)),
-                    k * target**2 * np.where(grounded, 0.25, 0.5))
+    need = np.where(
+        d.kind == DAMPER, k * target * (np.where(grounded, 0.5, 1.0)), k * target**2 * np.where(grounded, 0.25, 0.5)
+    )
     before = s.mass.copy()
     for nodes in (d.n1, d.n2):
         ok = nodes >= 0

@@ -64,12 +64,41 @@ class Walls:
             if not (w.birth <= t <= w.death):
                 continue
             if w.radius > 0:
-                cylinder_wall(st.x, st.v, self._before, st.mass, w.nodes, self.point[k], w.normal, w.radius,
-                              w.length, w.fric, dt, self.force[k])
+                cylinder_wall(
+                    st.x,
+                    st.v,
+                    self._before,
+                    st.mass,
+                    w.nodes,
+                    self.point[k],
+                    w.normal,
+                    w.radius,
+                    w.length,
+                    w.fric,
+                    dt,
+                    self.force[k],
+                )
             else:
-                self.velocity[k] = planar_wall(st.x, st.v, self._before, st.mass, w.nodes, self.point[k], w.normal,
-                                               self.velocity[k], w.mass, w.fric, dt, self.force[k], self.hit[k],
-                                               w.edge_l, w.edge_m, w.len_l, w.len_m, self._part)
+                self.velocity[k] = planar_wall(
+                    st.x,
+                    st.v,
+                    self._before,
+                    st.mass,
+                    w.nodes,
+                    self.point[k],
+                    w.normal,
+                    self.velocity[k],
+                    w.mass,
+                    w.fric,
+                    dt,
+                    self.force[k],
+                    self.hit[k],
+                    w.edge_l,
+                    w.edge_m,
+                    w.len_l,
+                    w.len_m,
+                    self._part,
+                )
             ew += self.force[k, 3]
             v_nodes = self.velocity[k]
             for body, nodes in self.body_nodes[k]:

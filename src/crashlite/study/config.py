@@ -154,20 +154,32 @@ class StudyConfig:
     def fingerprint(self) -> dict:
         """What must not change between sessions of one study: the design
         space, the responses and the planned designs."""
-        out = {"variables": [v.describe() for v in self.variables],
-               "responses": {k: r.describe() for k, r in self.responses.items()},
-               "deck": str(self.deck)}
+        out = {
+            "variables": [v.describe() for v in self.variables],
+            "responses": {k: r.describe() for k, r in self.responses.items()},
+            "deck": str(self.deck),
+        }
         if self.doe:
-            out["doe"] = {"method": self.doe.method, "designs": self.doe.designs, "seed": self.doe.seed,
-                          "scramble": self.doe.scramble}
+            out["doe"] = {
+                "method": self.doe.method,
+                "designs": self.doe.designs,
+                "seed": self.doe.seed,
+                "scramble": self.doe.scramble,
+            }
         if self.sensitivity and (self.sensitivity.method == "morris" or self.sensitivity.runs):
             s = self.sensitivity
-            out["sensitivity"] = {"method": s.method, "samples": s.samples, "trajectories": s.trajectories,
-                                  "levels": s.levels, "seed": s.seed}
+            out["sensitivity"] = {
+                "method": s.method,
+                "samples": s.samples,
+                "trajectories": s.trajectories,
+                "levels": s.levels,
+                "seed": s.seed,
+            }
         return out
 
 
 # --- reading -----------------------------------------------------------------
+
 
 class _Reader:
     def __init__(self, path: Path):
@@ -189,8 +201,11 @@ class _Reader:
     def known(self, data: dict, allowed, where: str) -> None:
         extra = [k for k in data if k not in allowed]
         if extra:
-            self.fail(where, f"unknown key{'s' if len(extra) > 1 else ''} {', '.join(map(repr, extra))} "
-                             f"(known: {', '.join(allowed)})")
+            self.fail(
+                where,
+                f"unknown key{'s' if len(extra) > 1 else ''} {', '.join(map(repr, extra))} "
+                f"(known: {', '.join(allowed)})",
+            )
 
     def number(self, data: dict, key: str, where: str, default=None, positive=False, integer=False):
         v = data.get(key, default)
@@ -228,8 +243,22 @@ def load_study(path: Path | str, build_template: bool = True) -> StudyConfig:
     except UnicodeDecodeError as e:
         raise StudyError(f"{path}: not a text file ({e})") from None
     r = _Reader(path)
-    r.known(data, ("study", "variables", "responses", "objectives", "constraints", "doe", "sensitivity",
-                   "optimization", "metamodel", "execution"), "top level")
+    r.known(
+        data,
+        (
+            "study",
+            "variables",
+            "responses",
+            "objectives",
+            "constraints",
+            "doe",
+            "sensitivity",
+            "optimization",
+            "metamodel",
+            "execution",
+        ),
+        "top level",
+    )
     st = r.table(data, "study", "top level", required=True)
     r.known(st, ("name", "deck", "storage", "directory"), "[study]")
     name = r.string(st, "name", "[study]", default=path.stem)
@@ -251,7 +280,7 @@ def load_study(path: Path | str, build_template: bool = True) -> StudyConfig:
         p = Path(storage)
         storage = f"sqlite:///{p if p.is_absolute() else (base / p).resolve()}"
     elif storage.startswith("sqlite:///") and not storage.startswith("sqlite:////"):
-        rel = storage[len("sqlite:///"):]
+        rel = storage[len("sqlite:///") :]
         storage = f"sqlite:///{(base / rel).resolve()}"
     variables = _variables(r, data)
     responses = _responses(r, data)
@@ -260,18 +289,39 @@ def load_study(path: Path | str, build_template: bool = True) -> StudyConfig:
     doe = _doe(r, data)
     sens = _sensitivity(r, data)
     opt = _optimization(r, data, objectives)
-    mm = r.string(data, "metamodel", "top level", default="auto", choices=METAMODELS) \
-        if not isinstance(data.get("metamodel"), dict) else _metamodel_table(r, data["metamodel"])
+    mm = (
+        r.string(data, "metamodel", "top level", default="auto", choices=METAMODELS)
+        if not isinstance(data.get("metamodel"), dict)
+        else _metamodel_table(r, data["metamodel"])
+    )
     ex = _execution(r, data)
     if doe is None and opt is None and sens is None:
         r.fail("top level", "nothing to run: give [doe], [sensitivity] or [optimization]")
-    if sens is not None and sens.method == "sobol" and not sens.runs and (doe is None or doe.designs == 0) \
-            and opt is None:
+    if (
+        sens is not None
+        and sens.method == "sobol"
+        and not sens.runs
+        and (doe is None or doe.designs == 0)
+        and opt is None
+    ):
         r.fail("[sensitivity]", "Sobol indices from the metamodel need designs: add [doe] (or runs = true)")
     _check_sizes(r, len(variables), doe, sens, opt)
-    cfg = StudyConfig(path=path, name=name.strip(), deck=deck, storage=storage, directory=directory,
-                      variables=variables, responses=responses, objectives=objectives, constraints=constraints,
-                      doe=doe, sensitivity=sens, optimization=opt, metamodel=mm, execution=ex)
+    cfg = StudyConfig(
+        path=path,
+        name=name.strip(),
+        deck=deck,
+        storage=storage,
+        directory=directory,
+        variables=variables,
+        responses=responses,
+        objectives=objectives,
+        constraints=constraints,
+        doe=doe,
+        sensitivity=sens,
+        optimization=opt,
+        metamodel=mm,
+        execution=ex,
+    )
     if build_template:
         from .designs import DeckTemplate
 
@@ -304,8 +354,7 @@ def _check_sizes(r: _Reader, d: int, doe, sens, opt) -> None:
         asked.append(("[sensitivity] trajectories", sens.trajectories, sens.trajectories * (d + 1), per_design))
     if sens is not None and sens.method == "sobol":
         n = sens.samples * (2 * d + 2)
-        asked.append(("[sensitivity] samples", sens.samples, n,
-                      per_design if sens.runs else POINT_BYTES * (2 * d + 4)))
+        asked.append(("[sensitivity] samples", sens.samples, n, per_design if sens.runs else POINT_BYTES * (2 * d + 4)))
     if opt is not None:
         asked.append(("[optimization] trials", opt.trials, opt.trials, per_design))
         asked.append(("[optimization] points", opt.points, opt.points * opt.iterations, per_design))
@@ -313,9 +362,12 @@ def _check_sizes(r: _Reader, d: int, doe, sens, opt) -> None:
         if n * each > budget:
             most = budget // each
             scale = n / max(value, 1)
-            r.fail(key, f"{value} asks for {n:,} planned designs or points, about {n * each / 2**30:.3g} GiB of "
-                        f"memory; a quarter of this machine's {memory_bytes() / 2**30:.3g} GiB holds at most "
-                        f"{int(most / scale):,}")
+            r.fail(
+                key,
+                f"{value} asks for {n:,} planned designs or points, about {n * each / 2**30:.3g} GiB of "
+                f"memory; a quarter of this machine's {memory_bytes() / 2**30:.3g} GiB holds at most "
+                f"{int(most / scale):,}",
+            )
 
 
 def _metamodel_table(r: _Reader, t: dict) -> str:
@@ -334,8 +386,11 @@ def _variables(r: _Reader, data: dict) -> list[Variable]:
             r.fail(where, "must be a table with bounds and a parameter or parts")
         r.known(v, ("parameter", "part", "parts", "property", "bounds"), where)
         b = v.get("bounds")
-        if (not isinstance(b, list) or len(b) != 2
-                or not all(isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) for x in b)):
+        if (
+            not isinstance(b, list)
+            or len(b) != 2
+            or not all(isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x) for x in b)
+        ):
             r.fail(f"{where} bounds", f"must be [lower, upper] (two finite numbers), got {b!r}")
         lo, hi = float(b[0]), float(b[1])
         if not lo < hi:
@@ -343,8 +398,11 @@ def _variables(r: _Reader, data: dict) -> list[Variable]:
         has_param = "parameter" in v
         has_parts = "part" in v or "parts" in v
         if has_param == has_parts:
-            r.fail(where, "give either parameter = \"NAME\" (a *PARAMETER of the deck) or part(s) with "
-                          "property = \"thickness\" | \"yield\"")
+            r.fail(
+                where,
+                'give either parameter = "NAME" (a *PARAMETER of the deck) or part(s) with '
+                'property = "thickness" | "yield"',
+            )
         if has_param:
             pname = r.string(v, "parameter", where)
             if "property" in v:
@@ -382,8 +440,10 @@ def _responses(r: _Reader, data: dict) -> dict[str, ResponseSpec]:
     for name, spec in out.items():
         for dep in spec.depends_on():
             if dep not in out:
-                r.fail(f"[responses.{name}] expression", f"names {dep!r}, which is not a response "
-                                                         f"(responses: {', '.join(out)})")
+                r.fail(
+                    f"[responses.{name}] expression",
+                    f"names {dep!r}, which is not a response (responses: {', '.join(out)})",
+                )
             if list(out).index(dep) >= list(out).index(name):
                 r.fail(f"[responses.{name}] expression", f"uses {dep!r}, which is defined after it")
     return out
@@ -397,7 +457,7 @@ def _objectives(r: _Reader, data: dict, responses) -> list[Objective]:
         if name not in responses:
             r.fail(where, f"unknown response {name!r} (responses: {', '.join(responses)})")
         if not isinstance(goal, str) or goal.lower() not in ("minimize", "maximize", "minimise", "maximise"):
-            r.fail(where, f"must be \"minimize\" or \"maximize\", got {goal!r}")
+            r.fail(where, f'must be "minimize" or "maximize", got {goal!r}')
         out.append(Objective(name, goal.lower().replace("ise", "ize")))
     return out
 
@@ -433,8 +493,9 @@ def _doe(r: _Reader, data: dict) -> DoeSettings | None:
     scramble = t.get("scramble", True)
     if not isinstance(scramble, bool):
         r.fail(f"{w} scramble", f"must be true or false, got {scramble!r}")
-    return DoeSettings(r.string(t, "method", w, "lhs", DOE_METHODS), n, r.number(t, "seed", w, 0, integer=True),
-                       scramble)
+    return DoeSettings(
+        r.string(t, "method", w, "lhs", DOE_METHODS), n, r.number(t, "seed", w, 0, integer=True), scramble
+    )
 
 
 def _sensitivity(r: _Reader, data: dict) -> SensitivitySettings | None:
@@ -446,11 +507,14 @@ def _sensitivity(r: _Reader, data: dict) -> SensitivitySettings | None:
     runs = t.get("runs", False)
     if not isinstance(runs, bool):
         r.fail(f"{w} runs", f"must be true or false, got {runs!r}")
-    s = SensitivitySettings(method=r.string(t, "method", w, "sobol", SENSITIVITY_METHODS), runs=runs,
-                            samples=r.number(t, "samples", w, 1024, positive=True, integer=True),
-                            trajectories=r.number(t, "trajectories", w, 10, positive=True, integer=True),
-                            levels=r.number(t, "levels", w, 4, positive=True, integer=True),
-                            seed=r.number(t, "seed", w, 0, integer=True))
+    s = SensitivitySettings(
+        method=r.string(t, "method", w, "sobol", SENSITIVITY_METHODS),
+        runs=runs,
+        samples=r.number(t, "samples", w, 1024, positive=True, integer=True),
+        trajectories=r.number(t, "trajectories", w, 10, positive=True, integer=True),
+        levels=r.number(t, "levels", w, 4, positive=True, integer=True),
+        seed=r.number(t, "seed", w, 0, integer=True),
+    )
     if s.levels < 2 or s.levels % 2:
         r.fail(f"{w} levels", f"Morris levels must be even and at least 2, got {s.levels}")
     if s.method == "morris" and runs is False and "runs" in t:
@@ -466,13 +530,15 @@ def _optimization(r: _Reader, data: dict, objectives) -> OptimizationSettings | 
     r.known(t, ("method", "trials", "population", "seed", "iterations", "points", "shrink"), w)
     if not objectives:
         r.fail(w, "an optimisation needs [objectives]")
-    o = OptimizationSettings(method=r.string(t, "method", w, "tpe", OPT_METHODS),
-                             trials=r.number(t, "trials", w, 0, integer=True),
-                             population=r.number(t, "population", w, 16, positive=True, integer=True),
-                             seed=r.number(t, "seed", w, 0, integer=True),
-                             iterations=r.number(t, "iterations", w, 4, positive=True, integer=True),
-                             points=r.number(t, "points", w, 0, integer=True),
-                             shrink=r.number(t, "shrink", w, 0.6, positive=True))
+    o = OptimizationSettings(
+        method=r.string(t, "method", w, "tpe", OPT_METHODS),
+        trials=r.number(t, "trials", w, 0, integer=True),
+        population=r.number(t, "population", w, 16, positive=True, integer=True),
+        seed=r.number(t, "seed", w, 0, integer=True),
+        iterations=r.number(t, "iterations", w, 4, positive=True, integer=True),
+        points=r.number(t, "points", w, 0, integer=True),
+        shrink=r.number(t, "shrink", w, 0.6, positive=True),
+    )
     if o.method != "metamodel" and o.trials <= 0:
         r.fail(f"{w} trials", "missing: the number of optimisation runs (trials = N)")
     if o.method == "metamodel" and len(objectives) > 1:
@@ -487,8 +553,11 @@ def _optimization(r: _Reader, data: dict, objectives) -> OptimizationSettings | 
 def _execution(r: _Reader, data: dict) -> ExecutionSettings:
     t = r.table(data, "execution", "top level") or {}
     w = "[execution]"
-    r.known(t, ("workers", "threads_per_run", "scheduler", "allowed_failures", "memory_limit", "keep", "solver",
-                "cluster"), w)
+    r.known(
+        t,
+        ("workers", "threads_per_run", "scheduler", "allowed_failures", "memory_limit", "keep", "solver", "cluster"),
+        w,
+    )
     workers = r.number(t, "workers", w, 0, integer=True)
     if workers < 0:
         r.fail(f"{w} workers", f"must be 1 or more (0 or absent: one per core), got {workers}")
@@ -499,15 +568,20 @@ def _execution(r: _Reader, data: dict) -> ExecutionSettings:
     if cluster is not None:
         module, _, name = cluster.partition(":")
         if not module.strip() or not name.strip():
-            r.fail(f"{w} cluster", f"must be \"module:callable\" (a function returning a Dask cluster, e.g. "
-                                   f"\"mycluster:slurm\"), got {cluster!r}")
+            r.fail(
+                f"{w} cluster",
+                f'must be "module:callable" (a function returning a Dask cluster, e.g. '
+                f'"mycluster:slurm"), got {cluster!r}',
+            )
         if t.get("scheduler") is not None:
             r.fail(w, "give scheduler or cluster, not both")
-    return ExecutionSettings(workers=workers,
-                             threads_per_run=r.number(t, "threads_per_run", w, 1, positive=True, integer=True),
-                             scheduler=r.string(t, "scheduler", w),
-                             allowed_failures=failures,
-                             memory_limit=str(t.get("memory_limit", "auto")),
-                             keep=r.string(t, "keep", w, "all", ("all", "decks")),
-                             solver=r.string(t, "solver", w, "crashlite", SOLVERS),
-                             cluster=cluster)
+    return ExecutionSettings(
+        workers=workers,
+        threads_per_run=r.number(t, "threads_per_run", w, 1, positive=True, integer=True),
+        scheduler=r.string(t, "scheduler", w),
+        allowed_failures=failures,
+        memory_limit=str(t.get("memory_limit", "auto")),
+        keep=r.string(t, "keep", w, "all", ("all", "decks")),
+        solver=r.string(t, "solver", w, "crashlite", SOLVERS),
+        cluster=cluster,
+    )

@@ -87,33 +87,46 @@ class DeckTemplate:
                 found = params.get(var.parameter.lower())
                 if not found:
                     names = ", ".join(sorted({p.name for p in model.parameters})) or "none"
-                    raise StudyError(f"{cfg.path}: {where} parameter: {var.parameter!r} is not a *PARAMETER of "
-                                     f"{cfg.deck.name} (parameters: {names})")
+                    raise StudyError(
+                        f"{cfg.path}: {where} parameter: {var.parameter!r} is not a *PARAMETER of "
+                        f"{cfg.deck.name} (parameters: {names})"
+                    )
                 if len(found) > 1:
                     at = ", ".join(f"{Path(p.source[0]).name}:{p.source[1]}" for p in found)
-                    raise StudyError(f"{cfg.path}: {where} parameter: {var.parameter!r} is defined "
-                                     f"{len(found)} times ({at}); a design variable needs one definition")
+                    raise StudyError(
+                        f"{cfg.path}: {where} parameter: {var.parameter!r} is defined "
+                        f"{len(found)} times ({at}); a design variable needs one definition"
+                    )
                 p = found[0]
                 if p.type == "C":
                     raise StudyError(f"{cfg.path}: {where} parameter: {p.name!r} is a text (C) parameter")
                 if p.type == "I":
                     if var.lower != int(var.lower) or var.upper != int(var.upper):
-                        raise StudyError(f"{cfg.path}: {where} bounds: {p.name!r} is an integer (I) parameter; "
-                                         f"give whole-number bounds")
+                        raise StudyError(
+                            f"{cfg.path}: {where} bounds: {p.name!r} is an integer (I) parameter; "
+                            f"give whole-number bounds"
+                        )
                     var.integer = True
                 var.baseline = float(p.value)
                 if modes is None:
                     modes = _block_modes(cfg.deck)
                 fname = str(Path(p.source[0]).absolute())
-                t.sites[var.name] = ParameterSite(p.name, p.type, files.index(fname), p.source[1] - 1,
-                                                  modes.get((fname, p.source[1]), 10), bool(p.expression))
+                t.sites[var.name] = ParameterSite(
+                    p.name,
+                    p.type,
+                    files.index(fname),
+                    p.source[1] - 1,
+                    modes.get((fname, p.source[1]), 10),
+                    bool(p.expression),
+                )
             else:
                 try:
                     pids = [int(x) for x in model.part_ids_of(var.parts)]
                 except KeyError as e:
                     titles = ", ".join(repr(str(r.get("heading", "")).strip()) for r in model.parts.values())
-                    raise StudyError(f"{cfg.path}: {where} parts: {e.args[0]} in {cfg.deck.name} "
-                                     f"(parts: {titles})") from None
+                    raise StudyError(
+                        f"{cfg.path}: {where} parts: {e.args[0]} in {cfg.deck.name} (parts: {titles})"
+                    ) from None
                 for pid in pids:
                     msg = _check_part(model, pid, var.property)
                     if msg:
@@ -170,8 +183,10 @@ class DeckTemplate:
         for var, site in self.sites.items():
             got = defined.get(site.name.lower())
             if got is None or not math.isclose(float(got), float(values[var]), rel_tol=1e-12, abs_tol=0.0):
-                raise ValueError(f"design deck reads {site.name} = {got}, not {values[var]} (is its file "
-                                 f"included by an absolute path?)")
+                raise ValueError(
+                    f"design deck reads {site.name} = {got}, not {values[var]} (is its file "
+                    f"included by an absolute path?)"
+                )
         for pv in self.part_variables:
             for pid in pv.pids:
                 got = _part_value(model, pid, pv.property)
@@ -232,7 +247,7 @@ def rewrite_parameter_line(line: str, name: str, value, typ: str, width: int, ex
                 toks[k + 1] = format_value(value, typ, None)
                 return ",".join(toks)
         raise ValueError(f"parameter {name} not found on line {line!r}")
-    pairs = [(line[i:i + width], line[i + width:i + 2 * width]) for i in range(0, len(line), 2 * width)]
+    pairs = [(line[i : i + width], line[i + width : i + 2 * width]) for i in range(0, len(line), 2 * width)]
     for k, (head, _) in enumerate(pairs):
         if head.strip()[1:].strip().lower() == name.lower():
             text = format_value(value, typ, width)
@@ -250,12 +265,13 @@ def _edited(path: Path, edits: dict[int, tuple]) -> str:
     for i, (site, value) in edits.items():
         raw = lines[i]
         body = raw.rstrip("\r\n")
-        end = raw[len(body):]
+        end = raw[len(body) :]
         lines[i] = rewrite_parameter_line(body, site.name, value, site.type, site.width, site.expression) + end
     return "".join(lines)
 
 
 # --- part variables --------------------------------------------------------------
+
 
 def _check_part(model, pid: int, prop: str) -> str | None:
     part = model.parts[pid]
@@ -271,8 +287,10 @@ def _check_part(model, pid: int, prop: str) -> str | None:
         kind = mat.keyword if mat is not None else "no material"
         return f"part {title!r} has *{kind}, which has no yield stress SIGY"
     if mat.values.get("lcss"):
-        return (f"part {title!r}: *{mat.keyword} {mat.id} takes its hardening from curve LCSS "
-                f"{mat.values['lcss']}, so SIGY is not used; scale the curve through a *PARAMETER instead")
+        return (
+            f"part {title!r}: *{mat.keyword} {mat.id} takes its hardening from curve LCSS "
+            f"{mat.values['lcss']}, so SIGY is not used; scale the curve through a *PARAMETER instead"
+        )
     return None
 
 
@@ -288,8 +306,11 @@ def apply_part_variables(model, part_variables: list[PartVariable], values: dict
     for pv in part_variables:
         value = float(values[pv.name])
         wanted = set(pv.pids)
-        group, key, fields = (("sections", "secid", ("t1", "t2", "t3", "t4")) if pv.property == "thickness"
-                              else ("materials", "mid", ("sigy",)))
+        group, key, fields = (
+            ("sections", "secid", ("t1", "t2", "t3", "t4"))
+            if pv.property == "thickness"
+            else ("materials", "mid", ("sigy",))
+        )
         table = getattr(model, group)
         for rid in sorted({model.parts[p][key] for p in pv.pids}):
             users = {p for p, r in model.parts.items() if r.get(key) == rid}

@@ -63,8 +63,7 @@ def _run_external(deck: Path, folder: Path, solver, model):
     try:
         history = load(folder)
     except FileNotFoundError as e:
-        raise FileNotFoundError(f"{solver.name} terminated normally but left no results crashlite reads: {e}") \
-            from None
+        raise FileNotFoundError(f"{solver.name} terminated normally but left no results crashlite reads: {e}") from None
     return results_from_history(history, model), float(ext.wall_time)
 
 
@@ -73,9 +72,17 @@ def evaluate(task: Task) -> dict:
     t0 = time.perf_counter()
     before = _threads(task.threads)  # restored at the end: a serial study runs in the caller's process
     directory = Path(task.directory)
-    out = {"key": task.key, "values": dict(task.values), "status": "failed", "responses": {}, "message": "",
-           "host": socket.gethostname(), "pid": os.getpid(), "attempt": _attempt(directory),
-           "directory": str(directory)}
+    out = {
+        "key": task.key,
+        "values": dict(task.values),
+        "status": "failed",
+        "responses": {},
+        "message": "",
+        "host": socket.gethostname(),
+        "pid": os.getpid(),
+        "attempt": _attempt(directory),
+        "directory": str(directory),
+    }
     stage = "writing the design deck"
     try:
         from .. import read_deck
@@ -96,8 +103,7 @@ def evaluate(task: Task) -> dict:
             res, run_time = _run_external(deck, directory / "results", solver, model)
             out["solver"] = solver.solver
             stage = "taking the responses"
-        out.update(cycles=int(res.cycles), end_time=float(res.time[-1]) if len(res.time) else 0.0,
-                   run_time=run_time)
+        out.update(cycles=int(res.cycles), end_time=float(res.time[-1]) if len(res.time) else 0.0, run_time=run_time)
         stage = "taking the responses"
         out["responses"] = evaluate_responses(task.responses, res, model, task.values)
         out["status"] = "complete"

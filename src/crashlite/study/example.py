@@ -81,14 +81,33 @@ workers = {workers}
 """
 
 
-def write_case(out: Path, variant: str, workers: int, element_size: float, designs: int = 12, iterations: int = 3,
-               points: int = 2, intrusion: float = 36.0, deceleration: float = 300.0, **deck) -> Path:
+def write_case(
+    out: Path,
+    variant: str,
+    workers: int,
+    element_size: float,
+    designs: int = 12,
+    iterations: int = 3,
+    points: int = 2,
+    intrusion: float = 36.0,
+    deceleration: float = 300.0,
+    **deck,
+) -> Path:
     """Deck and study file of one variant in ``out``; returns the study file."""
     out.mkdir(parents=True, exist_ok=True)
     front_structure(out / f"{variant}.k", variant, element_size=element_size, **deck)
     p = out / "study.toml"
-    p.write_text(STUDY.format(variant=variant, workers=workers, designs=designs, iterations=iterations, points=points,
-                              intrusion=intrusion, deceleration=deceleration))
+    p.write_text(
+        STUDY.format(
+            variant=variant,
+            workers=workers,
+            designs=designs,
+            iterations=iterations,
+            points=points,
+            intrusion=intrusion,
+            deceleration=deceleration,
+        )
+    )
     return p
 
 
@@ -111,8 +130,14 @@ def main(argv=None) -> int:
             t0 = time.perf_counter()
             s = run_study(cfg, executor=ex, progress=Progress(cfg))
             rep = build_report(cfg)
-            summary[variant] = {"study": str(p), "designs": rep["counts"]["complete"], "wall_time": time.perf_counter() - t0,
-                                "ran": s.ran, "best": rep["best"], "report": str(cfg.directory / "report")}
+            summary[variant] = {
+                "study": str(p),
+                "designs": rep["counts"]["complete"],
+                "wall_time": time.perf_counter() - t0,
+                "ran": s.ran,
+                "best": rep["best"],
+                "report": str(cfg.directory / "report"),
+            }
         # both optima on the full model
         from .evaluate import Task, evaluate
 
@@ -120,8 +145,9 @@ def main(argv=None) -> int:
         checks = {}
         for variant in ("full", "surrogate"):
             best = summary[variant]["best"]
-            task = Task(f"check-{variant}", best["values"], str(args.out / "check" / variant), full.template,
-                        full.responses)
+            task = Task(
+                f"check-{variant}", best["values"], str(args.out / "check" / variant), full.template, full.responses
+            )
             checks[variant] = ex.client.submit(evaluate, task, pure=False)
         for variant, fut in checks.items():
             r = fut.result()
@@ -129,9 +155,12 @@ def main(argv=None) -> int:
     (args.out / "example.json").write_text(json.dumps(summary, indent=2))
     for variant in ("full", "surrogate"):
         b = summary[variant]["best"]
-        print(f"{variant:9s}: {summary[variant]['designs']} designs in {summary[variant]['wall_time']:.0f} s; optimum "
-              + ", ".join(f"{k} = {v:.3f}" for k, v in b["values"].items()) + "; on the full model: "
-              + ", ".join(f"{k} = {v:.4g}" for k, v in summary[variant]["on_full_model"].items()))
+        print(
+            f"{variant:9s}: {summary[variant]['designs']} designs in {summary[variant]['wall_time']:.0f} s; optimum "
+            + ", ".join(f"{k} = {v:.3f}" for k, v in b["values"].items())
+            + "; on the full model: "
+            + ", ".join(f"{k} = {v:.4g}" for k, v in summary[variant]["on_full_model"].items())
+        )
     return 0
 
 

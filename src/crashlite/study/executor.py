@@ -75,16 +75,25 @@ class DaskExecutor:
 
     name = "dask"
 
-    def __init__(self, workers: int = 0, threads: int = 1, address: str | None = None,
-                 allowed_failures: int = 3, memory_limit: str = "auto", dashboard: bool = False,
-                 cluster=None):
+    def __init__(
+        self,
+        workers: int = 0,
+        threads: int = 1,
+        address: str | None = None,
+        allowed_failures: int = 3,
+        memory_limit: str = "auto",
+        dashboard: bool = False,
+        cluster=None,
+    ):
         if workers < 0:  # a LocalCluster of -4 workers waits for them forever
             raise ValueError(f"workers must be 1 or more (0: one per core), got {workers}")
         if cluster is not None and address:
             raise ValueError("give a scheduler address or a cluster, not both")
         if cluster is not None and not isinstance(cluster, str) and not hasattr(cluster, "scheduler_address"):
-            raise TypeError(f"cluster: {type(cluster).__name__} has no scheduler_address (a Dask cluster such as "
-                            "dask-jobqueue's SLURMCluster, or \"module:callable\" returning one)")
+            raise TypeError(
+                f"cluster: {type(cluster).__name__} has no scheduler_address (a Dask cluster such as "
+                'dask-jobqueue\'s SLURMCluster, or "module:callable" returning one)'
+            )
         self.workers = workers or (os.cpu_count() or 1)
         self.threads = threads
         self.address = address
@@ -104,11 +113,16 @@ class DaskExecutor:
         import dask
         from distributed import Client, LocalCluster
 
-        self._config = dask.config.set({"distributed.scheduler.allowed-failures": self.allowed_failures,
-                                        "distributed.admin.tick.limit": "30s"})
+        self._config = dask.config.set(
+            {"distributed.scheduler.allowed-failures": self.allowed_failures, "distributed.admin.tick.limit": "30s"}
+        )
         self._config.__enter__()
-        env = {"NUMBA_NUM_THREADS": str(self.threads), "OMP_NUM_THREADS": str(self.threads),
-               "MKL_NUM_THREADS": str(self.threads), "OPENBLAS_NUM_THREADS": str(self.threads)}
+        env = {
+            "NUMBA_NUM_THREADS": str(self.threads),
+            "OMP_NUM_THREADS": str(self.threads),
+            "MKL_NUM_THREADS": str(self.threads),
+            "OPENBLAS_NUM_THREADS": str(self.threads),
+        }
         try:
             if self.cluster_spec is not None:
                 self.address = _scheduler_address(self._cluster())
@@ -116,15 +130,21 @@ class DaskExecutor:
             elif self.address:
                 self.client = Client(self.address, timeout="30s")
             else:
-                self.cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1, processes=True,
-                                            memory_limit=self.memory_limit, env=env,
-                                            dashboard_address=":0" if self.dashboard else None,
-                                            silence_logs=40)
+                self.cluster = LocalCluster(
+                    n_workers=self.workers,
+                    threads_per_worker=1,
+                    processes=True,
+                    memory_limit=self.memory_limit,
+                    env=env,
+                    dashboard_address=":0" if self.dashboard else None,
+                    silence_logs=40,
+                )
                 self.client = Client(self.cluster)
         except Exception as e:
             self.__exit__(None, None, None)
-            where = self.address or (f"the cluster {self._cluster_name()}" if self.cluster_spec is not None
-                                     else "a LocalCluster")
+            where = self.address or (
+                f"the cluster {self._cluster_name()}" if self.cluster_spec is not None else "a LocalCluster"
+            )
             raise ExecutorError(f"cannot start Dask on {where}: {type(e).__name__}: {e}") from e
         return self
 
@@ -213,8 +233,10 @@ class DaskExecutor:
             return f"Dask cluster {self._cluster_name()} (scheduler {self.address})"
         if self.address:
             return f"Dask scheduler {self.address}"
-        return f"Dask LocalCluster, {self.workers} worker process{'es' if self.workers > 1 else ''}, " \
-               f"{self.threads} thread{'s' if self.threads > 1 else ''} per run"
+        return (
+            f"Dask LocalCluster, {self.workers} worker process{'es' if self.workers > 1 else ''}, "
+            f"{self.threads} thread{'s' if self.threads > 1 else ''} per run"
+        )
 
     def worker_pids(self) -> dict:
         """Worker address -> process ID."""
@@ -228,8 +250,9 @@ def _scheduler_address(cluster) -> str:
     return address
 
 
-def make_executor(execution, scheduler: str | None = None, workers: int | None = None, serial: bool = False,
-                  cluster=None):
+def make_executor(
+    execution, scheduler: str | None = None, workers: int | None = None, serial: bool = False, cluster=None
+):
     """The executor a study runs on (CLI options override the file's;
     ``cluster``, a Dask cluster object or "module:callable", overrides the
     file's scheduler and cluster)."""
@@ -237,7 +260,11 @@ def make_executor(execution, scheduler: str | None = None, workers: int | None =
         return SerialExecutor(execution.threads_per_run)
     if cluster is None and scheduler is None:
         cluster = getattr(execution, "cluster", None)
-    return DaskExecutor(workers=workers or execution.workers, threads=execution.threads_per_run,
-                        address=None if cluster is not None else (scheduler or execution.scheduler),
-                        allowed_failures=execution.allowed_failures, memory_limit=execution.memory_limit,
-                        cluster=cluster)
+    return DaskExecutor(
+        workers=workers or execution.workers,
+        threads=execution.threads_per_run,
+        address=None if cluster is not None else (scheduler or execution.scheduler),
+        allowed_failures=execution.allowed_failures,
+        memory_limit=execution.memory_limit,
+        cluster=cluster,
+    )

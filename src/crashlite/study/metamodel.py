@@ -81,7 +81,7 @@ def _fit_rbf(u, y):
         m = np.ones(len(y), bool)
         m[i] = False
         try:
-            loo[i] = RBFInterpolator(u[m], y[m], kernel="thin_plate_spline", degree=1)(u[i:i + 1])[0]
+            loo[i] = RBFInterpolator(u[m], y[m], kernel="thin_plate_spline", degree=1)(u[i : i + 1])[0]
         except (np.linalg.LinAlgError, ValueError):
             loo[i] = np.nan
     return rbf, loo

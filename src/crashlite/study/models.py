@@ -28,9 +28,22 @@ import numpy as np
 MASS_NODE = 900001  # history node: the vehicle mass
 INTERFACE_NODE = 900002  # surrogate: centre of the interface rigid body
 
-DEFAULTS = dict(side=50.0, box_length=100.0, rail_length=150.0, rear_length=300.0, t_box=1.2, t_rail=2.0,
-                t_rear=3.0, sigy_box=300.0, sigy_rail=300.0, mass=0.012, speed=15000.0, end_time=0.008,
-                element_size=10.0, contact=False)
+DEFAULTS = dict(
+    side=50.0,
+    box_length=100.0,
+    rail_length=150.0,
+    rear_length=300.0,
+    t_box=1.2,
+    t_rail=2.0,
+    t_rear=3.0,
+    sigy_box=300.0,
+    sigy_rail=300.0,
+    mass=0.012,
+    speed=15000.0,
+    end_time=0.008,
+    element_size=10.0,
+    contact=False,
+)
 
 
 def _ring(c: float, n_side: int) -> np.ndarray:
@@ -170,7 +183,7 @@ def front_structure(path, variant: str = "full", **options) -> Path:
     rb = list(end_ring) + [MASS_NODE if variant == "full" else INTERFACE_NODE]
     w("*SET_NODE_LIST")
     w("1")
-    out += [",".join(map(str, rb[i:i + 8])) for i in range(0, len(rb), 8)]
+    out += [",".join(map(str, rb[i : i + 8])) for i in range(0, len(rb), 8)]
     w("*CONSTRAINED_NODAL_RIGID_BODY")
     w("101,0,1")
     if variant == "surrogate":

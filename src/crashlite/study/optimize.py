@@ -71,7 +71,7 @@ def metamodel_step(cfg: StudyConfig, designs, k: int, points: int) -> list:
     models = fit_responses(cfg, ok, [cfg.objectives[0].response] + [c.response for c in cfg.constraints])
     best, _ = best_design(cfg, ok)
     centre = np.array([best.values[n] for n in names]) if best is not None else 0.5 * (lo + hi)
-    half = 0.5 * (hi - lo) * opt.shrink ** k
+    half = 0.5 * (hi - lo) * opt.shrink**k
     rlo = np.clip(centre - half, lo, hi)
     rhi = np.clip(centre + half, lo, hi)
     x, _, _ = metamodel_optimum(cfg, models, rlo, rhi, seed=opt.seed + k)

@@ -57,14 +57,24 @@ def build_report(cfg: StudyConfig, out=None) -> dict:
     ok = [d for d in designs if d.status == "complete"]
     best, _ = best_design(cfg, ok)
     front = pareto(cfg, [d for d in ok if d.feasible is not False]) if cfg.objectives else []
-    summary = {"study": cfg.name, "study_file": str(cfg.path), "deck": str(cfg.deck), "storage": cfg.storage,
-               "variables": [v.describe() | {"baseline": v.baseline} for v in cfg.variables],
-               "responses": {k: r.describe() for k, r in cfg.responses.items()},
-               "objectives": [{"response": o.response, "goal": o.goal} for o in cfg.objectives],
-               "constraints": [{"response": c.response, "lower": c.lower, "upper": c.upper} for c in cfg.constraints],
-               "counts": _counts(designs), "designs": [_design_row(d) for d in sorted(designs, key=lambda d: d.key)],
-               "best": _design_row(best) if best else None, "pareto": [d.key for d in front],
-               "figures": [], "metamodels": {}, "sensitivity": {}, "notes": []}
+    summary = {
+        "study": cfg.name,
+        "study_file": str(cfg.path),
+        "deck": str(cfg.deck),
+        "storage": cfg.storage,
+        "variables": [v.describe() | {"baseline": v.baseline} for v in cfg.variables],
+        "responses": {k: r.describe() for k, r in cfg.responses.items()},
+        "objectives": [{"response": o.response, "goal": o.goal} for o in cfg.objectives],
+        "constraints": [{"response": c.response, "lower": c.lower, "upper": c.upper} for c in cfg.constraints],
+        "counts": _counts(designs),
+        "designs": [_design_row(d) for d in sorted(designs, key=lambda d: d.key)],
+        "best": _design_row(best) if best else None,
+        "pareto": [d.key for d in front],
+        "figures": [],
+        "metamodels": {},
+        "sensitivity": {},
+        "notes": [],
+    }
     figures = summary["figures"]
     models = {}
     if len(ok) >= len(cfg.variables) + 2:
@@ -113,13 +123,24 @@ def _counts(designs) -> dict:
 
 
 def _design_row(d: Design) -> dict:
-    return {"key": d.key, "trial": d.number, "phase": d.phase, "status": d.status, "values": d.values,
-            "responses": d.responses, "feasible": d.feasible, "message": d.message,
-            "wall_time": d.info.get("wall_time"), "attempt": d.info.get("attempt"),
-            "directory": d.info.get("directory"), "deck": d.info.get("deck")}
+    return {
+        "key": d.key,
+        "trial": d.number,
+        "phase": d.phase,
+        "status": d.status,
+        "values": d.values,
+        "responses": d.responses,
+        "feasible": d.feasible,
+        "message": d.message,
+        "wall_time": d.info.get("wall_time"),
+        "attempt": d.info.get("attempt"),
+        "directory": d.info.get("directory"),
+        "deck": d.info.get("deck"),
+    }
 
 
 # --- sensitivity -------------------------------------------------------------------
+
 
 def _sensitivity(cfg, designs, models, notes) -> dict:
     from .sampling import to_bounds  # noqa: F401 - keep import light
@@ -134,8 +155,9 @@ def _sensitivity(cfg, designs, models, notes) -> dict:
         if all(k in by_key and by_key[k].done for k in keys):
             res = {}
             for name in cfg.responses:
-                y = np.array([by_key[k].responses.get(name, np.nan) if by_key[k].status == "complete" else np.nan
-                              for k in keys])
+                y = np.array(
+                    [by_key[k].responses.get(name, np.nan) if by_key[k].status == "complete" else np.nan for k in keys]
+                )
                 try:
                     res[name] = morris_indices(cfg.variables, x, y, s.levels, s.seed)
                 except ValueError as e:
@@ -147,9 +169,10 @@ def _sensitivity(cfg, designs, models, notes) -> dict:
         x = saltelli_points(cfg.variables, s.samples, s.seed)
         keys = [f"sobol-{i:05d}" for i in range(len(x))]
         if all(k in by_key and by_key[k].status == "complete" for k in keys):
-            out["sobol_runs"] = {name: sobol_from_values(cfg.variables,
-                                                         [by_key[k].responses[name] for k in keys], s.seed)
-                                 for name in cfg.responses}
+            out["sobol_runs"] = {
+                name: sobol_from_values(cfg.variables, [by_key[k].responses[name] for k in keys], s.seed)
+                for name in cfg.responses
+            }
         else:
             notes.append("Sobol runs not all complete: no Sobol indices from runs")
     if models:
@@ -159,7 +182,9 @@ def _sensitivity(cfg, designs, models, notes) -> dict:
         for name, m in models.items():
             try:
                 res[name] = sobol_indices(cfg.variables, m.predict, n=n, seed=seed) | {
-                    "metamodel": m.kind, "loo_r2": m.loo_r2}
+                    "metamodel": m.kind,
+                    "loo_r2": m.loo_r2,
+                }
             except ValueError as e:
                 notes.append(f"Sobol indices of {name} on its metamodel: {e}")
         out["sobol_metamodel"] = res
@@ -167,6 +192,7 @@ def _sensitivity(cfg, designs, models, notes) -> dict:
 
 
 # --- figures -----------------------------------------------------------------------
+
 
 def _fig(path: Path, caption: str, fig, plt) -> dict:
     fig.tight_layout()
@@ -186,8 +212,10 @@ def _colour_values(cfg, ok):
 def _parallel(cfg, ok, path) -> dict:
     plt = _plt()
     cols = [v.name for v in cfg.variables] + list(cfg.responses)
-    data = np.array([[d.values[v.name] for v in cfg.variables] + [d.responses.get(r, np.nan) for r in cfg.responses]
-                     for d in ok], float)
+    data = np.array(
+        [[d.values[v.name] for v in cfg.variables] + [d.responses.get(r, np.nan) for r in cfg.responses] for d in ok],
+        float,
+    )
     lo, hi = np.nanmin(data, axis=0), np.nanmax(data, axis=0)
     for j, v in enumerate(cfg.variables):
         lo[j], hi[j] = v.lower, v.upper
@@ -198,8 +226,14 @@ def _parallel(cfg, ok, path) -> dict:
     cn = (c - np.nanmin(c)) / (np.ptp(c) if np.ptp(c) > 0 else 1.0)
     for i, d in enumerate(ok):
         feas = d.feasible is not False
-        ax.plot(range(len(cols)), norm[i], color=cmap(cn[i]) if feas else "0.75", lw=1.2 if feas else 0.8,
-                alpha=0.9 if feas else 0.6, zorder=2 if feas else 1)
+        ax.plot(
+            range(len(cols)),
+            norm[i],
+            color=cmap(cn[i]) if feas else "0.75",
+            lw=1.2 if feas else 0.8,
+            alpha=0.9 if feas else 0.6,
+            zorder=2 if feas else 1,
+        )
     ax.set_xticks(range(len(cols)), [f"{n}\n[{lo[j]:.3g}, {hi[j]:.3g}]" for j, n in enumerate(cols)], fontsize=8)
     ax.set_yticks([0, 1], ["min", "max"])
     for j in range(len(cols)):
@@ -207,8 +241,13 @@ def _parallel(cfg, ok, path) -> dict:
     sm = plt.cm.ScalarMappable(cmap=cmap, norm=plt.Normalize(np.nanmin(c), np.nanmax(c)))
     fig.colorbar(sm, ax=ax, label=cname)
     ax.set_title(f"{cfg.name}: {len(ok)} designs (grey: infeasible)")
-    return _fig(path, "Parallel coordinates of every complete design: variables then responses, each scaled "
-                      f"to its range; colour: {cname}; grey: infeasible", fig, plt)
+    return _fig(
+        path,
+        "Parallel coordinates of every complete design: variables then responses, each scaled "
+        f"to its range; colour: {cname}; grey: infeasible",
+        fig,
+        plt,
+    )
 
 
 def _vs_variables(cfg, ok, models, path) -> dict:
@@ -241,8 +280,13 @@ def _vs_variables(cfg, ok, models, path) -> dict:
                 ax.set_ylabel(cfg.responses[r].label, fontsize=8)
             ax.tick_params(labelsize=7)
     axes[0, 0].legend(fontsize=6)
-    return _fig(path, "Each response against each variable; line: the metamodel's main effect with the other "
-                      "variables at the centre of their bounds; dashed: constraint bounds", fig, plt)
+    return _fig(
+        path,
+        "Each response against each variable; line: the metamodel's main effect with the other "
+        "variables at the centre of their bounds; dashed: constraint bounds",
+        fig,
+        plt,
+    )
 
 
 def _scatter(cfg, ok, best, path):
@@ -267,8 +311,15 @@ def _scatter(cfg, ok, best, path):
         ax.scatter(xa[feas], yb[feas], s=16, color="C0", label="feasible")
         ax.scatter(xa[~feas], yb[~feas], s=16, color="0.6", marker="x", label="infeasible")
         if best is not None:
-            ax.scatter([best.responses[a]], [best.responses[b]], s=80, facecolors="none", edgecolors="C3", lw=2,
-                       label=f"best ({best.key})")
+            ax.scatter(
+                [best.responses[a]],
+                [best.responses[b]],
+                s=80,
+                facecolors="none",
+                edgecolors="C3",
+                lw=2,
+                label=f"best ({best.key})",
+            )
         for c in cfg.constraints:
             for bound in (c.lower, c.upper):
                 if bound is None:
@@ -280,8 +331,7 @@ def _scatter(cfg, ok, best, path):
         ax.set_xlabel(cfg.responses[a].label)
         ax.set_ylabel(cfg.responses[b].label)
         ax.legend(fontsize=7)
-    return _fig(path, "Objective against constraint responses (dashed: limits), best feasible design circled",
-                fig, plt)
+    return _fig(path, "Objective against constraint responses (dashed: limits), best feasible design circled", fig, plt)
 
 
 def _pareto(cfg, ok, front, path) -> dict:
@@ -326,8 +376,9 @@ def _history(cfg, designs, path) -> dict:
     ax.set_xlabel("design (order run)")
     ax.set_ylabel(cfg.responses[o.response].label)
     ax.legend(fontsize=7)
-    return _fig(path, f"{o.response} of every design in the order run (x: infeasible) and the best feasible so far",
-                fig, plt)
+    return _fig(
+        path, f"{o.response} of every design in the order run (x: infeasible) and the best feasible so far", fig, plt
+    )
 
 
 def _loo(cfg, ok, models, path) -> dict:
@@ -345,8 +396,13 @@ def _loo(cfg, ok, models, path) -> dict:
         ax.set_xlabel("run", fontsize=8)
         ax.set_ylabel("metamodel, left out", fontsize=8)
         ax.tick_params(labelsize=7)
-    return _fig(path, "Leave-one-out check of each response's metamodel: run value against the prediction of "
-                      "the metamodel fitted without that design", fig, plt)
+    return _fig(
+        path,
+        "Leave-one-out check of each response's metamodel: run value against the prediction of "
+        "the metamodel fitted without that design",
+        fig,
+        plt,
+    )
 
 
 def _sens_figure(cfg, sens, path) -> dict:
@@ -356,8 +412,9 @@ def _sens_figure(cfg, sens, path) -> dict:
         if sens.get(kind):
             blocks.append((kind, key))
     names = list(cfg.responses)
-    fig, axes = plt.subplots(len(blocks), 1, figsize=(max(6, 1.2 * len(names) * len(cfg.variables) / 2), 3.2 * len(blocks)),
-                             squeeze=False)
+    fig, axes = plt.subplots(
+        len(blocks), 1, figsize=(max(6, 1.2 * len(names) * len(cfg.variables) / 2), 3.2 * len(blocks)), squeeze=False
+    )
     w = 0.8 / len(cfg.variables)
     for ax, (kind, key) in zip(axes[:, 0], blocks):
         data = sens[kind]
@@ -376,8 +433,14 @@ def _sens_figure(cfg, sens, path) -> dict:
                 ax.scatter(np.arange(len(names)) + j * w, s1, color="k", s=10, zorder=3)
         ax.set_xticks(np.arange(len(names)) + 0.4 - w / 2, names, fontsize=8)
         ax.set_ylabel({"ST": "Sobol ST (dots: S1)", "mu_star": "Morris μ* / max"}[key], fontsize=8)
-        ax.set_title({"sobol_runs": "Sobol indices from runs", "sobol_metamodel": "Sobol indices on the metamodels",
-                      "morris": "Morris screening"}[kind], fontsize=9)
+        ax.set_title(
+            {
+                "sobol_runs": "Sobol indices from runs",
+                "sobol_metamodel": "Sobol indices on the metamodels",
+                "morris": "Morris screening",
+            }[kind],
+            fontsize=9,
+        )
         ax.legend(fontsize=7)
     return _fig(path, "Sensitivity of each response to each variable", fig, plt)
 

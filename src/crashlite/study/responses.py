@@ -44,19 +44,40 @@ if TYPE_CHECKING:
     from ..solver.results import Results
     from ..units import UnitSystem
 
-TYPES = ("mass", "part_energy", "energy", "wall_force", "section_force", "discrete_force", "contact_force",
-         "node_displacement", "node_velocity", "intrusion", "deceleration", "pulse", "expression")
+TYPES = (
+    "mass",
+    "part_energy",
+    "energy",
+    "wall_force",
+    "section_force",
+    "discrete_force",
+    "contact_force",
+    "node_displacement",
+    "node_velocity",
+    "intrusion",
+    "deceleration",
+    "pulse",
+    "expression",
+)
 STATS = ("max", "min", "absmax", "final", "mean")
 COMPONENTS = ("x", "y", "z", "magnitude", "normal")
 ENERGIES = ("kinetic", "internal", "total", "hourglass", "sliding", "wall", "external")
 PULSE_FIGURES = ("peak_deceleration", "mean_deceleration", "dynamic_crush", "olc", "time_to_zero_velocity")
-_KEYS = {"mass": ("parts",), "part_energy": ("parts", "stat"), "energy": ("quantity", "stat"),
-         "wall_force": ("id", "component", "stat", "cfc"), "section_force": ("id", "component", "stat", "cfc"),
-         "discrete_force": ("id", "stat", "cfc"), "contact_force": ("id", "component", "stat", "cfc"),
-         "node_displacement": ("node", "component", "stat"), "node_velocity": ("node", "component", "stat"),
-         "intrusion": ("nodes", "set", "reference", "component", "over"),
-         "deceleration": ("node", "component", "cfc"), "pulse": ("node", "component", "cfc", "figure"),
-         "expression": ("expression",)}
+_KEYS = {
+    "mass": ("parts",),
+    "part_energy": ("parts", "stat"),
+    "energy": ("quantity", "stat"),
+    "wall_force": ("id", "component", "stat", "cfc"),
+    "section_force": ("id", "component", "stat", "cfc"),
+    "discrete_force": ("id", "stat", "cfc"),
+    "contact_force": ("id", "component", "stat", "cfc"),
+    "node_displacement": ("node", "component", "stat"),
+    "node_velocity": ("node", "component", "stat"),
+    "intrusion": ("nodes", "set", "reference", "component", "over"),
+    "deceleration": ("node", "component", "cfc"),
+    "pulse": ("node", "component", "cfc", "figure"),
+    "expression": ("expression",),
+}
 G_MM_S2 = 9806.65
 
 
@@ -104,9 +125,13 @@ def parse_response(name: str, t: dict) -> ResponseSpec:
     scale = t.get("scale", 1.0)
     if isinstance(scale, bool) or not isinstance(scale, (int, float)) or not math.isfinite(scale) or scale == 0:
         raise ValueError(f"scale must be a non-zero number, got {scale!r}")
-    unit = t.get("unit", "g" if typ == "deceleration" or (typ == "pulse" and "deceleration" in
-                                                          str(t.get("figure", "")) or t.get("figure") == "olc")
-                 else "")
+    unit = t.get(
+        "unit",
+        "g"
+        if typ == "deceleration"
+        or (typ == "pulse" and "deceleration" in str(t.get("figure", "")) or t.get("figure") == "olc")
+        else "",
+    )
     if not isinstance(unit, str):
         raise ValueError(f"unit must be a string, got {unit!r}")
     if "stat" in opts and opts["stat"] not in STATS:
@@ -128,8 +153,11 @@ def parse_response(name: str, t: dict) -> ResponseSpec:
     if typ == "intrusion":
         if ("nodes" in opts) == ("set" in opts):
             raise ValueError("give nodes = [IDs] or set = node set ID")
-        if "nodes" in opts and (not isinstance(opts["nodes"], list) or not opts["nodes"]
-                                or not all(isinstance(n, int) and not isinstance(n, bool) for n in opts["nodes"])):
+        if "nodes" in opts and (
+            not isinstance(opts["nodes"], list)
+            or not opts["nodes"]
+            or not all(isinstance(n, int) and not isinstance(n, bool) for n in opts["nodes"])
+        ):
             raise ValueError(f"nodes must be a list of node IDs, got {opts['nodes']!r}")
         if opts.get("over", "final") not in ("final", "history"):
             raise ValueError(f"over must be 'final' or 'history', got {opts.get('over')!r}")
@@ -139,8 +167,9 @@ def parse_response(name: str, t: dict) -> ResponseSpec:
         if not p or not all(isinstance(x, (str, int)) and not isinstance(x, bool) for x in p):
             raise ValueError(f"parts must be part names or IDs, got {opts['parts']!r}")
         opts["parts"] = p
-    if "cfc" in opts and (isinstance(opts["cfc"], bool) or not isinstance(opts["cfc"], (int, float))
-                          or opts["cfc"] <= 0):
+    if "cfc" in opts and (
+        isinstance(opts["cfc"], bool) or not isinstance(opts["cfc"], (int, float)) or opts["cfc"] <= 0
+    ):
         raise ValueError(f"cfc must be a positive number of Hz, got {opts['cfc']!r}")
     if typ == "expression":
         text = opts.get("expression")
@@ -156,6 +185,7 @@ def parse_response(name: str, t: dict) -> ResponseSpec:
 
 
 # --- checks against the deck ---------------------------------------------------
+
 
 def history_node_ids(model: Model) -> set[int]:
     """Deck IDs of the nodes a run records in nodout."""
@@ -189,13 +219,18 @@ def check_response(spec: ResponseSpec, model: Model, variables: list[str], respo
         if key in o:
             if o[key] not in node_ids:
                 raise ValueError(f"{key}: node {o[key]} is not in the deck")
-            needs_history = t in ("deceleration", "pulse", "node_velocity") or o.get("stat", "final") != "final" \
+            needs_history = (
+                t in ("deceleration", "pulse", "node_velocity")
+                or o.get("stat", "final") != "final"
                 or (t == "intrusion" and o.get("over", "final") == "history")
+            )
             if needs_history:
                 hist = history_node_ids(model) if hist is None else hist
                 if o[key] not in hist:
-                    raise ValueError(f"{key}: node {o[key]} is not a history node: add it to "
-                                     f"*DATABASE_HISTORY_NODE (its time history is needed)")
+                    raise ValueError(
+                        f"{key}: node {o[key]} is not a history node: add it to "
+                        f"*DATABASE_HISTORY_NODE (its time history is needed)"
+                    )
     if t == "intrusion":
         members = o.get("nodes")
         if "set" in o:
@@ -209,8 +244,10 @@ def check_response(spec: ResponseSpec, model: Model, variables: list[str], respo
             hist = history_node_ids(model) if hist is None else hist
             lack = [n for n in members if n not in hist]
             if lack:
-                raise ValueError(f"over = 'history' needs history nodes; {', '.join(map(str, lack[:10]))} "
-                                 f"are not in *DATABASE_HISTORY_NODE")
+                raise ValueError(
+                    f"over = 'history' needs history nodes; {', '.join(map(str, lack[:10]))} "
+                    f"are not in *DATABASE_HISTORY_NODE"
+                )
     if t == "wall_force" and "id" in o:
         walls = [r.values.get("rwid") for r in model.find("RIGIDWALL")]
         ids = [w for w in walls if w]
@@ -233,9 +270,18 @@ def check_response(spec: ResponseSpec, model: Model, variables: list[str], respo
 
 
 # the *DATABASE_ keyword an external solver needs to write what a response reads
-EXTERNAL_OUTPUT = {"energy": "GLSTAT", "part_energy": "MATSUM", "wall_force": "RWFORC", "section_force": "SECFORC",
-                   "discrete_force": "DEFORC", "node_displacement": "NODOUT", "node_velocity": "NODOUT",
-                   "deceleration": "NODOUT", "pulse": "NODOUT", "intrusion": "NODOUT"}
+EXTERNAL_OUTPUT = {
+    "energy": "GLSTAT",
+    "part_energy": "MATSUM",
+    "wall_force": "RWFORC",
+    "section_force": "SECFORC",
+    "discrete_force": "DEFORC",
+    "node_displacement": "NODOUT",
+    "node_velocity": "NODOUT",
+    "deceleration": "NODOUT",
+    "pulse": "NODOUT",
+    "intrusion": "NODOUT",
+}
 
 
 def check_external_response(spec: ResponseSpec, model: Model, solver: str) -> None:
@@ -247,27 +293,37 @@ def check_external_response(spec: ResponseSpec, model: Model, solver: str) -> No
     name = NAMES.get(solver, solver)
     t, o = spec.type, spec.options
     if t == "contact_force":
-        raise ValueError(f"contact_force is read from crashlite's own runs only: the contact forces (rcforc) of "
-                         f"an {name} run are not read; use wall_force or section_force, or solver = \"crashlite\"")
-    final = (t == "node_displacement" and o.get("stat", "final") == "final") or \
-        (t == "intrusion" and o.get("over", "final") == "final")
+        raise ValueError(
+            f"contact_force is read from crashlite's own runs only: the contact forces (rcforc) of "
+            f'an {name} run are not read; use wall_force or section_force, or solver = "crashlite"'
+        )
+    final = (t == "node_displacement" and o.get("stat", "final") == "final") or (
+        t == "intrusion" and o.get("over", "final") == "final"
+    )
     if final:
-        nodes = [o["node"]] if "node" in o else \
-            (model.set_members("NODE", o["set"]).tolist() if "set" in o else list(o["nodes"]))
+        nodes = (
+            [o["node"]]
+            if "node" in o
+            else (model.set_members("NODE", o["set"]).tolist() if "set" in o else list(o["nodes"]))
+        )
         nodes += [o["reference"]] if "reference" in o else []
         hist = history_node_ids(model)
         lack = [n for n in nodes if n not in hist]
         if lack:
-            raise ValueError(f"the final displacement of node(s) {', '.join(map(str, lack[:10]))}: an {name} run "
-                             "gives it for history nodes only (nodout; its d3plot states are not read): add them "
-                             "to *DATABASE_HISTORY_NODE")
+            raise ValueError(
+                f"the final displacement of node(s) {', '.join(map(str, lack[:10]))}: an {name} run "
+                "gives it for history nodes only (nodout; its d3plot states are not read): add them "
+                "to *DATABASE_HISTORY_NODE"
+            )
     kw = EXTERNAL_OUTPUT.get(t)
     if kw and not model.find(f"DATABASE_{kw}"):
-        raise ValueError(f"{t} reads {kw.lower()}, which {name} writes only when the deck asks for it: add "
-                         f"*DATABASE_{kw}")
+        raise ValueError(
+            f"{t} reads {kw.lower()}, which {name} writes only when the deck asks for it: add *DATABASE_{kw}"
+        )
 
 
 # --- evaluation ----------------------------------------------------------------
+
 
 def _reduce(t: np.ndarray, y: np.ndarray, stat: str) -> float:
     if len(y) == 0:
@@ -315,8 +371,9 @@ def _filtered(spec, t, y, time_scale):
         raise ResponseError(f"CFC {cfc:g} filter: {e}") from None
 
 
-def evaluate_responses(specs: dict, res: Results, model: Model, variables: dict,
-                       units: UnitSystem | None = None) -> dict[str, float]:
+def evaluate_responses(
+    specs: dict, res: Results, model: Model, variables: dict, units: UnitSystem | None = None
+) -> dict[str, float]:
     """Every response of a finished run: name -> float (scaled).
 
     res: solver Results; model: the design's Model; variables: name ->
@@ -367,8 +424,11 @@ def _one(spec: ResponseSpec, res, model, variables, done, time_scale, g) -> floa
         j = _column(res.wall_ids, o.get("id"), "rigid wall")
         comp = o.get("component", "normal")
         if comp == "normal":
-            y = res.wall_normal_force[:, j] if res.recorded("wall_normal_force") else \
-                np.linalg.norm(res.wall_force[:, j], axis=-1)
+            y = (
+                res.wall_normal_force[:, j]
+                if res.recorded("wall_normal_force")
+                else np.linalg.norm(res.wall_force[:, j], axis=-1)
+            )
         else:
             y = _component(res.wall_force[:, j], comp)
         return _reduce(*_filtered(spec, time, y, time_scale), stat)

@@ -73,8 +73,11 @@ class Progress:
             print(text, file=self.stream, flush=True)
 
     def line(self, phase: str, i: int, n: int, d: Design) -> str:
-        what = (f"{d.key} complete in {d.info.get('wall_time', 0.0):.1f} s" if d.status == "complete"
-                else f"{d.key} FAILED: {d.message[:160]}")
+        what = (
+            f"{d.key} complete in {d.info.get('wall_time', 0.0):.1f} s"
+            if d.status == "complete"
+            else f"{d.key} FAILED: {d.message[:160]}"
+        )
         best = ""
         if self.best is not None and self.cfg.objectives:
             o = self.cfg.objectives[0]
@@ -82,8 +85,9 @@ class Progress:
                 best = f" | best {o.response} = {self.best.responses[o.response]:.6g} ({self.best.key})"
             else:
                 best = f" | {self.pareto} Pareto-optimal"
-        return (f"[{phase} {i}/{n}] {what} | study: {self.done} done, {self.running} in flight, "
-                f"{self.failed} failed{best}")
+        return (
+            f"[{phase} {i}/{n}] {what} | study: {self.done} done, {self.running} in flight, {self.failed} failed{best}"
+        )
 
 
 class _Source:
@@ -109,8 +113,9 @@ class _Planned(_Source):
     def __init__(self, phase: str, keys: list[str], points: np.ndarray, variables, done: set[str]):
         self.phase = phase
         self.n = len(keys)
-        self.todo = [(k, dict(zip([v.name for v in variables], map(float, p))))
-                     for k, p in zip(keys, points) if k not in done]
+        self.todo = [
+            (k, dict(zip([v.name for v in variables], map(float, p)))) for k, p in zip(keys, points) if k not in done
+        ]
         self.skipped = self.n - len(self.todo)
 
     def total(self):
@@ -140,8 +145,11 @@ class _Optuna(_Source):
         last = {}
         for d in mine:  # the last trial of each key
             last[d.key] = d
-        self.again = [(d.key, d.values) for d in last.values() if d.status == "interrupted" and d.key not in done_keys
-                      and d.values]
+        self.again = [
+            (d.key, d.values)
+            for d in last.values()
+            if d.status == "interrupted" and d.key not in done_keys and d.values
+        ]
         nums = [int(d.key.split("-")[1]) for d in mine if d.key.split("-")[-1].isdigit()]
         self.counter = max(nums) + 1 if nums else 0
         self.launched = 0
@@ -225,14 +233,22 @@ def _sampler(cfg: StudyConfig):
     cons = constraints_of if cfg.constraints and not NATIVE_CONSTRAINTS else None
     if opt.method == "nsga2":
         return optuna.samplers.NSGAIISampler(population_size=opt.population, seed=seed, constraints_func=cons)
-    return optuna.samplers.TPESampler(seed=seed, constraints_func=cons, multivariate=True,
-                                      n_startup_trials=min(10, max(2, opt.trials // 4)))
+    return optuna.samplers.TPESampler(
+        seed=seed, constraints_func=cons, multivariate=True, n_startup_trials=min(10, max(2, opt.trials // 4))
+    )
 
 
 def _task(cfg: StudyConfig, key: str, values: dict, options: dict | None = None) -> Task:
-    return Task(key=key, values=values, directory=str(cfg.directory / "designs" / key), template=cfg.template,
-                responses=cfg.responses, threads=cfg.execution.threads_per_run, keep=cfg.execution.keep,
-                options=dict(options or {}))
+    return Task(
+        key=key,
+        values=values,
+        directory=str(cfg.directory / "designs" / key),
+        template=cfg.template,
+        responses=cfg.responses,
+        threads=cfg.execution.threads_per_run,
+        keep=cfg.execution.keep,
+        options=dict(options or {}),
+    )
 
 
 def solver_options(cfg: StudyConfig) -> dict:
@@ -250,8 +266,14 @@ def solver_options(cfg: StudyConfig) -> dict:
         raise StudyError(f"{cfg.path}: [execution] solver = {cfg.execution.solver!r}: {e}") from None
 
 
-def run_study(cfg: StudyConfig, executor: SerialExecutor | DaskExecutor | None = None, progress: Progress | None = None,
-              force: bool = False, fn: Callable[[Task], dict] = evaluate, cluster: object | None = None) -> RunSummary:
+def run_study(
+    cfg: StudyConfig,
+    executor: SerialExecutor | DaskExecutor | None = None,
+    progress: Progress | None = None,
+    force: bool = False,
+    fn: Callable[[Task], dict] = evaluate,
+    cluster: object | None = None,
+) -> RunSummary:
     """Run (or resume) every phase of a study; returns what this session
     did. ``executor`` defaults to a Dask LocalCluster of the study file's
     [execution]; ``cluster`` (instead of ``executor``): a Dask cluster
@@ -272,8 +294,10 @@ def run_study(cfg: StudyConfig, executor: SerialExecutor | DaskExecutor | None =
     try:
         stale = store.recover()
         if stale:
-            progress.say(f"{len(stale)} design(s) interrupted in an earlier session will run again: "
-                         + ", ".join(d.key for d in stale[:10]))
+            progress.say(
+                f"{len(stale)} design(s) interrupted in an earlier session will run again: "
+                + ", ".join(d.key for d in stale[:10])
+            )
         summary.rerun = len(stale)
         designs = store.designs()
         progress.load(designs)
@@ -285,9 +309,11 @@ def run_study(cfg: StudyConfig, executor: SerialExecutor | DaskExecutor | None =
         try:
             summary.executor = executor.describe()
             ext = options.get("solver")
-            progress.say(f"study {cfg.name!r}: {len(designs)} design(s) stored in {cfg.storage}; "
-                         f"running on {summary.executor}"
-                         + (f"; designs run in {ext.name} ({ext.executable})" if ext is not None else ""))
+            progress.say(
+                f"study {cfg.name!r}: {len(designs)} design(s) stored in {cfg.storage}; "
+                f"running on {summary.executor}"
+                + (f"; designs run in {ext.name} ({ext.executable})" if ext is not None else "")
+            )
             for src in sources:
                 _drive(cfg, store, executor, src, progress, summary, fn, options)
         finally:
@@ -323,16 +349,25 @@ def _plan(cfg: StudyConfig, store: StudyStore, designs: list[Design]) -> list[_S
     return out
 
 
-def _drive(cfg, store: StudyStore, executor, src: _Source, progress: Progress, summary: RunSummary, fn,
-           options: dict | None = None) -> None:
+def _drive(
+    cfg,
+    store: StudyStore,
+    executor,
+    src: _Source,
+    progress: Progress,
+    summary: RunSummary,
+    fn,
+    options: dict | None = None,
+) -> None:
     if isinstance(src, _MetamodelOpt):
         src.points = max(1, cfg.optimization.points or executor.capacity)
     inflight: dict = {}  # handle -> (trial, key)
     n_done = src.skipped
     n_total = src.total()
     summary.skipped += src.skipped
-    stats = summary.phases.setdefault(src.phase, {"planned": n_total, "skipped": src.skipped, "complete": 0,
-                                                  "failed": 0})
+    stats = summary.phases.setdefault(
+        src.phase, {"planned": n_total, "skipped": src.skipped, "complete": 0, "failed": 0}
+    )
     try:
         while True:
             while len(inflight) < max(executor.capacity, 1) + (1 if executor.name == "dask" else 0):
@@ -374,8 +409,9 @@ def _drive(cfg, store: StudyStore, executor, src: _Source, progress: Progress, s
         if isinstance(e, _ClusterLost):
             from .executor import ExecutorError
 
-            raise ExecutorError(f"the cluster failed while design {e.args[0]} ran: {e.__cause__ or ''}; "
-                                f"run the study again to resume") from e
+            raise ExecutorError(
+                f"the cluster failed while design {e.args[0]} ran: {e.__cause__ or ''}; run the study again to resume"
+            ) from e
         raise
 
 
@@ -391,9 +427,12 @@ def _result(executor, handle, key: str, cfg) -> dict | None:
     except Exception as e:  # noqa: BLE001
         name = type(e).__name__
         if name == "KilledWorker":
-            return {"key": key, "status": "failed", "responses": {},
-                    "message": f"the design's run killed {cfg.execution.allowed_failures} worker(s) "
-                               f"(out of memory?): {e}"}
+            return {
+                "key": key,
+                "status": "failed",
+                "responses": {},
+                "message": f"the design's run killed {cfg.execution.allowed_failures} worker(s) (out of memory?): {e}",
+            }
         if name in ("CancelledError",):
             return None
         return {"key": key, "status": "failed", "responses": {}, "message": f"worker error: {name}: {e}"}

@@ -55,11 +55,15 @@ def to_unit(x: np.ndarray, variables) -> np.ndarray:
 
 def problem(variables) -> dict:
     """The SALib problem of the variables."""
-    return {"num_vars": len(variables), "names": [v.name for v in variables],
-            "bounds": [[v.lower, v.upper] for v in variables]}
+    return {
+        "num_vars": len(variables),
+        "names": [v.name for v in variables],
+        "bounds": [[v.lower, v.upper] for v in variables],
+    }
 
 
 def doe(settings, variables) -> np.ndarray:
     """(n, d) variable values of the study's design of experiments."""
-    return to_bounds(unit_points(settings.method, settings.designs, len(variables), settings.seed,
-                                 settings.scramble), variables)
+    return to_bounds(
+        unit_points(settings.method, settings.designs, len(variables), settings.seed, settings.scramble), variables
+    )

@@ -35,8 +35,14 @@ def morris_indices(variables, x: np.ndarray, y: np.ndarray, levels: int, seed: i
     if keep.sum() < 2:
         raise ValueError(f"Morris: {int(keep.sum())} complete trajectories; at least 2 are needed")
     rows = np.repeat(keep, d + 1)
-    res = morris.analyze(problem(variables), x[: r * (d + 1)][rows], y[: r * (d + 1)][rows], num_levels=levels,
-                         seed=seed, print_to_console=False)
+    res = morris.analyze(
+        problem(variables),
+        x[: r * (d + 1)][rows],
+        y[: r * (d + 1)][rows],
+        num_levels=levels,
+        seed=seed,
+        print_to_console=False,
+    )
     out = {}
     for j, v in enumerate(variables):
         out[v.name] = {k: float(res[k][j]) for k in ("mu", "mu_star", "sigma", "mu_star_conf")}
@@ -57,13 +63,14 @@ def sobol_from_values(variables, y: np.ndarray, seed: int = 0) -> dict:
 
     y = np.asarray(y, float)
     if not np.all(np.isfinite(y)):
-        raise ValueError(f"Sobol: {int((~np.isfinite(y)).sum())} of {len(y)} values are missing (failed runs); "
-                         f"Saltelli estimates need every point")
+        raise ValueError(
+            f"Sobol: {int((~np.isfinite(y)).sum())} of {len(y)} values are missing (failed runs); "
+            f"Saltelli estimates need every point"
+        )
     if np.ptp(y) == 0:
         return {v.name: {"S1": 0.0, "S1_conf": 0.0, "ST": 0.0, "ST_conf": 0.0} for v in variables}
     res = sobol.analyze(problem(variables), y, calc_second_order=False, seed=seed, print_to_console=False)
-    return {v.name: {k: float(res[k][j]) for k in ("S1", "S1_conf", "ST", "ST_conf")}
-            for j, v in enumerate(variables)}
+    return {v.name: {k: float(res[k][j]) for k in ("S1", "S1_conf", "ST", "ST_conf")} for j, v in enumerate(variables)}
 
 
 def sobol_indices(variables, f, n: int = 4096, seed: int = 0) -> dict:

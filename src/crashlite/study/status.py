@@ -24,20 +24,33 @@ def study_status(cfg: StudyConfig) -> dict:
     best, n_pareto = best_design(cfg, designs)
     driver = store.attr("driver")
     now = time.time()
-    return {"study": cfg.name, "storage": cfg.storage, "designs": len(designs), "phases": phases,
-            "complete": sum(d.status == "complete" for d in designs),
-            "failed": [{"key": d.key, "message": d.message} for d in designs if d.status == "failed"],
-            "running": [{"key": d.key, "since_s": None if d.started is None else now - d.started}
-                        for d in designs if d.status == "running"],
-            "best": None if best is None else {"key": best.key, "values": best.values, "responses": best.responses},
-            "pareto": [d.key for d in pareto(cfg, [d for d in designs if d.status == "complete"
-                                                   and d.feasible is not False])] if len(cfg.objectives) > 1 else [],
-            "session": None if not driver else {**driver, "heartbeat_age_s": now - float(driver.get("beat", now))}}
+    return {
+        "study": cfg.name,
+        "storage": cfg.storage,
+        "designs": len(designs),
+        "phases": phases,
+        "complete": sum(d.status == "complete" for d in designs),
+        "failed": [{"key": d.key, "message": d.message} for d in designs if d.status == "failed"],
+        "running": [
+            {"key": d.key, "since_s": None if d.started is None else now - d.started}
+            for d in designs
+            if d.status == "running"
+        ],
+        "best": None if best is None else {"key": best.key, "values": best.values, "responses": best.responses},
+        "pareto": [
+            d.key for d in pareto(cfg, [d for d in designs if d.status == "complete" and d.feasible is not False])
+        ]
+        if len(cfg.objectives) > 1
+        else [],
+        "session": None if not driver else {**driver, "heartbeat_age_s": now - float(driver.get("beat", now))},
+    }
 
 
 def format_status(s: dict) -> str:
-    lines = [f"study {s['study']!r} ({s['storage']}): {s['designs']} designs, {s['complete']} complete, "
-             f"{len(s['failed'])} failed, {len(s['running'])} running"]
+    lines = [
+        f"study {s['study']!r} ({s['storage']}): {s['designs']} designs, {s['complete']} complete, "
+        f"{len(s['failed'])} failed, {len(s['running'])} running"
+    ]
     for phase, counts in s["phases"].items():
         lines.append(f"  {phase}: " + ", ".join(f"{n} {k}" for k, n in sorted(counts.items())))
     if s["session"]:

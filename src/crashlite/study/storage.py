@@ -70,7 +70,7 @@ def make_storage(url: str, where: str = ""):
     kwargs = {}
     try:
         if url.startswith("sqlite:///"):
-            Path(url[len("sqlite:///"):]).parent.mkdir(parents=True, exist_ok=True)
+            Path(url[len("sqlite:///") :]).parent.mkdir(parents=True, exist_ok=True)
             kwargs = {"connect_args": {"timeout": 60}}
         return optuna.storages.RDBStorage(url, engine_kwargs=kwargs)
     except Exception as e:  # noqa: BLE001 - bad URL, missing driver, server down, a folder not writable
@@ -104,20 +104,30 @@ class StudyStore:
             try:
                 self.study = optuna.load_study(study_name=cfg.name, storage=self.storage)
             except KeyError:
-                raise StudyError(f"{cfg.path}: [study] name: no study {cfg.name!r} in {cfg.storage} "
-                                 f"(run it first: crashlite study run {cfg.path})") from None
+                raise StudyError(
+                    f"{cfg.path}: [study] name: no study {cfg.name!r} in {cfg.storage} "
+                    f"(run it first: crashlite study run {cfg.path})"
+                ) from None
         else:
             try:
-                self.study = optuna.create_study(storage=self.storage, study_name=cfg.name, load_if_exists=True,
-                                                 directions=self.directions, sampler=sampler)
+                self.study = optuna.create_study(
+                    storage=self.storage,
+                    study_name=cfg.name,
+                    load_if_exists=True,
+                    directions=self.directions,
+                    sampler=sampler,
+                )
             except Exception as e:  # noqa: BLE001 - a storage that opens but cannot be written
-                raise StudyError(f"{where}: cannot write the study {cfg.name!r} to {cfg.storage!r}: "
-                                 f"{type(e).__name__}: {e}") from None
+                raise StudyError(
+                    f"{where}: cannot write the study {cfg.name!r} to {cfg.storage!r}: {type(e).__name__}: {e}"
+                ) from None
             self._check_fingerprint()
         stored = [d.name.lower() for d in self.study.directions]
         if stored != self.directions:
-            raise StudyError(f"{cfg.path}: [objectives]: the stored study {cfg.name!r} has directions {stored}, "
-                             f"the study file {self.directions}; use a new study name")
+            raise StudyError(
+                f"{cfg.path}: [objectives]: the stored study {cfg.name!r} has directions {stored}, "
+                f"the study file {self.directions}; use a new study name"
+            )
         self._beat = 0.0
 
     # --- identity --------------------------------------------------------------
@@ -132,9 +142,11 @@ class StudyStore:
             if old.get(k) != fp.get(k):
                 diffs.append(f"{k}: stored {json.dumps(old.get(k))[:200]}, now {json.dumps(fp.get(k))[:200]}")
         if diffs:
-            raise StudyError(f"{self.cfg.path}: the study file no longer matches study {self.cfg.name!r} in "
-                             f"{self.cfg.storage} (" + "; ".join(diffs) + "); give [study] name a new "
-                             "name to start another study")
+            raise StudyError(
+                f"{self.cfg.path}: the study file no longer matches study {self.cfg.name!r} in "
+                f"{self.cfg.storage} (" + "; ".join(diffs) + "); give [study] name a new "
+                "name to start another study"
+            )
 
     # --- the running session's claim ---------------------------------------------
     def claim(self, force: bool = False) -> None:
@@ -144,9 +156,11 @@ class StudyStore:
             same_host = d.get("host") == socket.gethostname()
             alive = age < STALE_S and (not same_host or _pid_alive(int(d.get("pid", 0))))
             if alive:
-                raise StudyError(f"{self.cfg.path}: study {self.cfg.name!r} is being run by process "
-                                 f"{d.get('pid')} on {d.get('host')} (last heartbeat {age:.0f} s ago); "
-                                 f"wait for it to end or stop it")
+                raise StudyError(
+                    f"{self.cfg.path}: study {self.cfg.name!r} is being run by process "
+                    f"{d.get('pid')} on {d.get('host')} (last heartbeat {age:.0f} s ago); "
+                    f"wait for it to end or stop it"
+                )
         self.heartbeat(force=True)
 
     def heartbeat(self, force: bool = False) -> None:
@@ -181,15 +195,23 @@ class StudyStore:
             elif status not in ("failed", "interrupted"):
                 status = "interrupted"
             r = a.get("result", {})
-            out.append(Design(number=t.number, key=key, phase=a.get("phase", ""), status=status,
-                              values=dict(t.params) or dict(r.get("values", {})),
-                              responses=dict(r.get("responses", {})),
-                              constraints=list(a.get("constraints", [])), feasible=r.get("feasible"),
-                              objectives=list(t.values) if t.values is not None else None,
-                              message=r.get("message", a.get("message", "")),
-                              info={k: v for k, v in r.items() if k not in ("responses", "values", "message")},
-                              started=t.datetime_start.timestamp() if t.datetime_start else None,
-                              finished=t.datetime_complete.timestamp() if t.datetime_complete else None))
+            out.append(
+                Design(
+                    number=t.number,
+                    key=key,
+                    phase=a.get("phase", ""),
+                    status=status,
+                    values=dict(t.params) or dict(r.get("values", {})),
+                    responses=dict(r.get("responses", {})),
+                    constraints=list(a.get("constraints", [])),
+                    feasible=r.get("feasible"),
+                    objectives=list(t.values) if t.values is not None else None,
+                    message=r.get("message", a.get("message", "")),
+                    info={k: v for k, v in r.items() if k not in ("responses", "values", "message")},
+                    started=t.datetime_start.timestamp() if t.datetime_start else None,
+                    finished=t.datetime_complete.timestamp() if t.datetime_complete else None,
+                )
+            )
         return out
 
     def done_keys(self) -> set[str]:
@@ -208,8 +230,9 @@ class StudyStore:
             self.study.tell(trial, state=TrialState.FAIL)
         for t in self.study.get_trials(deepcopy=False, states=(TrialState.RUNNING,)):
             self.storage.set_trial_user_attr(t._trial_id, "status", "interrupted")
-            self.storage.set_trial_user_attr(t._trial_id, "result", {"message": "interrupted: its session "
-                                                                                "ended before the run did"})
+            self.storage.set_trial_user_attr(
+                t._trial_id, "result", {"message": "interrupted: its session ended before the run did"}
+            )
             self.study.tell(t.number, state=TrialState.FAIL, skip_if_finished=True)
             stale.append(t)
         keys = {t.user_attrs.get("design") for t in stale}
@@ -234,8 +257,10 @@ class StudyStore:
         self.study.enqueue_trial(fixed, user_attrs={"design": key, "phase": phase, "status": "running"})
         trial = self.study.ask()
         if trial.user_attrs.get("design") != key:  # another process enqueued: should not happen
-            raise StudyError(f"study {self.cfg.name!r}: trial {trial.number} is not design {key} "
-                             f"(is another session running this study?)")
+            raise StudyError(
+                f"study {self.cfg.name!r}: trial {trial.number} is not design {key} "
+                f"(is another session running this study?)"
+            )
         return trial, self._suggest(trial)
 
     def start_sampled(self, key: str, phase: str):

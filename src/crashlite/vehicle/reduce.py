@@ -82,25 +82,43 @@ class Reduction:
         n_sur = sum(len(getattr(sur, t)) for t in ("shells", "solids", "beams", "discretes"))
         return {
             "deck": self.deck,
-            "interface": {"point": self.cut.point.tolist(), "axis": self.cut.axis.tolist(),
-                          "nodes": int(len(self.cut.interface_nodes))},
+            "interface": {
+                "point": self.cut.point.tolist(),
+                "axis": self.cut.axis.tolist(),
+                "nodes": int(len(self.cut.interface_nodes)),
+            },
             "step1_load_paths": [p.to_dict() for p in self.load_paths],
-            "shares_used": {"basis": self.share_basis, "shares_percent": {k: 100 * v for k, v in self.shares.items()},
-                            "max_deviation_percent_points": {k: 100 * v for k, v in self.share_deviation.items()}},
+            "shares_used": {
+                "basis": self.share_basis,
+                "shares_percent": {k: 100 * v for k, v in self.shares.items()},
+                "max_deviation_percent_points": {k: 100 * v for k, v in self.share_deviation.items()},
+            },
             "step2_mass": {**self.mass.table(), "inertia": self.mass.structure.inertia.tolist()},
-            "step3_stiffness": {**self.stiffness.table(), "transverse": dict(self.stiffness.transverse),
-                                "static_model": dict(self.stiffness.elements), "dofs": self.stiffness.n_dofs,
-                                "inertia_relief": None if self.relief is None else {
-                                    **self.relief.table(), "transverse": dict(self.relief.transverse or {})},
-                                "springs_from": self.springs},
-            "step4_surrogate": {"connection": self.connection_kind, **self.surrogate.summary(),
-                                **({"condensation": self.condensation} if self.condensation else {})},
+            "step3_stiffness": {
+                **self.stiffness.table(),
+                "transverse": dict(self.stiffness.transverse),
+                "static_model": dict(self.stiffness.elements),
+                "dofs": self.stiffness.n_dofs,
+                "inertia_relief": None
+                if self.relief is None
+                else {**self.relief.table(), "transverse": dict(self.relief.transverse or {})},
+                "springs_from": self.springs,
+            },
+            "step4_surrogate": {
+                "connection": self.connection_kind,
+                **self.surrogate.summary(),
+                **({"condensation": self.condensation} if self.condensation else {}),
+            },
             "connection_against_structure": self.connection,
             "replaced_structure_modes": self.modes,
-            "model_size": {"full_elements": n_full, "simplified_elements": n_sur,
-                           "element_reduction_percent": 100.0 * (1 - n_sur / n_full) if n_full else None,
-                           "full_parts": len(full.parts), "simplified_parts": len(sur.parts),
-                           "removed_mass_percent": 100.0 * self.mass.structure.mass / full.mass_properties().mass},
+            "model_size": {
+                "full_elements": n_full,
+                "simplified_elements": n_sur,
+                "element_reduction_percent": 100.0 * (1 - n_sur / n_full) if n_full else None,
+                "full_parts": len(full.parts),
+                "simplified_parts": len(sur.parts),
+                "removed_mass_percent": 100.0 * self.mass.structure.mass / full.mass_properties().mass,
+            },
             "seconds": dict(self.seconds),
             "notes": list(self.notes),
         }
@@ -157,15 +175,34 @@ def _support(model: Model, support):
     for (kind, sid), rec in model.sets.items():
         if kind == "NODE" and "axle" in str(rec.title or "").lower():
             return ("set", sid)
-    raise ValueError("no support given and no node set titled '... axle ...': name the rear-axle attachment "
-                     "points (a *SET_NODE title or ID)")
+    raise ValueError(
+        "no support given and no node set titled '... axle ...': name the rear-axle attachment "
+        "points (a *SET_NODE title or ID)"
+    )
 
 
-def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.0, 0.0), assemblies=None,
-                   support=None, axle_parts=None, shares="combined", t_end: float | None = None,
-                   interface_mode: str = "rigid", spring_length: float = 100.0, damping_ratio: float = 0.0,
-                   mass_split: str = "axle", springs: str = "relief", modes: int = 0, connection: str = "condensed",
-                   condensed_modes: int = 0, cut_dashpots: bool = True, quiet: bool = True) -> Reduction:
+def reduce_vehicle(
+    deck,
+    results,
+    load_cases=None,
+    interface=None,
+    axis=(1.0, 0.0, 0.0),
+    assemblies=None,
+    support=None,
+    axle_parts=None,
+    shares="combined",
+    t_end: float | None = None,
+    interface_mode: str = "rigid",
+    spring_length: float = 100.0,
+    damping_ratio: float = 0.0,
+    mass_split: str = "axle",
+    springs: str = "relief",
+    modes: int = 0,
+    connection: str = "condensed",
+    condensed_modes: int = 0,
+    cut_dashpots: bool = True,
+    quiet: bool = True,
+) -> Reduction:
     """Steps 1–4 (module docstring).
 
     deck        the full vehicle deck (path or Model)
@@ -209,8 +246,10 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     sec_asm, sec_ids, plane = section_assemblies(model)
     if assemblies is None:
         if not sec_asm:
-            raise ValueError("the deck has no titled *DATABASE_CROSS_SECTION_PLANE with a part set: give the "
-                             "assemblies (name -> parts)")
+            raise ValueError(
+                "the deck has no titled *DATABASE_CROSS_SECTION_PLANE with a part set: give the "
+                "assemblies (name -> parts)"
+            )
         assemblies = sec_asm
     else:
         assemblies = {n: [int(p) for p in model.part_ids_of(ps)] for n, ps in assemblies.items()}
@@ -230,8 +269,7 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
             raise KeyError(f"shares {shares!r}: not a load case ({names}) nor 'combined'")
         used = paths[names.index(shares)].shares()
         basis = shares
-        deviation = {p.load_case: float(max(abs(p.shares().get(k, 0.0) - v) for k, v in used.items()))
-                     for p in paths}
+        deviation = {p.load_case: float(max(abs(p.shares().get(k, 0.0) - v) for k, v in used.items())) for p in paths}
     seconds["step 1 load paths"] = time.perf_counter() - t0
     # cut at the interface
     a = np.asarray(axis, float)
@@ -255,8 +293,10 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     rel = relieved_stiffness(cut, transverse=(1000.0, 1.0e6))
     trans = rel.transverse if springs == "relief" else k.transverse  # the beam as the springs: one way of bearing
     seconds["step 3 stiffness"] = time.perf_counter() - t0
-    say(f"step 3: K = {k.stiffness:.6g} (F {k.force:g}, u {k.displacement:.4g}); shear {trans['shear']:.4g}, "
-        f"roll {trans['roll']:.4g}; under inertia relief K = {rel.stiffness:.6g}")
+    say(
+        f"step 3: K = {k.stiffness:.6g} (F {k.force:g}, u {k.displacement:.4g}); shear {trans['shear']:.4g}, "
+        f"roll {trans['roll']:.4g}; under inertia relief K = {rel.stiffness:.6g}"
+    )
     # step 4
     t0 = time.perf_counter()
     k_springs = rel.stiffness if springs == "relief" else k.stiffness
@@ -264,11 +304,23 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     if connection == "condensed":
         cond = relieved_condensation(cut, modes=condensed_modes)
         sur = build_condensed_surrogate(cut, cond, mass, dashpots=cut_dashpots)
-        say(f"step 4: the replaced structure condensed on {len(cond.nodes)} cut nodes, "
-            f"{len(sur.model.shells)} of {len(model.shells)} shells kept")
+        say(
+            f"step 4: the replaced structure condensed on {len(cond.nodes)} cut nodes, "
+            f"{len(sur.model.shells)} of {len(model.shells)} shells kept"
+        )
     else:
-        sur = build_surrogate(cut, assemblies, used, k_springs, mass, trans, interface=interface_mode,
-                              spring_length=spring_length, damping_ratio=damping_ratio, mass_split=mass_split)
+        sur = build_surrogate(
+            cut,
+            assemblies,
+            used,
+            k_springs,
+            mass,
+            trans,
+            interface=interface_mode,
+            spring_length=spring_length,
+            damping_ratio=damping_ratio,
+            mass_split=mass_split,
+        )
         say(f"step 4: {len(sur.springs)} springs, {len(sur.model.shells)} of {len(model.shells)} shells kept")
     seconds["step 4 surrogate"] = time.perf_counter() - t0
     conn = None
@@ -277,8 +329,10 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
     elif interface_mode == "rigid" and rel.flexibility is not None:
         conn = compare_connection(connection_stiffness(sur, rel.load_point), rel.flexibility, cut.axis)
         worst = conn["largest_compliance_misfit"]
-        say(f"  the springs and beam against the replaced structure: {worst['direction']} compliance "
-            f"x{worst['ratio']:.3g} (the largest misfit)")
+        say(
+            f"  the springs and beam against the replaced structure: {worst['direction']} compliance "
+            f"x{worst['ratio']:.3g} (the largest misfit)"
+        )
     free = None
     if modes > 0:
         t0 = time.perf_counter()
@@ -287,10 +341,28 @@ def reduce_vehicle(deck, results, load_cases=None, interface=None, axis=(1.0, 0.
         free = {"free": fm.summary(rel.flexibility, cut.axis), "held": hm.summary()}
         seconds["modes"] = time.perf_counter() - t0
         eff = free["held"]["effective_mass_percent"]
-        say(f"  modes of the replaced structure held at the interface up to {hm.frequencies[-1]:.3g} (time unit⁻¹) "
-            "hold " + ", ".join(f"{sum(v):.1f} % of its {d}" for d, v in eff.items() if d in ("axial", "vertical",
-                                                                                               "pitch")))
+        say(
+            f"  modes of the replaced structure held at the interface up to {hm.frequencies[-1]:.3g} (time unit⁻¹) "
+            "hold "
+            + ", ".join(f"{sum(v):.1f} % of its {d}" for d, v in eff.items() if d in ("axial", "vertical", "pitch"))
+        )
     notes += mass.notes + k.notes + [n for n in rel.notes if n not in k.notes]
-    return Reduction(str(getattr(model, "source", "") or ""), paths, used, basis, deviation, cut, mass, k, sur,
-                     seconds, notes, rel, springs, conn, free, connection,
-                     cond.summary() if cond is not None else None)
+    return Reduction(
+        str(getattr(model, "source", "") or ""),
+        paths,
+        used,
+        basis,
+        deviation,
+        cut,
+        mass,
+        k,
+        sur,
+        seconds,
+        notes,
+        rel,
+        springs,
+        conn,
+        free,
+        connection,
+        cond.summary() if cond is not None else None,
+    )

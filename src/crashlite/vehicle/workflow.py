@@ -36,9 +36,17 @@ class Study:
     proposal: object = None  # interface.InterfaceProposal from the full run
 
 
-def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interface_x: float = -600.0,
-                  speed_kmh: float = 56.0, quiet: bool = True, say=print, twin: bool = False,
-                  **reduce_options) -> Study:
+def us_ncap_study(
+    out,
+    mesh_size: float = 38.0,
+    end_time: float = 0.08,
+    interface_x: float = -600.0,
+    speed_kmh: float = 56.0,
+    quiet: bool = True,
+    say=print,
+    twin: bool = False,
+    **reduce_options,
+) -> Study:
     """Full run, reduction, simplified run and verification (module docstring)."""
     from ..report.build import jsonable
     from ..solver import run
@@ -67,36 +75,67 @@ def us_ncap_study(out, mesh_size: float = 38.0, end_time: float = 0.08, interfac
     seconds["interface proposal"] = time.perf_counter() - t0
     at = next(c for c in prop.candidates if c["x"] == v.interface_x)
     said = next((c for c in prop.candidates if c["x"] == prop.x), None)
-    say("  interface proposal: " + (f"x = {prop.x:.0f} mm ({said['energy_behind_percent']:.2f} % of the absorbed "
-                                     f"energy and {said['strained_area_percent_behind']:.2f} % of the area strained "
-                                     f"beyond {100 * prop.strain:g} % behind it, {said['replaced_elements_percent']:.0f} % "
-                                     "of the elements replaced)" if said else "none (" + prop.notes[-1] + ")")
+    say(
+        "  interface proposal: "
+        + (
+            f"x = {prop.x:.0f} mm ({said['energy_behind_percent']:.2f} % of the absorbed "
+            f"energy and {said['strained_area_percent_behind']:.2f} % of the area strained "
+            f"beyond {100 * prop.strain:g} % behind it, {said['replaced_elements_percent']:.0f} % "
+            "of the elements replaced)"
+            if said
+            else "none (" + prop.notes[-1] + ")"
+        )
         + f"; at the interface used, x = {at['x']:.0f}: {at['energy_behind_percent']:.2f} % and "
-          f"{at['strained_area_percent_behind']:.2f} %"
-        + (f", the cut bends up to {at['interface_warping_max']:.1f} mm out of a rigid motion (rms "
-           f"{at['interface_warping_rms']:.1f})" if "interface_warping_max" in at else ""))
+        f"{at['strained_area_percent_behind']:.2f} %"
+        + (
+            f", the cut bends up to {at['interface_warping_max']:.1f} mm out of a rigid motion (rms "
+            f"{at['interface_warping_rms']:.1f})"
+            if "interface_warping_max" in at
+            else ""
+        )
+    )
     t0 = time.perf_counter()
-    red = reduce_vehicle(car, [out / "full"], load_cases=["US NCAP"], interface=v.interface_x,
-                         axle_parts=["rear axle"], **reduce_options)
+    red = reduce_vehicle(
+        car, [out / "full"], load_cases=["US NCAP"], interface=v.interface_x, axle_parts=["rear axle"], **reduce_options
+    )
     red.write(out / "simplified.k", out)
     seconds["reduction"] = time.perf_counter() - t0
     s = red.summary()
     worst = (red.connection or {}).get("largest_compliance_misfit")
-    joined = (f"{len(red.surrogate.springs)} springs" if red.connection_kind == "springs" else
-              f"the structure condensed on {red.condensation['nodes']} cut nodes")
-    say(f"  steps 1-4: K = {red.stiffness.stiffness:.5g} N/mm borne at the axle, {red.relief.stiffness:.5g} under "
+    joined = (
+        f"{len(red.surrogate.springs)} springs"
+        if red.connection_kind == "springs"
+        else f"the structure condensed on {red.condensation['nodes']} cut nodes"
+    )
+    say(
+        f"  steps 1-4: K = {red.stiffness.stiffness:.5g} N/mm borne at the axle, {red.relief.stiffness:.5g} under "
         f"inertia relief, replaced {red.mass.structure.mass * 1e3:.1f} kg, "
         f"{joined}; {s['model_size']['simplified_elements']} of "
         f"{s['model_size']['full_elements']} elements kept"
-        + (f"; held rigid, the connection against the structure misfits most in {worst['direction']} (compliance "
-           f"x{worst['ratio']:.2g})" if worst else ""))
+        + (
+            f"; held rigid, the connection against the structure misfits most in {worst['direction']} (compliance "
+            f"x{worst['ratio']:.2g})"
+            if worst
+            else ""
+        )
+    )
     sim_deck = usncap_deck(out / "simplified.k", out / "usncap_simplified.k", speed_kmh=speed_kmh, end_time=end_time)
     t0 = time.perf_counter()
     sim = run(sim_deck, out=out / "simplified", quiet=quiet)
     seconds["simplified run"] = time.perf_counter() - t0
     say(f"  simplified run: {sim.cycles} cycles in {sim.wall_time:.1f} s")
-    twin_run = _twin_run(red.cut, out / "twin.k", out / "twin", lambda car_deck: usncap_deck(
-        car_deck, out / "usncap_twin.k", speed_kmh=speed_kmh, end_time=end_time), quiet, say) if twin else {}
+    twin_run = (
+        _twin_run(
+            red.cut,
+            out / "twin.k",
+            out / "twin",
+            lambda car_deck: usncap_deck(car_deck, out / "usncap_twin.k", speed_kmh=speed_kmh, end_time=end_time),
+            quiet,
+            say,
+        )
+        if twin
+        else {}
+    )
     t0 = time.perf_counter()
     ver = verify_vehicle(out / "full", out / "simplified", full_deck, sim_deck, **twin_run)
     ver.write(out / "verify")
@@ -116,8 +155,10 @@ def _twin_run(cut, car_path: Path, results: Path, load_case, quiet: bool, say) -
     deck = load_case(write_deck(tw.model, car_path)[0])
     r = run(deck, out=results, quiet=quiet)
     s = tw.summary()
-    say(f"  elastic twin: {s['elements_made_elastic']} elements behind the interface elastic; {r.cycles} cycles "
-        f"in {r.wall_time:.1f} s")
+    say(
+        f"  elastic twin: {s['elements_made_elastic']} elements behind the interface elastic; {r.cycles} cycles "
+        f"in {r.wall_time:.1f} s"
+    )
     return {"twin": results, "twin_deck": deck}
 
 
@@ -144,10 +185,20 @@ def _slug(name: str) -> str:
     return name.replace(",", "").replace(" ", "_")
 
 
-def paper_study(out, mesh_size: float = 38.0, barrier_size: float = 50.0, usncap_end: float = 0.08,
-                odb_end: float = 0.1, interface_x: float = -600.0, shares: str = "combined",
-                variants: bool = True, quiet: bool = True, say=print, twin: bool = False,
-                **reduce_options) -> PaperStudy:
+def paper_study(
+    out,
+    mesh_size: float = 38.0,
+    barrier_size: float = 50.0,
+    usncap_end: float = 0.08,
+    odb_end: float = 0.1,
+    interface_x: float = -600.0,
+    shares: str = "combined",
+    variants: bool = True,
+    quiet: bool = True,
+    say=print,
+    twin: bool = False,
+    **reduce_options,
+) -> PaperStudy:
     """The paper's whole verification on the generic car, in one folder:
 
     1. full runs: US NCAP (56 km/h, rigid wall) and Euro NCAP ODB (64 km/h,
@@ -180,36 +231,52 @@ def paper_study(out, mesh_size: float = 38.0, barrier_size: float = 50.0, usncap
     out.mkdir(parents=True, exist_ok=True)
     v = generic_vehicle(mesh_size, interface_x=interface_x)
     car = v.write(out / "car.k")
-    say(f"  generic car: {v.shells} shells, {v.mass:.0f} kg at {mesh_size:g} mm; detailed barrier "
-        f"{barrier_size:g} mm; US NCAP {usncap_end * 1e3:g} ms, ODB {odb_end * 1e3:g} ms")
+    say(
+        f"  generic car: {v.shells} shells, {v.mass:.0f} kg at {mesh_size:g} mm; detailed barrier "
+        f"{barrier_size:g} mm; US NCAP {usncap_end * 1e3:g} ms, ODB {odb_end * 1e3:g} ms"
+    )
     runs: dict = {}
 
     def go(name: str, deck: Path) -> Path:
         folder = out / "runs" / _slug(name)
         r = run(deck, out=folder, quiet=quiet)
-        runs[name] = {"deck": deck, "results": folder, "loop_time": r.loop_time, "cycles": r.cycles,
-                      "elements": int(sum((r.info.get("elements") or {}).values()))}
+        runs[name] = {
+            "deck": deck,
+            "results": folder,
+            "loop_time": r.loop_time,
+            "cycles": r.cycles,
+            "elements": int(sum((r.info.get("elements") or {}).values())),
+        }
         say(f"  {name}: {r.cycles} cycles, time loop {r.loop_time:.1f} s")
         return folder
 
     def odb(vehicle_deck: Path, barrier: str, name: str) -> Path:
-        return odb_deck(vehicle_deck, out / f"{_slug(name)}.k", barrier=barrier, end_time=odb_end,
-                        element_size=barrier_size)
+        return odb_deck(
+            vehicle_deck, out / f"{_slug(name)}.k", barrier=barrier, end_time=odb_end, element_size=barrier_size
+        )
 
     decks = {"usncap full": usncap_deck(car, out / "usncap_full.k", end_time=usncap_end)}
     go("usncap full", decks["usncap full"])
     first = "odb full car, detailed barrier"
     decks[first] = odb(car, "detailed", first)
     go(first, decks[first])
-    red = reduce_vehicle(car, [runs["usncap full"]["results"], runs[first]["results"]],
-                         load_cases=["US NCAP", "Euro NCAP ODB"], interface=v.interface_x, axle_parts=["rear axle"],
-                         shares=shares, **reduce_options)
+    red = reduce_vehicle(
+        car,
+        [runs["usncap full"]["results"], runs[first]["results"]],
+        load_cases=["US NCAP", "Euro NCAP ODB"],
+        interface=v.interface_x,
+        axle_parts=["rear axle"],
+        shares=shares,
+        **reduce_options,
+    )
     simplified = out / "simplified.k"
     red.write(simplified, out)
     s = red.summary()
-    say(f"  steps 1-4 ({s['shares_used']['basis']} shares): K = {red.stiffness.stiffness:.5g} N/mm borne at the "
+    say(
+        f"  steps 1-4 ({s['shares_used']['basis']} shares): K = {red.stiffness.stiffness:.5g} N/mm borne at the "
         f"axle, {red.relief.stiffness:.5g} under inertia relief (springs: {red.springs}), "
-        f"{s['model_size']['simplified_elements']} of {s['model_size']['full_elements']} elements kept")
+        f"{s['model_size']['simplified_elements']} of {s['model_size']['full_elements']} elements kept"
+    )
     decks["usncap simplified"] = usncap_deck(simplified, out / "usncap_simplified.k", end_time=usncap_end)
     go("usncap simplified", decks["usncap simplified"])
     for name, (vehicle, barrier) in ODB_RUNS.items():
@@ -217,46 +284,93 @@ def paper_study(out, mesh_size: float = 38.0, barrier_size: float = 50.0, usncap
             continue
         decks[name] = odb(car if vehicle == "full" else simplified, barrier, name)
         go(name, decks[name])
-    twin_run = _twin_run(red.cut, out / "twin.k", out / "runs" / "usncap_twin", lambda car_deck: usncap_deck(
-        car_deck, out / "usncap_twin.k", end_time=usncap_end), quiet, say) if twin else {}
-    ver = {"US NCAP": verify_vehicle(runs["usncap full"]["results"], runs["usncap simplified"]["results"],
-                                     decks["usncap full"], decks["usncap simplified"], load_case="US NCAP",
-                                     **twin_run)}
+    twin_run = (
+        _twin_run(
+            red.cut,
+            out / "twin.k",
+            out / "runs" / "usncap_twin",
+            lambda car_deck: usncap_deck(car_deck, out / "usncap_twin.k", end_time=usncap_end),
+            quiet,
+            say,
+        )
+        if twin
+        else {}
+    )
+    ver = {
+        "US NCAP": verify_vehicle(
+            runs["usncap full"]["results"],
+            runs["usncap simplified"]["results"],
+            decks["usncap full"],
+            decks["usncap simplified"],
+            load_case="US NCAP",
+            **twin_run,
+        )
+    }
     last = "odb simplified car, simplified barrier"
-    ver["Euro NCAP ODB"] = verify_vehicle(runs[first]["results"], runs[last]["results"], decks[first], decks[last],
-                                          load_case="Euro NCAP ODB", names=("full + detailed barrier",
-                                                                            "simplified + simplified barrier"))
+    ver["Euro NCAP ODB"] = verify_vehicle(
+        runs[first]["results"],
+        runs[last]["results"],
+        decks[first],
+        decks[last],
+        load_case="Euro NCAP ODB",
+        names=("full + detailed barrier", "simplified + simplified barrier"),
+    )
     if variants:  # each simplification on its own: the car on the same detailed barrier, the barrier under the full car
-        mixed = {"Euro NCAP ODB, vehicle only": ("odb simplified car, detailed barrier", ("full car", "simplified car")),
-                 "Euro NCAP ODB, barrier only": ("odb full car, simplified barrier",
-                                                 ("detailed barrier", "simplified barrier"))}
+        mixed = {
+            "Euro NCAP ODB, vehicle only": ("odb simplified car, detailed barrier", ("full car", "simplified car")),
+            "Euro NCAP ODB, barrier only": (
+                "odb full car, simplified barrier",
+                ("detailed barrier", "simplified barrier"),
+            ),
+        }
         for case, (other, names) in mixed.items():
-            ver[case] = verify_vehicle(runs[first]["results"], runs[other]["results"], decks[first], decks[other],
-                                       load_case=case, names=names)
+            ver[case] = verify_vehicle(
+                runs[first]["results"], runs[other]["results"], decks[first], decks[other], load_case=case, names=names
+            )
     for name, vv in ver.items():
         vv.write(out / "verify" / _slug(name.lower()))
     loop = {k: r["loop_time"] for k, r in runs.items()}  # the time compared (verify.timing: the time loop)
-    times = {"us_ncap": {"full_s": loop["usncap full"], "simplified_s": loop["usncap simplified"],
-                         "vehicle_reduction_percent": time_reduction(loop["usncap full"], loop["usncap simplified"])},
-             "odb": {"full_car_detailed_barrier_s": loop[first], "simplified_car_simplified_barrier_s": loop[last],
-                     "combined_reduction_percent": time_reduction(loop[first], loop[last])}}
+    times = {
+        "us_ncap": {
+            "full_s": loop["usncap full"],
+            "simplified_s": loop["usncap simplified"],
+            "vehicle_reduction_percent": time_reduction(loop["usncap full"], loop["usncap simplified"]),
+        },
+        "odb": {
+            "full_car_detailed_barrier_s": loop[first],
+            "simplified_car_simplified_barrier_s": loop[last],
+            "combined_reduction_percent": time_reduction(loop[first], loop[last]),
+        },
+    }
     if variants:
-        times["odb"].update({
-            "full_car_simplified_barrier_s": loop["odb full car, simplified barrier"],
-            "simplified_car_detailed_barrier_s": loop["odb simplified car, detailed barrier"],
-            "barrier_reduction_percent": time_reduction(loop[first], loop["odb full car, simplified barrier"]),
-            "vehicle_reduction_percent": time_reduction(loop[first], loop["odb simplified car, detailed barrier"])})
-    summary = {"mesh_size": mesh_size, "barrier_element_size": barrier_size, "interface_x": v.interface_x,
-               "shares": s["shares_used"], "time": times,
-               "runs": {k: {"loop_time_s": r["loop_time"], "cycles": r["cycles"], "elements": r["elements"]}
-                        for k, r in runs.items()},
-               "verification": {k: vv.figures for k, vv in ver.items()}}
+        times["odb"].update(
+            {
+                "full_car_simplified_barrier_s": loop["odb full car, simplified barrier"],
+                "simplified_car_detailed_barrier_s": loop["odb simplified car, detailed barrier"],
+                "barrier_reduction_percent": time_reduction(loop[first], loop["odb full car, simplified barrier"]),
+                "vehicle_reduction_percent": time_reduction(loop[first], loop["odb simplified car, detailed barrier"]),
+            }
+        )
+    summary = {
+        "mesh_size": mesh_size,
+        "barrier_element_size": barrier_size,
+        "interface_x": v.interface_x,
+        "shares": s["shares_used"],
+        "time": times,
+        "runs": {
+            k: {"loop_time_s": r["loop_time"], "cycles": r["cycles"], "elements": r["elements"]}
+            for k, r in runs.items()
+        },
+        "verification": {k: vv.figures for k, vv in ver.items()},
+    }
     from ..report.build import jsonable
 
     (out / "summary.json").write_text(json.dumps(jsonable(summary), indent=1, allow_nan=False) + "\n")
     from .verify.study_report import study_page
 
-    links = {"reduction (steps 1-4)": "reduction.html",
-             **{f"verification {k}": f"verify/{_slug(k.lower())}/index.html" for k in ver}}
+    links = {
+        "reduction (steps 1-4)": "reduction.html",
+        **{f"verification {k}": f"verify/{_slug(k.lower())}/index.html" for k in ver},
+    }
     (out / "index.html").write_text(study_page(jsonable(summary), links))
     return PaperStudy(out, red, ver, runs, summary)

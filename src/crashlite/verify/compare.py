@@ -33,8 +33,13 @@ if TYPE_CHECKING:
     from ..model.model import Model
 
 # glstat quantities compared, with the names the report shows
-ENERGIES = (("total_energy", "total"), ("kinetic_energy", "kinetic"), ("internal_energy", "internal"),
-            ("hourglass_energy", "hourglass"), ("sliding_interface_energy", "sliding"))
+ENERGIES = (
+    ("total_energy", "total"),
+    ("kinetic_energy", "kinetic"),
+    ("internal_energy", "internal"),
+    ("hourglass_energy", "hourglass"),
+    ("sliding_interface_energy", "sliding"),
+)
 GROUPS = ("energy", "part", "section", "wall", "node_displacement", "node_acceleration")
 AXES = "xyz"
 FLAT = 1e-3  # relative variation below which a reference curve is not rated
@@ -99,8 +104,12 @@ class Run:
     def settings(self) -> dict:
         """Run settings for the report: source, title, times, counts and,
         with the deck, the fields of its *CONTROL cards."""
-        out = {"name": self.name, "path": self.path, "history": type(self.history).__name__,
-               "categories": list(self.history.categories())}
+        out = {
+            "name": self.name,
+            "path": self.path,
+            "history": type(self.history).__name__,
+            "categories": list(self.history.categories()),
+        }
         t = self.read("glstat", "time")
         if t is not None and len(t):
             out.update(states=int(len(t)), start_time=float(t[0]), end_time=float(t[-1]))
@@ -117,8 +126,12 @@ class Run:
                 controls[rec.name] = {k: _plain(v) for k, v in rec.values.items() if v is not None}
             out["controls"] = controls
         if self.states is not None:
-            out["field_states"] = {"count": int(len(self.states.time)), "end": float(self.states.time[-1]),
-                                   "nodes": int(self.states.x.shape[1]), "source": self.states.source}
+            out["field_states"] = {
+                "count": int(len(self.states.time)),
+                "end": float(self.states.time[-1]),
+                "nodes": int(self.states.x.shape[1]),
+                "source": self.states.source,
+            }
         return out
 
 
@@ -148,8 +161,9 @@ def open_run(path: Path | str, name: str | None = None, deck: Path | str | Model
     except FileNotFoundError as e:
         raise CompareError(str(e)) from None
     model = None if deck is None else (deck if isinstance(deck, Model) else read_deck(deck))
-    run = Run(name or (p.name if p.name not in ("out", "results.npz") else p.resolve().parent.name), str(p),
-              hist, model)
+    run = Run(
+        name or (p.name if p.name not in ("out", "results.npz") else p.resolve().parent.name), str(p), hist, model
+    )
     try:
         run.states = load_states(p, model)
     except CompareError:
@@ -161,8 +175,10 @@ def open_run(path: Path | str, name: str | None = None, deck: Path | str | Model
         # d3plot states): the history nodes' displacements are the field
         nodal = history_states(hist, model)
         if nodal is not None:
-            run.notes.append(f"{run.name}: node field from its {len(nodal.ids)} history nodes (nodout)"
-                             + ("" if run.states is None else "; its field states carry no node IDs (give its deck)"))
+            run.notes.append(
+                f"{run.name}: node field from its {len(nodal.ids)} history nodes (nodout)"
+                + ("" if run.states is None else "; its field states carry no node IDs (give its deck)")
+            )
             run.states = nodal
         elif run.states is not None:
             run.notes.append("field states without node IDs (give the deck): no field comparison")
@@ -195,25 +211,39 @@ class Comparison:
 
     def overall(self) -> dict:
         rated = [p.rating.overall for p in self.pairs if p.rating is not None]
-        return {"pairs": len(self.pairs), "rated": len(rated),
-                "mean_rating": float(np.mean(rated)) if rated else None,
-                "min_rating": float(np.min(rated)) if rated else None,
-                "worst": (min((p for p in self.pairs if p.rating is not None), key=lambda p: p.rating.overall).name
-                          if rated else None)}
+        return {
+            "pairs": len(self.pairs),
+            "rated": len(rated),
+            "mean_rating": float(np.mean(rated)) if rated else None,
+            "min_rating": float(np.min(rated)) if rated else None,
+            "worst": (
+                min((p for p in self.pairs if p.rating is not None), key=lambda p: p.rating.overall).name
+                if rated
+                else None
+            ),
+        }
 
     def summary(self) -> dict:
         from .. import __version__
 
-        return {"crashlite": __version__,
-                "reference": self.ref.settings(), "comparison": self.cmp.settings(),
-                "options": self.options.as_dict(), "time_range": [self.t0, self.t1],
-                "overall": self.overall(),
-                "curves": {g: [p.summary() for p in self.group(g)] for g in GROUPS},
-                "fields": [f.summary() for f in self.fields], "pulse": self.pulse, "timing": self.timing,
-                "mismatches": self.mismatches, "notes": self.notes + self.ref.notes + self.cmp.notes}
+        return {
+            "crashlite": __version__,
+            "reference": self.ref.settings(),
+            "comparison": self.cmp.settings(),
+            "options": self.options.as_dict(),
+            "time_range": [self.t0, self.t1],
+            "overall": self.overall(),
+            "curves": {g: [p.summary() for p in self.group(g)] for g in GROUPS},
+            "fields": [f.summary() for f in self.fields],
+            "pulse": self.pulse,
+            "timing": self.timing,
+            "mismatches": self.mismatches,
+            "notes": self.notes + self.ref.notes + self.cmp.notes,
+        }
 
 
 # --- matching ---------------------------------------------------------------
+
 
 def _id_list(ids, limit: int = 100) -> dict:
     ids = [int(i) if isinstance(i, (int, np.integer)) else i for i in ids]
@@ -235,12 +265,17 @@ def _match(c: Comparison, what: str, ids_ref, ids_cmp, wanted=None) -> np.ndarra
     common = np.intersect1d(r, k)
     only_r, only_c = np.setdiff1d(r, k), np.setdiff1d(k, r)
     if len(only_r) or len(only_c) or len(missing):
-        c.mismatches[what] = {"only_ref": _id_list(only_r), "only_cmp": _id_list(only_c),
-                              "in_neither": _id_list(missing)}
+        c.mismatches[what] = {
+            "only_ref": _id_list(only_r),
+            "only_cmp": _id_list(only_c),
+            "in_neither": _id_list(missing),
+        }
     if wanted is not None and len(common) == 0:
-        raise CompareError(f"no requested {what} ID is in both runs: {len(only_r)} only in {c.ref.name}, "
-                           f"{len(only_c)} only in {c.cmp.name}, {len(missing)} in neither "
-                           f"(asked for {_short(wanted)})")
+        raise CompareError(
+            f"no requested {what} ID is in both runs: {len(only_r)} only in {c.ref.name}, "
+            f"{len(only_c)} only in {c.cmp.name}, {len(missing)} in neither "
+            f"(asked for {_short(wanted)})"
+        )
     return common
 
 
@@ -266,8 +301,10 @@ def _add(c: Comparison, group: str, name: str, unit: str, tr, yr, tk, yk) -> Non
         raise CompareError(f"{name}: {e}") from None
     at = c.options.at
     if at is not None and not max(tr[0], tk[0]) <= at <= min(tr[-1], tk[-1]):
-        raise CompareError(f"{name}: time {at:.6g} of the 'value at' figures is outside the common range "
-                           f"[{max(tr[0], tk[0]):.6g}, {min(tr[-1], tk[-1]):.6g}]")
+        raise CompareError(
+            f"{name}: time {at:.6g} of the 'value at' figures is outside the common range "
+            f"[{max(tr[0], tk[0]):.6g}, {min(tr[-1], tk[-1]):.6g}]"
+        )
     # ISO/TS 18571 scores of a curve that hardly varies (e.g. a conserved
     # total energy) measure its round-off, not the model: not rated
     flat = float(np.ptp(yr)) <= FLAT * float(np.max(np.abs(yr)))
@@ -279,11 +316,14 @@ def _add(c: Comparison, group: str, name: str, unit: str, tr, yr, tk, yk) -> Non
 
 # --- quantities -------------------------------------------------------------
 
+
 def _energies(c: Comparison) -> None:
     tr, tk = c.ref.read("glstat", "time"), c.cmp.read("glstat", "time")
     if tr is None or tk is None:
-        c.notes.append("global energies: glstat missing in " + " and ".join(
-            r.name for r, t in ((c.ref, tr), (c.cmp, tk)) if t is None))
+        c.notes.append(
+            "global energies: glstat missing in "
+            + " and ".join(r.name for r, t in ((c.ref, tr), (c.cmp, tk)) if t is None)
+        )
         return
     missing = {"only_ref": [], "only_cmp": []}
     for q, label in ENERGIES:
@@ -331,16 +371,17 @@ def _parts(c: Comparison) -> None:
     er, ek = c.ref.read("matsum", "internal_energy"), c.cmp.read("matsum", "internal_energy")
     if ids_r is None or ids_k is None or er is None or ek is None:
         if c.options.parts:
-            raise CompareError("part energies asked for, but matsum is missing in " + " and ".join(
-                r.name for r, e in ((c.ref, er), (c.cmp, ek)) if e is None))
+            raise CompareError(
+                "part energies asked for, but matsum is missing in "
+                + " and ".join(r.name for r, e in ((c.ref, er), (c.cmp, ek)) if e is None)
+            )
         c.notes.append("part energies: matsum missing in one run")
         return
     tr, tk = c.ref.read("matsum", "time"), c.cmp.read("matsum", "time")
     if not c.options.parts:
         for pid in _match(c, "part", ids_r, ids_k):
             _, lr = _part_ids(c.ref, pid)
-            _add(c, "part", f"{lr} internal energy", "energy", tr, er[:, _col(ids_r, pid)],
-                 tk, ek[:, _col(ids_k, pid)])
+            _add(c, "part", f"{lr} internal energy", "energy", tr, er[:, _col(ids_r, pid)], tk, ek[:, _col(ids_k, pid)])
         return
     only_r, only_k, neither, found = [], [], [], 0
     for spec in c.options.parts:
@@ -357,12 +398,17 @@ def _parts(c: Comparison) -> None:
         yk = ek[:, [_col(ids_k, p) for p in pk]].sum(axis=1)
         _add(c, "part", f"{label} internal energy", "energy", tr, yr, tk, yk)
     if only_r or only_k or neither:
-        c.mismatches["part"] = {"only_ref": _id_list(only_r), "only_cmp": _id_list(only_k),
-                                "in_neither": _id_list(neither)}
+        c.mismatches["part"] = {
+            "only_ref": _id_list(only_r),
+            "only_cmp": _id_list(only_k),
+            "in_neither": _id_list(neither),
+        }
     if not found:
-        raise CompareError(f"no requested part is in both runs: {_short(c.options.parts)}"
-                           f" ({len(only_r)} only in {c.ref.name}, {len(only_k)} only in {c.cmp.name}, "
-                           f"{len(neither)} in neither)")
+        raise CompareError(
+            f"no requested part is in both runs: {_short(c.options.parts)}"
+            f" ({len(only_r)} only in {c.ref.name}, {len(only_k)} only in {c.cmp.name}, "
+            f"{len(neither)} in neither)"
+        )
 
 
 def _sections(c: Comparison) -> None:
@@ -376,8 +422,16 @@ def _sections(c: Comparison) -> None:
         for a in AXES:
             yr, yk = c.ref.read("secforc", f"{a}_force"), c.cmp.read("secforc", f"{a}_force")
             if yr is not None and yk is not None:
-                _add(c, "section", f"section {sid} {a}-force", "force", tr, yr[:, _col(ids_r, sid)],
-                     tk, yk[:, _col(ids_k, sid)])
+                _add(
+                    c,
+                    "section",
+                    f"section {sid} {a}-force",
+                    "force",
+                    tr,
+                    yr[:, _col(ids_r, sid)],
+                    tk,
+                    yk[:, _col(ids_k, sid)],
+                )
 
 
 def _walls(c: Comparison) -> None:
@@ -389,8 +443,16 @@ def _walls(c: Comparison) -> None:
     tr, tk = c.ref.read("rwforc", "forces", "time"), c.cmp.read("rwforc", "forces", "time")
     yr, yk = c.ref.read("rwforc", "forces", "normal_force"), c.cmp.read("rwforc", "forces", "normal_force")
     for wid in _match(c, "wall", ids_r, ids_k, c.options.walls):
-        _add(c, "wall", f"rigid wall {wid} normal force", "force", tr, yr[:, _col(ids_r, wid)],
-             tk, yk[:, _col(ids_k, wid)])
+        _add(
+            c,
+            "wall",
+            f"rigid wall {wid} normal force",
+            "force",
+            tr,
+            yr[:, _col(ids_r, wid)],
+            tk,
+            yk[:, _col(ids_k, wid)],
+        )
 
 
 def _acceleration(run: Run, axis: str, col: int) -> tuple[np.ndarray, np.ndarray, bool]:
@@ -434,13 +496,14 @@ def _nodes(c: Comparison) -> None:
             t1, y1, d1 = _acceleration(c.ref, a, jr)
             t2, y2, d2 = _acceleration(c.cmp, a, jk)
             if d1 or d2:
-                c.notes.append(f"{name}: derived from the velocity in " + " and ".join(
-                    r.name for r, d in ((c.ref, d1), (c.cmp, d2)) if d))
+                c.notes.append(
+                    f"{name}: derived from the velocity in "
+                    + " and ".join(r.name for r, d in ((c.ref, d1), (c.cmp, d2)) if d)
+                )
             if not np.any(y1) and not np.any(y2):
                 c.notes.append(f"{name}: zero in both runs, not compared")
                 continue
-            _add(c, "node_acceleration", name, "acceleration", *_filtered(c, name, t1, y1),
-                 *_filtered(c, name, t2, y2))
+            _add(c, "node_acceleration", name, "acceleration", *_filtered(c, name, t1, y1), *_filtered(c, name, t2, y2))
 
 
 def _pulse(c: Comparison) -> None:
@@ -460,10 +523,12 @@ def _pulse(c: Comparison) -> None:
         if not moving:
             c.notes.append("crash pulse: no common history node has an initial velocity")
             return
+
         # the most body-like node: the smallest peak deceleration
         def peak(n):
             _, a, _ = _acceleration(c.ref, ax, _col(ids_r, n))
             return float(np.max(np.abs(_filtered(c, "pulse", tr, a)[1])))
+
         nid = int(min(moving, key=peak))
     c.pulse = {"node": int(nid), "axis": ax, "cfc": c.options.cfc}
     for key, run, t, ids, v in (("reference", c.ref, tr, ids_r, vr), ("comparison", c.cmp, tk, ids_k, vk)):
@@ -482,7 +547,8 @@ def _pulse(c: Comparison) -> None:
     if pr and pk:
         c.pulse["deviation_percent"] = {
             k: (relative_percent(pr[k], pk[k]) if pr[k] is not None and pk[k] is not None else None)
-            for k in ("peak_deceleration", "mean_deceleration", "dynamic_crush", "time_to_zero_velocity", "olc")}
+            for k in ("peak_deceleration", "mean_deceleration", "dynamic_crush", "time_to_zero_velocity", "olc")
+        }
 
 
 def _fields(c: Comparison) -> None:
@@ -490,9 +556,12 @@ def _fields(c: Comparison) -> None:
     usable = sr is not None and sk is not None and sr.ids is not None and sk.ids is not None
     if not usable:
         if c.options.field_nodes is not None or c.options.times:
-            why = [f"{r.name}: " + ("no field states" if r.states is None else "field states without node IDs "
-                                    "(give its deck)") for r in (c.ref, c.cmp)
-                   if r.states is None or r.states.ids is None]
+            why = [
+                f"{r.name}: "
+                + ("no field states" if r.states is None else "field states without node IDs (give its deck)")
+                for r in (c.ref, c.cmp)
+                if r.states is None or r.states.ids is None
+            ]
             raise CompareError("field comparison asked for, but " + "; ".join(why))
         c.notes.append("field comparison: field states with node IDs (or history nodes) are needed in both runs")
         return
@@ -509,14 +578,18 @@ def _fields(c: Comparison) -> None:
             return
     f = c.fields[-1]
     if len(f.only_ref) or len(f.only_cmp):
-        c.mismatches["field node"] = {"only_ref": _id_list(f.only_ref), "only_cmp": _id_list(f.only_cmp),
-                                      "in_neither": _id_list([])}
+        c.mismatches["field node"] = {
+            "only_ref": _id_list(f.only_ref),
+            "only_cmp": _id_list(f.only_cmp),
+            "in_neither": _id_list([]),
+        }
 
 
 def _timing(c: Comparison) -> None:
     if c.ref.info is None or c.cmp.info is None:
-        c.notes.append("time accounting: run facts missing in " + " and ".join(
-            r.name for r in (c.ref, c.cmp) if r.info is None))
+        c.notes.append(
+            "time accounting: run facts missing in " + " and ".join(r.name for r in (c.ref, c.cmp) if r.info is None)
+        )
         return
     c.timing = timing_table([c.ref.info, c.cmp.info])
 
@@ -530,30 +603,43 @@ def compare(ref: Run, cmp: Run, options: Options | None = None) -> Comparison:
         raise CompareError(f"time_scale must be positive seconds per time unit, got {o.time_scale!r}")
     tr, tk = ref.read("glstat", "time"), cmp.read("glstat", "time")
     if tr is None or tk is None or len(tr) < 2 or len(tk) < 2:
-        raise CompareError("both runs need a glstat history of at least two states: "
-                           f"{ref.name} has {0 if tr is None else len(tr)}, {cmp.name} {0 if tk is None else len(tk)}")
+        raise CompareError(
+            "both runs need a glstat history of at least two states: "
+            f"{ref.name} has {0 if tr is None else len(tr)}, {cmp.name} {0 if tk is None else len(tk)}"
+        )
     try:
         t0, t1 = common_interval(tr, tk)
     except RatingError:
-        raise CompareError(f"no common time range: {ref.name} covers [{tr[0]:.6g}, {tr[-1]:.6g}], "
-                           f"{cmp.name} [{tk[0]:.6g}, {tk[-1]:.6g}]") from None
+        raise CompareError(
+            f"no common time range: {ref.name} covers [{tr[0]:.6g}, {tr[-1]:.6g}], "
+            f"{cmp.name} [{tk[0]:.6g}, {tk[-1]:.6g}]"
+        ) from None
     c = Comparison(ref, cmp, o, t0, t1)
     for step in (_energies, _parts, _sections, _walls, _nodes, _pulse, _fields, _timing):
         step(c)
     if not c.pairs and not c.fields:
-        raise CompareError(f"nothing to compare: {ref.name} and {cmp.name} share no energy, part, section, wall "
-                           "or node history and no field states" + _mismatch_text(c))
+        raise CompareError(
+            f"nothing to compare: {ref.name} and {cmp.name} share no energy, part, section, wall "
+            "or node history and no field states" + _mismatch_text(c)
+        )
     return c
 
 
 def _mismatch_text(c: Comparison) -> str:
-    parts = [f"{what}: {m['only_ref']['count']} only in {c.ref.name}, {m['only_cmp']['count']} only in {c.cmp.name}"
-             for what, m in c.mismatches.items()]
+    parts = [
+        f"{what}: {m['only_ref']['count']} only in {c.ref.name}, {m['only_cmp']['count']} only in {c.cmp.name}"
+        for what, m in c.mismatches.items()
+    ]
     return (" (" + "; ".join(parts) + ")") if parts else ""
 
 
-def compare_paths(ref: Path | str, cmp: Path | str, options: Options | None = None,
-                  names: tuple[str | None, str | None] = (None, None), decks: tuple = (None, None)) -> Comparison:
+def compare_paths(
+    ref: Path | str,
+    cmp: Path | str,
+    options: Options | None = None,
+    names: tuple[str | None, str | None] = (None, None),
+    decks: tuple = (None, None),
+) -> Comparison:
     """``compare`` of two results paths (crashlite or LS-DYNA), with their decks when given."""
     a = open_run(ref, names[0], decks[0])
     b = open_run(cmp, names[1], decks[1])

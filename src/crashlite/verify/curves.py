@@ -35,8 +35,14 @@ class CurvePair:
 
     def summary(self) -> dict:
         """The figures, without the arrays (JSON-ready)."""
-        return {"group": self.group, "name": self.name, "unit": self.unit, **self.deviation,
-                "rating": None if self.rating is None else self.rating.as_dict(), "note": self.note}
+        return {
+            "group": self.group,
+            "name": self.name,
+            "unit": self.unit,
+            **self.deviation,
+            "rating": None if self.rating is None else self.rating.as_dict(),
+            "note": self.note,
+        }
 
 
 def relative_percent(ref: float, value: float) -> float | None:
@@ -102,19 +108,48 @@ def deviation(t_ref: ArrayLike, y_ref: ArrayLike, t_cmp: ArrayLike, y_cmp: Array
     vr, vc = float(np.interp(at, t_ref, y_ref)), float(np.interp(at, t_cmp, y_cmp))
     ir, ic = _integral(t_ref, y_ref, a, b), _integral(t_cmp, y_cmp, a, b)
     diff = float(np.max(np.abs(np.interp(tr, t_cmp, y_cmp) - yr)))
-    return {"t0": a, "t1": b, "peak_ref": pr, "peak_cmp": pc, "time_of_peak_ref": tpr, "time_of_peak_cmp": tpc,
-            "peak_deviation_percent": _peak_percent(pr, pc), "at_time": at, "value_ref": vr, "value_cmp": vc,
-            "value_deviation_percent": relative_percent(vr, vc), "integral_ref": ir, "integral_cmp": ic,
-            "integral_deviation_percent": relative_percent(ir, ic), "max_abs_difference": diff}
+    return {
+        "t0": a,
+        "t1": b,
+        "peak_ref": pr,
+        "peak_cmp": pc,
+        "time_of_peak_ref": tpr,
+        "time_of_peak_cmp": tpc,
+        "peak_deviation_percent": _peak_percent(pr, pc),
+        "at_time": at,
+        "value_ref": vr,
+        "value_cmp": vc,
+        "value_deviation_percent": relative_percent(vr, vc),
+        "integral_ref": ir,
+        "integral_cmp": ic,
+        "integral_deviation_percent": relative_percent(ir, ic),
+        "max_abs_difference": diff,
+    }
 
 
-def make_pair(group: str, name: str, unit: str, t_ref: ArrayLike, y_ref: ArrayLike, t_cmp: ArrayLike,
-              y_cmp: ArrayLike, at: float | None = None,
-              time_scale: float = 1.0, rate: bool = True) -> CurvePair:
+def make_pair(
+    group: str,
+    name: str,
+    unit: str,
+    t_ref: ArrayLike,
+    y_ref: ArrayLike,
+    t_cmp: ArrayLike,
+    y_cmp: ArrayLike,
+    at: float | None = None,
+    time_scale: float = 1.0,
+    rate: bool = True,
+) -> CurvePair:
     """A CurvePair with its figures; a rating that is not defined (e.g. a
     curve that stays zero) leaves ``rating`` None and says why in ``note``."""
-    p = CurvePair(group, name, unit, np.asarray(t_ref, float), np.asarray(y_ref, float),
-                  np.asarray(t_cmp, float), np.asarray(y_cmp, float))
+    p = CurvePair(
+        group,
+        name,
+        unit,
+        np.asarray(t_ref, float),
+        np.asarray(y_ref, float),
+        np.asarray(t_cmp, float),
+        np.asarray(y_cmp, float),
+    )
     p.deviation = deviation(p.t_ref, p.y_ref, p.t_cmp, p.y_cmp, at)
     if rate:
         try:

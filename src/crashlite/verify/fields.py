@@ -38,8 +38,9 @@ class FieldStates:
     def at(self, t: float) -> np.ndarray:
         """Coordinates (n_nodes, 3) at time t, linear between states."""
         if not self.time[0] - 1e-12 <= t <= self.time[-1] * (1 + 1e-9) + 1e-12:
-            raise ValueError(f"{self.source}: time {t:.6g} is outside the field states "
-                             f"[{self.time[0]:.6g}, {self.time[-1]:.6g}]")
+            raise ValueError(
+                f"{self.source}: time {t:.6g} is outside the field states [{self.time[0]:.6g}, {self.time[-1]:.6g}]"
+            )
         k = int(np.clip(np.searchsorted(self.time, t), 1, len(self.time) - 1)) if len(self.time) > 1 else 0
         if len(self.time) == 1:
             return self.x[0]
@@ -69,10 +70,11 @@ def load_states(path: Path | str, deck: Path | str | Model | None = None) -> Fie
 
         model = deck if hasattr(deck, "nodes") else read_deck(deck)
         if len(model.nodes.ids) != x.shape[1]:
-            raise CompareError(f"{deck}: {len(model.nodes.ids)} nodes, but {p} holds states of {x.shape[1]}: "
-                           "not the deck of this run")
+            raise CompareError(
+                f"{deck}: {len(model.nodes.ids)} nodes, but {p} holds states of {x.shape[1]}: not the deck of this run"
+            )
         ids = np.asarray(model.nodes.ids, np.int64)
-    vtk = (npz.parent / "states" / "state_0000.vtk")
+    vtk = npz.parent / "states" / "state_0000.vtk"
     cells = read_cells(vtk) if vtk.is_file() else []
     return FieldStates(t, x, ids, cells, str(p))
 
@@ -132,7 +134,7 @@ def read_cells(path: Path | str) -> list[np.ndarray]:
     if i is None:
         return []
     n = int(lines[i].split()[1])
-    return [np.array(ln.split()[1:], np.int64) for ln in lines[i + 1:i + 1 + n]]
+    return [np.array(ln.split()[1:], np.int64) for ln in lines[i + 1 : i + 1 + n]]
 
 
 @dataclass
@@ -157,16 +159,23 @@ class FieldComparison:
     only_cmp: np.ndarray
 
     def summary(self) -> dict:
-        return {"time": self.time, "component": self.component, "n_common": int(len(self.ids)),
-                **self.figures, "only_ref": _id_list(self.only_ref), "only_cmp": _id_list(self.only_cmp)}
+        return {
+            "time": self.time,
+            "component": self.component,
+            "n_common": int(len(self.ids)),
+            **self.figures,
+            "only_ref": _id_list(self.only_ref),
+            "only_cmp": _id_list(self.only_cmp),
+        }
 
 
 def _id_list(ids: np.ndarray, limit: int = 50) -> dict:
     return {"count": int(len(ids)), "ids": [int(i) for i in ids[:limit]]}
 
 
-def compare_fields(ref: FieldStates, cmp: FieldStates, time: float, nodes: ArrayLike | None = None,
-                   component: str | None = None) -> FieldComparison:
+def compare_fields(
+    ref: FieldStates, cmp: FieldStates, time: float, nodes: ArrayLike | None = None, component: str | None = None
+) -> FieldComparison:
     """Compare displacements (from the first state) of two runs at ``time``
     on the nodes both have (``nodes``: the node IDs to compare, default all
     common ones); component None compares vectors, "x"/"y"/"z" one
@@ -174,11 +183,15 @@ def compare_fields(ref: FieldStates, cmp: FieldStates, time: float, nodes: Array
     lacks are listed (``only_ref``, ``only_cmp``), never matched by position."""
     for name, s in (("reference", ref), ("comparison", cmp)):
         if s.ids is None:
-            raise CompareError(f"the {name} run's field states ({s.source}) carry no node IDs: give its deck, "
-                               "nodes are matched by ID, not by position")
+            raise CompareError(
+                f"the {name} run's field states ({s.source}) carry no node IDs: give its deck, "
+                "nodes are matched by ID, not by position"
+            )
         if not s.time[0] - 1e-12 <= time <= s.time[-1] * (1 + 1e-9) + 1e-12:
-            raise CompareError(f"time {time:.6g} is outside the {name} run's field states "
-                               f"[{s.time[0]:.6g}, {s.time[-1]:.6g}] ({s.source})")
+            raise CompareError(
+                f"time {time:.6g} is outside the {name} run's field states "
+                f"[{s.time[0]:.6g}, {s.time[-1]:.6g}] ({s.source})"
+            )
     if component is not None and component not in _AXES:
         raise ValueError(f"component must be None, 'x', 'y' or 'z', got {component!r}")
     want = None if nodes is None else np.unique(np.asarray(nodes, np.int64))
@@ -189,9 +202,11 @@ def compare_fields(ref: FieldStates, cmp: FieldStates, time: float, nodes: Array
     only_c = np.setdiff1d(ids_c, ids_r)
     if len(common) == 0:
         absent = 0 if want is None else len(np.setdiff1d(want, np.union1d(ids_r, ids_c)))
-        raise CompareError(f"no node is in both runs{'' if want is None else ' among the requested ones'}: "
-                           f"{len(only_r)} only in the reference, {len(only_c)} only in the comparison"
-                           + (f", {absent} in neither" if absent else ""))
+        raise CompareError(
+            f"no node is in both runs{'' if want is None else ' among the requested ones'}: "
+            f"{len(only_r)} only in the reference, {len(only_c)} only in the comparison"
+            + (f", {absent} in neither" if absent else "")
+        )
     ir = _index(ref.ids, common)
     ic = _index(cmp.ids, common)
     ur = ref.at(time)[ir] - ref.x[0][ir]
@@ -200,21 +215,26 @@ def compare_fields(ref: FieldStates, cmp: FieldStates, time: float, nodes: Array
         ur, uc = ur[:, _AXES[component]], uc[:, _AXES[component]]
         mag_r, mag_c, diff = np.abs(ur), np.abs(uc), np.abs(uc - ur)
     else:
-        mag_r, mag_c, diff = (np.linalg.norm(ur, axis=1), np.linalg.norm(uc, axis=1),
-                              np.linalg.norm(uc - ur, axis=1))
+        mag_r, mag_c, diff = (np.linalg.norm(ur, axis=1), np.linalg.norm(uc, axis=1), np.linalg.norm(uc - ur, axis=1))
     scale = float(mag_r.max())
     if scale == 0.0:
-        raise CompareError(f"the compared nodes of the reference do not move up to t = {time:.6g}: "
-                           "no relative deviation")
+        raise CompareError(
+            f"the compared nodes of the reference do not move up to t = {time:.6g}: no relative deviation"
+        )
     k = int(np.argmax(diff))
     kr, kc = int(np.argmax(mag_r)), int(np.argmax(mag_c))
-    figures = {"max_displacement_ref": scale, "node_of_max_ref": int(common[kr]),
-               "max_displacement_cmp": float(mag_c.max()), "node_of_max_cmp": int(common[kc]),
-               "max_displacement_deviation_percent": 100.0 * (float(mag_c.max()) - scale) / scale,
-               "max_difference": float(diff[k]), "node_of_max_difference": int(common[k]),
-               "mean_difference": float(diff.mean()),
-               "max_relative_deviation_percent": 100.0 * float(diff[k]) / scale,
-               "mean_relative_deviation_percent": 100.0 * float(diff.mean()) / scale}
+    figures = {
+        "max_displacement_ref": scale,
+        "node_of_max_ref": int(common[kr]),
+        "max_displacement_cmp": float(mag_c.max()),
+        "node_of_max_cmp": int(common[kc]),
+        "max_displacement_deviation_percent": 100.0 * (float(mag_c.max()) - scale) / scale,
+        "max_difference": float(diff[k]),
+        "node_of_max_difference": int(common[k]),
+        "mean_difference": float(diff.mean()),
+        "max_relative_deviation_percent": 100.0 * float(diff[k]) / scale,
+        "mean_relative_deviation_percent": 100.0 * float(diff.mean()) / scale,
+    }
     return FieldComparison(float(time), component or "magnitude", common, ur, uc, diff, figures, only_r, only_c)
 
 

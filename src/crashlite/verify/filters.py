@@ -88,10 +88,10 @@ def cfc_filter(y: ArrayLike, dt: float, cfc: float, pad: int | None = None, time
     cols = x.reshape(n, -1)
     # odd extension keeps value and slope continuous at the ends, so the
     # filter sees no step there
-    ext = np.concatenate([2.0 * cols[:1] - cols[p:0:-1], cols, 2.0 * cols[-1:] - cols[-2:-p - 2:-1]])
+    ext = np.concatenate([2.0 * cols[:1] - cols[p:0:-1], cols, 2.0 * cols[-1:] - cols[-2 : -p - 2 : -1]])
     out = np.empty_like(ext)
     biquad_filtfilt(np.ascontiguousarray(ext), *coeffs, out)
-    return out[p:p + n].reshape(x.shape)
+    return out[p : p + n].reshape(x.shape)
 
 
 def is_uniform(t: ArrayLike, rtol: float = 1e-6) -> bool:
@@ -100,8 +100,9 @@ def is_uniform(t: ArrayLike, rtol: float = 1e-6) -> bool:
     return len(d) > 0 and float(np.ptp(d)) <= rtol * abs(float(d.mean()))
 
 
-def resample(t: ArrayLike, y: ArrayLike, dt: float | None = None, t0: float | None = None,
-             t1: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+def resample(
+    t: ArrayLike, y: ArrayLike, dt: float | None = None, t0: float | None = None, t1: float | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """Linear interpolation of (t, y) onto a uniform grid.
 
     t: (n,) strictly increasing [time]; y: (n,) or (n, m); dt: step [time],
@@ -115,16 +116,14 @@ def resample(t: ArrayLike, y: ArrayLike, dt: float | None = None, t0: float | No
     d = np.diff(t)
     if not np.all(d > 0):
         k = int(np.argmax(~(d > 0)))
-        raise ValueError(f"resample: time must increase strictly (t[{k}] = {t[k]:.6g}, "
-                         f"t[{k + 1}] = {t[k + 1]:.6g})")
+        raise ValueError(f"resample: time must increase strictly (t[{k}] = {t[k]:.6g}, t[{k + 1}] = {t[k + 1]:.6g})")
     step = float(np.median(d)) if dt is None else float(dt)
     if not step > 0:
         raise ValueError(f"resample: step {step} must be positive")
     a = t[0] if t0 is None else float(t0)
     b = t[-1] if t1 is None else float(t1)
     if a < t[0] - 1e-12 * abs(t[0] or 1.0) or b > t[-1] + 1e-9 * step or b <= a:
-        raise ValueError(f"resample: range [{a:.6g}, {b:.6g}] is not inside the signal's "
-                         f"[{t[0]:.6g}, {t[-1]:.6g}]")
+        raise ValueError(f"resample: range [{a:.6g}, {b:.6g}] is not inside the signal's [{t[0]:.6g}, {t[-1]:.6g}]")
     k = int(math.floor((b - a) / step * (1 + 1e-12))) + 1
     tu = a + step * np.arange(k)
     if y.ndim == 1:
@@ -132,8 +131,9 @@ def resample(t: ArrayLike, y: ArrayLike, dt: float | None = None, t0: float | No
     return tu, np.stack([np.interp(tu, t, y[:, j]) for j in range(y.shape[1])], axis=1)
 
 
-def filter_signal(t: ArrayLike, y: ArrayLike, cfc: float, dt: float | None = None, pad: int | None = None,
-                  time_scale: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+def filter_signal(
+    t: ArrayLike, y: ArrayLike, cfc: float, dt: float | None = None, pad: int | None = None, time_scale: float = 1.0
+) -> tuple[np.ndarray, np.ndarray]:
     """CFC-filter a signal that may be unevenly sampled.
 
     t: (n,) [time]; y: (n,) or (n, m). The signal is taken onto a uniform
@@ -159,6 +159,8 @@ def _check_class(cfc: float, dt: float) -> None:
     if not dt > 0:
         raise ValueError(f"time step must be positive, got {dt!r}")
     if DESIGN_FACTOR * cfc * dt >= 0.5:
-        raise ValueError(f"step {dt:.4g} s is too coarse for CFC {cfc:g}: the design frequency "
-                         f"{DESIGN_FACTOR * cfc:.4g} Hz must lie below the Nyquist frequency "
-                         f"{0.5 / dt:.4g} Hz (use a step below {0.5 / (DESIGN_FACTOR * cfc):.3g} s)")
+        raise ValueError(
+            f"step {dt:.4g} s is too coarse for CFC {cfc:g}: the design frequency "
+            f"{DESIGN_FACTOR * cfc:.4g} Hz must lie below the Nyquist frequency "
+            f"{0.5 / dt:.4g} Hz (use a step below {0.5 / (DESIGN_FACTOR * cfc):.3g} s)"
+        )

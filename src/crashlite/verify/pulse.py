@@ -50,8 +50,9 @@ class Pulse:
         return d
 
 
-def olc(t: ArrayLike, v: ArrayLike, free_flight: float = 65.0,
-        restraint: float = 235.0) -> tuple[float | None, float | None, float | None]:
+def olc(
+    t: ArrayLike, v: ArrayLike, free_flight: float = 65.0, restraint: float = 235.0
+) -> tuple[float | None, float | None, float | None]:
     """(OLC, t1, t2) of a forward-speed history.
 
     t (n,) [time], v (n,) [length/time], speed along the travel direction
@@ -80,10 +81,17 @@ def olc(t: ArrayLike, v: ArrayLike, free_flight: float = 65.0,
     return (u0 - float(np.interp(t2, t, v))) / (t2 - t1), t1, t2
 
 
-def crash_pulse(t: ArrayLike, velocity: ArrayLike | None = None, acceleration: ArrayLike | None = None,
-                v0: float | None = None, cfc: float | None = None,
-                free_flight: float = 65.0, restraint: float = 235.0, time_scale: float = 1.0,
-                step: float | None = None) -> Pulse:
+def crash_pulse(
+    t: ArrayLike,
+    velocity: ArrayLike | None = None,
+    acceleration: ArrayLike | None = None,
+    v0: float | None = None,
+    cfc: float | None = None,
+    free_flight: float = 65.0,
+    restraint: float = 235.0,
+    time_scale: float = 1.0,
+    step: float | None = None,
+) -> Pulse:
     """Pulse figures from a velocity or an acceleration history.
 
     t (n,) [time]; velocity (n,) [length/time], or acceleration (n,)
@@ -132,10 +140,19 @@ def crash_pulse(t: ArrayLike, velocity: ArrayLike | None = None, acceleration: A
         notes.append("the vehicle does not stop within the record: mean deceleration over the record")
     if o is None:
         notes.append("the occupant's free flight and restraint travel are not used up within the record: no OLC")
-    return Pulse(v0=float(u[0]), peak_deceleration=float(dec[ip]), time_of_peak=float(t[ip]),
-                 mean_deceleration=float((u[0] - u_end) / (t_end - t[0])), dynamic_crush=float(x[ic]),
-                 time_of_crush=float(t[ic]), time_to_zero_velocity=tz, olc=None if o is None else float(o),
-                 olc_t1=t1, olc_t2=t2, note="; ".join(notes))
+    return Pulse(
+        v0=float(u[0]),
+        peak_deceleration=float(dec[ip]),
+        time_of_peak=float(t[ip]),
+        mean_deceleration=float((u[0] - u_end) / (t_end - t[0])),
+        dynamic_crush=float(x[ic]),
+        time_of_crush=float(t[ic]),
+        time_to_zero_velocity=tz,
+        olc=None if o is None else float(o),
+        olc_t1=t1,
+        olc_t2=t2,
+        note="; ".join(notes),
+    )
 
 
 def _cumtrapz(t: np.ndarray, y: np.ndarray) -> np.ndarray:

@@ -60,20 +60,30 @@ def grade(score: float) -> str:
     return "poor"
 
 
-def common_interval(t_ref: ArrayLike, t_cmp: ArrayLike, t0: float | None = None,
-                    t1: float | None = None) -> tuple[float, float]:
+def common_interval(
+    t_ref: ArrayLike, t_cmp: ArrayLike, t0: float | None = None, t1: float | None = None
+) -> tuple[float, float]:
     """The overlap of two time axes (narrowed to [t0, t1] when given)."""
     a = max(float(t_ref[0]), float(t_cmp[0]), -math.inf if t0 is None else float(t0))
     b = min(float(t_ref[-1]), float(t_cmp[-1]), math.inf if t1 is None else float(t1))
     if not b > a:
-        raise RatingError(f"no common time range: reference covers [{t_ref[0]:.6g}, {t_ref[-1]:.6g}], "
-                          f"comparison [{t_cmp[0]:.6g}, {t_cmp[-1]:.6g}]"
-                          + ("" if t0 is None and t1 is None else f", requested [{t0}, {t1}]"))
+        raise RatingError(
+            f"no common time range: reference covers [{t_ref[0]:.6g}, {t_ref[-1]:.6g}], "
+            f"comparison [{t_cmp[0]:.6g}, {t_cmp[-1]:.6g}]"
+            + ("" if t0 is None and t1 is None else f", requested [{t0}, {t1}]")
+        )
     return a, b
 
 
-def iso_rating(t_ref: ArrayLike, y_ref: ArrayLike, t_cmp: ArrayLike, y_cmp: ArrayLike, t0: float | None = None,
-               t1: float | None = None, time_scale: float = 1.0) -> Rating:
+def iso_rating(
+    t_ref: ArrayLike,
+    y_ref: ArrayLike,
+    t_cmp: ArrayLike,
+    y_cmp: ArrayLike,
+    t0: float | None = None,
+    t1: float | None = None,
+    time_scale: float = 1.0,
+) -> Rating:
     """Rate ``y_cmp`` against ``y_ref`` by ISO/TS 18571.
 
     t_ref (n,), y_ref (n,), t_cmp (k,), y_cmp (k,): the two curves [time],
@@ -89,8 +99,10 @@ def iso_rating(t_ref: ArrayLike, y_ref: ArrayLike, t_cmp: ArrayLike, y_cmp: Arra
     if n < 20:
         raise RatingError(f"interval [{a:.6g}, {b:.6g}] holds {n} samples at 10 kHz; ISO/TS 18571 needs more")
     if n > MAX_SAMPLES:
-        raise RatingError(f"interval [{a:.6g}, {b:.6g}] holds {n} samples at 10 kHz (more than "
-                          f"{MAX_SAMPLES}): rate a shorter interval (t0, t1)")
+        raise RatingError(
+            f"interval [{a:.6g}, {b:.6g}] holds {n} samples at 10 kHz (more than "
+            f"{MAX_SAMPLES}): rate a shorter interval (t0, t1)"
+        )
     tr, yr = resample(t_ref, y_ref, step, a, b)
     _, yc = resample(t_cmp, y_cmp, step, a, b)
     tr, yr, yc = tr[:n], yr[:n], yc[:n]
@@ -106,5 +118,6 @@ def iso_rating(t_ref: ArrayLike, y_ref: ArrayLike, t_cmp: ArrayLike, y_cmp: Arra
     if not all(math.isfinite(s) for s in scores + [overall]):
         raise RatingError("the rating came out undefined (NaN): the curves are degenerate")
     z, ep, em, es = (float(s) for s in scores)
-    return Rating(z, ep, em, es, float(overall), grade(float(overall)), float(iso._n_eps) * step,
-                  a, a + (n - 1) * step, n)
+    return Rating(
+        z, ep, em, es, float(overall), grade(float(overall)), float(iso._n_eps) * step, a, a + (n - 1) * step, n
+    )

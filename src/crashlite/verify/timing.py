@@ -54,8 +54,7 @@ def elements_of_model(model: Model) -> dict[str, int]:
     return element_counts(model)
 
 
-def run_info(source: Results | Path | str, name: str | None = None,
-             deck: Path | str | Model | None = None) -> RunInfo:
+def run_info(source: Results | Path | str, name: str | None = None, deck: Path | str | Model | None = None) -> RunInfo:
     """RunInfo of a Results object, a crashlite results folder / results.npz,
     or an LS-DYNA output folder / d3hsp file; ``deck`` (path or Model)
     supplies the element counts when the source has none."""
@@ -85,13 +84,19 @@ def _from_results(res, name: str, source: str) -> RunInfo:
     """The run time compared is the time loop (``loop_time``); results of
     crashlite versions that did not record it give their whole wall time."""
     looped = res.loop_time > 0 or res.cpu_time > 0
-    return RunInfo(name, dict((res.info or {}).get("elements") or {}),
-                   float(res.time_step[-1]) if res.recorded("time_step") else float(res.dt), int(res.cycles),
-                   float(res.time[-1]) if len(res.time) else None,
-                   float(res.cpu_time) if looped else None,
-                   float(res.loop_time) if looped else float(res.wall_time), source,
-                   float(res.setup_time) if looped else None, float(res.compile_time) if looped else None,
-                   float(res.wall_time))
+    return RunInfo(
+        name,
+        dict((res.info or {}).get("elements") or {}),
+        float(res.time_step[-1]) if res.recorded("time_step") else float(res.dt),
+        int(res.cycles),
+        float(res.time[-1]) if len(res.time) else None,
+        float(res.cpu_time) if looped else None,
+        float(res.loop_time) if looped else float(res.wall_time),
+        source,
+        float(res.setup_time) if looped else None,
+        float(res.compile_time) if looped else None,
+        float(res.wall_time),
+    )
 
 
 def _from_npz(path: Path, name: str) -> RunInfo:
@@ -103,12 +108,17 @@ def _from_npz(path: Path, name: str) -> RunInfo:
         t = z["time"] if "time" in keys else np.zeros(0)
         steps = z["time_step"] if "time_step" in keys else np.zeros(0)
         res = SimpleNamespace(
-            info={"elements": {k[len("info_elements_"):]: int(z[k]) for k in keys if k.startswith("info_elements_")}},
-            time=t, dt=float(z["dt"]) if "dt" in keys else (float(steps[-1]) if steps.size else 0.0),
+            info={"elements": {k[len("info_elements_") :]: int(z[k]) for k in keys if k.startswith("info_elements_")}},
+            time=t,
+            dt=float(z["dt"]) if "dt" in keys else (float(steps[-1]) if steps.size else 0.0),
             cycles=int(z["cycles"]) if "cycles" in keys else 0,
-            recorded=lambda name: name == "time_step" and steps.size == t.size and steps.size > 0, time_step=steps,
-            **{k: float(z[k]) if k in keys else 0.0
-               for k in ("wall_time", "loop_time", "cpu_time", "setup_time", "compile_time")})
+            recorded=lambda name: name == "time_step" and steps.size == t.size and steps.size > 0,
+            time_step=steps,
+            **{
+                k: float(z[k]) if k in keys else 0.0
+                for k in ("wall_time", "loop_time", "cpu_time", "setup_time", "compile_time")
+            },
+        )
     return _from_results(res, name, str(path))
 
 
@@ -128,6 +138,7 @@ def parse_d3hsp(text: str, name: str = "LS-DYNA", source: str = "d3hsp") -> RunI
     ``Problem time``/``Problem cycle``, ``Total CPU time = … seconds``,
     ``Elapsed time … seconds for … cycles`` and ``number of … elements``
     lines it holds."""
+
     def last(rx):
         m = rx.findall(text)
         return float(m[-1].replace("D", "E").replace("d", "e")) if m else None
@@ -167,14 +178,25 @@ def timing_table(runs: list[RunInfo], reference: int = 0) -> list[dict]:
     rows = []
     for r in runs:
         share = 100.0 * r.n_elements / ref.n_elements if ref.n_elements else None
-        rows.append({"name": r.name, "elements": r.n_elements, "elements_by_type": dict(r.elements),
-                     "element_share_percent": share, "time_step": r.time_step, "cycles": r.cycles,
-                     "end_time": r.end_time, "cpu_time": r.cpu_time, "wall_time": r.wall_time,
-                     "setup_time": r.setup_time, "compile_time": r.compile_time,
-                     "total_wall_time": r.total_wall_time,
-                     "cpu_reduction_percent": reduction(ref.cpu_time, r.cpu_time),
-                     "wall_reduction_percent": reduction(ref.wall_time, r.wall_time),
-                     "speedup": (ref.wall_time / r.wall_time if ref.wall_time and r.wall_time else None)})
+        rows.append(
+            {
+                "name": r.name,
+                "elements": r.n_elements,
+                "elements_by_type": dict(r.elements),
+                "element_share_percent": share,
+                "time_step": r.time_step,
+                "cycles": r.cycles,
+                "end_time": r.end_time,
+                "cpu_time": r.cpu_time,
+                "wall_time": r.wall_time,
+                "setup_time": r.setup_time,
+                "compile_time": r.compile_time,
+                "total_wall_time": r.total_wall_time,
+                "cpu_reduction_percent": reduction(ref.cpu_time, r.cpu_time),
+                "wall_reduction_percent": reduction(ref.wall_time, r.wall_time),
+                "speedup": (ref.wall_time / r.wall_time if ref.wall_time and r.wall_time else None),
+            }
+        )
     return rows
 
 

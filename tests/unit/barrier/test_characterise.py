@@ -17,11 +17,14 @@ def _sampled(curve: BlockCurve, depth: float, upto: float = 0.95, n: int = 4000,
     return xs, fs
 
 
-@pytest.mark.parametrize("curve, depth", [
-    (BlockCurve(plateau=500e3, peak=1000e3, rise=3.0, drop_end=12.0), 90.0),   # the paper's bumper
-    (BlockCurve(plateau=230e3, peak=230e3), 450.0),                            # the paper's main block
-    (BlockCurve(plateau=300e3, peak=420e3, rise=5.0, drop_end=20.0, compaction=0.7, full=0.85), 300.0),
-])
+@pytest.mark.parametrize(
+    "curve, depth",
+    [
+        (BlockCurve(plateau=500e3, peak=1000e3, rise=3.0, drop_end=12.0), 90.0),  # the paper's bumper
+        (BlockCurve(plateau=230e3, peak=230e3), 450.0),  # the paper's main block
+        (BlockCurve(plateau=300e3, peak=420e3, rise=5.0, drop_end=20.0, compaction=0.7, full=0.85), 300.0),
+    ],
+)
 def test_a_sampled_curve_reduces_to_itself(curve, depth):
     x, f = _sampled(curve, depth)
     r = reduce_curve(x, f, depth, curve)
@@ -62,6 +65,6 @@ def test_curves_file_round_trip_into_the_spec(tmp_path):
     spec = characterised_spec(curves)
     assert spec.main.curve == k and spec.bumper.curve == ODBSpec().bumper.curve
     bad = tmp_path / "bad.json"
-    bad.write_text("{\"main block\": {}}")
+    bad.write_text('{"main block": {}}')
     with pytest.raises(ValueError, match="bad.json"):
         read_curves(bad)

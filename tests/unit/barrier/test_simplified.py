@@ -95,12 +95,29 @@ def test_bumper_must_fit_the_block():
 def test_cli_writes_a_placed_barrier_and_a_runnable_impactor_case(tmp_path, capsys):
     from crashlite.cli import main
 
-    assert main(["barrier", "simplified", "-o", str(tmp_path / "odb.k"), "--vehicle-width", "1700",
-                 "--id-offset", "5000000"]) == 0
+    assert (
+        main(
+            [
+                "barrier",
+                "simplified",
+                "-o",
+                str(tmp_path / "odb.k"),
+                "--vehicle-width",
+                "1700",
+                "--id-offset",
+                "5000000",
+            ]
+        )
+        == 0
+    )
     m = read_deck(tmp_path / "odb.k")
     assert len(m.discretes) == 1080 and m.nodes.ids.min() > 5_000_000
     assert m.nodes.xyz[:, 1].min() == pytest.approx(850.0 - 0.4 * 1700.0)
-    assert main(["barrier", "impactor", "-o", str(tmp_path / "imp"), "--overlap", "40", "--no-cladding",
-                 "--end-time", "20"]) == 0
+    assert (
+        main(
+            ["barrier", "impactor", "-o", str(tmp_path / "imp"), "--overlap", "40", "--no-cladding", "--end-time", "20"]
+        )
+        == 0
+    )
     assert main(["run", str(tmp_path / "imp" / "main.k"), "-o", str(tmp_path / "out"), "--quiet"]) == 0
     assert "energy ratio" in capsys.readouterr().out

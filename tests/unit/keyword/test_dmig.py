@@ -23,10 +23,12 @@ def test_symmetric_matrix_round_trip_to_ten_digits(tmp_path):
 
 
 def test_small_field_with_nastran_exponents(tmp_path):
-    text = ("DMIG    STIF    0       6       2\n"
-            "DMIG    STIF    27      1               27      1       3.+5\n"
-            "        28      1       -1.5+5\n"
-            "DMIG    STIF    28      1               28      1       2.5+5\n")
+    text = (
+        "DMIG    STIF    0       6       2\n"
+        "DMIG    STIF    27      1               27      1       3.+5\n"
+        "        28      1       -1.5+5\n"
+        "DMIG    STIF    28      1               28      1       2.5+5\n"
+    )
     (tmp_path / "s.dmig").write_text(text)
     dofs, k = read_dmig(tmp_path / "s.dmig")["STIF"]
     np.testing.assert_array_equal(dofs, [[27, 1], [28, 1]])
@@ -49,8 +51,9 @@ def test_deck_written_elsewhere_still_finds_its_matrix(tmp_path):
 
     (tmp_path / "a").mkdir()
     write_dmig(tmp_path / "a" / "m.dmig", {"K": (np.array([[1, 1], [2, 1]]), np.array([[1.0, -1.0], [-1.0, 1.0]]))})
-    (tmp_path / "a" / "x.k").write_text("*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n*ELEMENT_DIRECT_MATRIX_INPUT\n5,1\n"
-                                        "m.dmig\n,,K\n*END\n")
+    (tmp_path / "a" / "x.k").write_text(
+        "*KEYWORD\n*NODE\n1,0,0,0\n2,1,0,0\n*ELEMENT_DIRECT_MATRIX_INPUT\n5,1\nm.dmig\n,,K\n*END\n"
+    )
     m = read_deck(tmp_path / "a" / "x.k")
     out = write_deck(m, tmp_path / "b" / "y.k")[0]
     name = read_deck(out).find("ELEMENT_DIRECT_MATRIX_INPUT")[0]["filename"]

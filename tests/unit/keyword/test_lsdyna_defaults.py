@@ -17,9 +17,23 @@ from crashlite.keyword.errors import Collector
 from crashlite.keyword.reader import read_records
 from crashlite.keyword.schema import INT, STR, Record, registered
 
-_CONTACT = {"dt": 1e20, "sfs": 1.0, "sfm": 1.0, "sfst": 1.0, "sfmt": 1.0, "fsf": 1.0, "vsf": 1.0,
-            "sofscl": 0.1, "maxpar": 1.025, "sbopt": 2, "depth": 2, "frcfrq": 1, "igap": 1, "fricsf": 1.0,
-            "fstol": 2.0}
+_CONTACT = {
+    "dt": 1e20,
+    "sfs": 1.0,
+    "sfm": 1.0,
+    "sfst": 1.0,
+    "sfmt": 1.0,
+    "fsf": 1.0,
+    "vsf": 1.0,
+    "sofscl": 0.1,
+    "maxpar": 1.025,
+    "sbopt": 2,
+    "depth": 2,
+    "frcfrq": 1,
+    "igap": 1,
+    "fricsf": 1.0,
+    "fstol": 2.0,
+}
 _MOTION = {"sf": 1.0, "death": 1e28}
 _DATABASE = {"ioopt": 1}
 
@@ -28,8 +42,11 @@ ZERO_READS: dict[str, dict] = {
     "BOUNDARY_PRESCRIBED_MOTION_NODE": _MOTION,
     "BOUNDARY_PRESCRIBED_MOTION_SET": _MOTION,
     "BOUNDARY_PRESCRIBED_MOTION_RIGID": _MOTION,
-    "LOAD_BODY_X": {"sf": 1.0}, "LOAD_BODY_Y": {"sf": 1.0}, "LOAD_BODY_Z": {"sf": 1.0},
-    "LOAD_NODE_POINT": {"sf": 1.0}, "LOAD_NODE_SET": {"sf": 1.0},
+    "LOAD_BODY_X": {"sf": 1.0},
+    "LOAD_BODY_Y": {"sf": 1.0},
+    "LOAD_BODY_Z": {"sf": 1.0},
+    "LOAD_NODE_POINT": {"sf": 1.0},
+    "LOAD_NODE_SET": {"sf": 1.0},
     "RIGIDWALL_PLANAR": {"death": 1e20, "rwksf": 1.0},
     "RIGIDWALL_GEOMETRIC_CYLINDER": {"death": 1e20, "ro": 1e-9, "e": 1e-4, "pr": 0.3},
     "CONTACT_AUTOMATIC_SINGLE_SURFACE": _CONTACT,
@@ -41,15 +58,23 @@ ZERO_READS: dict[str, dict] = {
     "CONSTRAINED_GENERALIZED_WELD_SPOT": {"tfail": 1e20, "epsf": 1e20},
     "CONTROL_TERMINATION": {"endmas": 1e8},
     "CONTROL_TIMESTEP": {"tssfac": 0.9},
-    "CONTROL_ENERGY": {"hgen": 1, "rwen": 2, "slnten": 1, "rylen": 1, "irgen": 2, "maten": 1, "drlen": 1,
-                       "disen": 1},
+    "CONTROL_ENERGY": {"hgen": 1, "rwen": 2, "slnten": 1, "rylen": 1, "irgen": 2, "maten": 1, "drlen": 1, "disen": 1},
     "CONTROL_HOURGLASS": {"ihq": 1, "qh": 0.1},
-    "CONTROL_CONTACT": {"slsfac": 0.1, "islchk": 1, "penopt": 1, "orien": 1, "xpene": 4.0, "ptscl": 1.0,
-                        "rwgaps": 1, "rwksf": 1.0},
-    "CONTROL_SHELL": {"wrpang": 20.0, "irnxx": -1, "theory": 2, "bwc": 2, "miter": 1, "rotascl": 1.0,
-                      "cstyp6": 1},
-    **{f"DATABASE_{db}": _DATABASE for db in ("GLSTAT", "MATSUM", "NODOUT", "RWFORC", "SECFORC", "DEFORC",
-                                             "RCFORC", "SPCFORC")},
+    "CONTROL_CONTACT": {
+        "slsfac": 0.1,
+        "islchk": 1,
+        "penopt": 1,
+        "orien": 1,
+        "xpene": 4.0,
+        "ptscl": 1.0,
+        "rwgaps": 1,
+        "rwksf": 1.0,
+    },
+    "CONTROL_SHELL": {"wrpang": 20.0, "irnxx": -1, "theory": 2, "bwc": 2, "miter": 1, "rotascl": 1.0, "cstyp6": 1},
+    **{
+        f"DATABASE_{db}": _DATABASE
+        for db in ("GLSTAT", "MATSUM", "NODOUT", "RWFORC", "SECFORC", "DEFORC", "RCFORC", "SPCFORC")
+    },
     "MAT_PLASTIC_KINEMATIC": {"fs": 1e20},  # 0: no erosion
     "MAT_PIECEWISE_LINEAR_PLASTICITY": {"fail": 1e21},  # 0: failure not considered
     "MAT_HONEYCOMB": {"mu": 0.05, "macf": 1},
@@ -170,13 +195,18 @@ def test_every_field_reads_as_lsdyna(tmp_path, kw, fill):
         if f.kind == STR and want is None:
             assert got in (None, ""), (kw, f.name, got)
             continue
-        assert got == pytest.approx(want), f"*{kw} {f.name.upper()}: {fill or 'blank'} reads {got}, " \
-                                          f"LS-DYNA {want}"
+        assert got == pytest.approx(want), f"*{kw} {f.name.upper()}: {fill or 'blank'} reads {got}, LS-DYNA {want}"
 
 
-@pytest.mark.parametrize("kw", [k for k in KEYWORDS if registered()[k].layout(
-    _SAMPLE_OPTIONS.get(k, frozenset())).head and not registered()[k].layout(
-    _SAMPLE_OPTIONS.get(k, frozenset())).row])
+@pytest.mark.parametrize(
+    "kw",
+    [
+        k
+        for k in KEYWORDS
+        if registered()[k].layout(_SAMPLE_OPTIONS.get(k, frozenset())).head
+        and not registered()[k].layout(_SAMPLE_OPTIONS.get(k, frozenset())).row
+    ],
+)
 def test_cards_missing_before_the_next_keyword_take_their_defaults(tmp_path, kw):
     """Only the first card written: every later card whose fields all have
     defaults reads as blank (LS-DYNA reads as far as the deck goes)."""

@@ -7,7 +7,9 @@ from crashlite.cli import main
 
 
 def test_all_problems_reported_together(deck):
-    p = deck("bad.k", """
+    p = deck(
+        "bad.k",
+        """
         *KEYWORD
         *NODE
                1             0.0             0.0             0.0
@@ -24,7 +26,8 @@ def test_all_problems_reported_together(deck):
         *INCLUDE
         missing.k
         *END
-        """)
+        """,
+    )
     with pytest.raises(DeckError) as e:
         read_deck(p)
     msgs = [str(x) for x in e.value.problems]
@@ -38,7 +41,9 @@ def test_all_problems_reported_together(deck):
 
 
 def test_missing_card_and_bad_integer(deck):
-    p = deck("bad2.k", """
+    p = deck(
+        "bad2.k",
+        """
         *KEYWORD
         *MAT_ELASTIC
                1.5     1e-09    2000.0       0.3
@@ -46,7 +51,8 @@ def test_missing_card_and_bad_integer(deck):
                  0
                  0         0         0         0         0         1
         *END
-        """)
+        """,
+    )
     with pytest.raises(DeckError) as e:
         read_deck(p)
     text = str(e.value)

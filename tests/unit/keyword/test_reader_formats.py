@@ -42,8 +42,7 @@ def test_fixed_and_free_rows(deck):
 
 
 def test_touching_fields_are_split_by_column(deck):
-    text = PLATE.replace("         1   7.85e-9  210000.0       0.3",
-                         "         11.00000E-7  210000.0       0.3")
+    text = PLATE.replace("         1   7.85e-9  210000.0       0.3", "         11.00000E-7  210000.0       0.3")
     m = read_deck(deck("touch.k", text))
     assert m.materials[1]["mid"] == 1
     assert m.materials[1]["ro"] == 1e-7
@@ -77,12 +76,25 @@ def test_fortran_exponents_and_integral_reals(deck):
 def test_long_format_deck_and_suffixes(deck):
     node_long = f"{1:20d}{0.1234567890123456!r:>20}{2.0:20}{3.0:20}"
     solid_i10 = "".join(f"{v:10d}" for v in (1, 1, 1, 2, 1, 1, 1, 1, 1, 1))
-    text = "\n".join([
-        "*KEYWORD LONG=Y", "*NODE", node_long,
-        "*NODE-", f"{2:8d}{4.0:16}{5.0:16}{6.0:16}",
-        "*ELEMENT_SOLID%", solid_i10,
-        "*PART", "block", "1,1,1", "*SECTION_SOLID", "1,1", "*MAT_ELASTIC", "1,1e-9,1.,0.3",
-        "*END"])
+    text = "\n".join(
+        [
+            "*KEYWORD LONG=Y",
+            "*NODE",
+            node_long,
+            "*NODE-",
+            f"{2:8d}{4.0:16}{5.0:16}{6.0:16}",
+            "*ELEMENT_SOLID%",
+            solid_i10,
+            "*PART",
+            "block",
+            "1,1,1",
+            "*SECTION_SOLID",
+            "1,1",
+            "*MAT_ELASTIC",
+            "1,1e-9,1.,0.3",
+            "*END",
+        ]
+    )
     m = read_deck(deck("long.k", text))
     assert m.nodes.xyz.tolist() == [[0.1234567890123456, 2.0, 3.0], [4.0, 5.0, 6.0]]
     assert m.solids.nodes.tolist() == [[0, 1, 0, 0, 0, 0, 0, 0]]
@@ -163,14 +175,30 @@ def test_split_writes_mesh_include(deck, tmp_path):
 
 
 def test_two_card_solids_and_eight_node_shells(deck):
-    text = "\n".join([
-        "*KEYWORD", "*NODE", *[f"{i:8d}{float(i):16}{0.0:16}{0.0:16}" for i in range(1, 9)],
-        "*ELEMENT_SOLID", f"{1:8d}{1:8d}", "".join(f"{i:8d}" for i in range(1, 9)),
-        "*PART", "b", "1,1,1", "*SECTION_SOLID", "1,1", "*MAT_ELASTIC", "1,1e-9,1.,0.3", "*END"])
+    text = "\n".join(
+        [
+            "*KEYWORD",
+            "*NODE",
+            *[f"{i:8d}{float(i):16}{0.0:16}{0.0:16}" for i in range(1, 9)],
+            "*ELEMENT_SOLID",
+            f"{1:8d}{1:8d}",
+            "".join(f"{i:8d}" for i in range(1, 9)),
+            "*PART",
+            "b",
+            "1,1,1",
+            "*SECTION_SOLID",
+            "1,1",
+            "*MAT_ELASTIC",
+            "1,1e-9,1.,0.3",
+            "*END",
+        ]
+    )
     m = read_deck(deck("two.k", text))
     assert m.solids.nodes.tolist() == [list(range(8))]
-    bad = text.replace("*ELEMENT_SOLID", "*ELEMENT_SHELL\n" + "".join(f"{i:8d}" for i in (5, 1, 1, 2, 3, 4, 5, 6, 7, 8))
-                       + "\n*ELEMENT_SOLID")
+    bad = text.replace(
+        "*ELEMENT_SOLID",
+        "*ELEMENT_SHELL\n" + "".join(f"{i:8d}" for i in (5, 1, 1, 2, 3, 4, 5, 6, 7, 8)) + "\n*ELEMENT_SOLID",
+    )
     with pytest.raises(DeckError, match="8-node shells are not supported"):
         read_deck(deck("bad.k", bad))
 

@@ -22,6 +22,7 @@ def _text(path):
 
 # ---------------------------------------------------------------- crashes found by the fuzzer
 
+
 def test_unreadable_definition_id_is_reported_not_a_traceback(deck):
     # the PART's PID unreadable: it used to enter model.parts under None and
     # crash the reference check (TypeError in references.py)
@@ -33,8 +34,9 @@ def test_unreadable_definition_id_is_reported_not_a_traceback(deck):
 def test_blank_definition_id_is_an_error_naming_the_field(deck):
     p = deck("m.k", SPRING.replace("*MAT_SPRING_ELASTIC\n         1", "*MAT_SPRING_ELASTIC\n          "))
     probs = _problems(p)
-    assert any(x.keyword == "MAT_SPRING_ELASTIC" and x.field == "MID" and "blank" in x.message
-               and x.line == 13 for x in probs)
+    assert any(
+        x.keyword == "MAT_SPRING_ELASTIC" and x.field == "MID" and "blank" in x.message and x.line == 13 for x in probs
+    )
 
 
 def test_index_map_of_an_empty_query():
@@ -56,8 +58,7 @@ def test_include_transform_offset_past_64_bits(deck):
     deck("part.k", "*NODE\n       1             0.0             0.0             0.0\n")
     p = deck("m.k", "*KEYWORD\n*INCLUDE_TRANSFORM\npart.k\n1e300\n*END\n")
     probs = _problems(p)
-    assert any(x.keyword == "INCLUDE_TRANSFORM" and x.field == "IDNOFF" and "64-bit" in x.message
-               for x in probs)
+    assert any(x.keyword == "INCLUDE_TRANSFORM" and x.field == "IDNOFF" and "64-bit" in x.message for x in probs)
 
 
 def test_include_transform_offset_taking_an_id_past_64_bits(deck):
@@ -74,6 +75,7 @@ def test_include_transform_fractional_offset_is_an_error(deck):
 
 
 # ---------------------------------------------------------------- issue 35: decks read wrong without a word
+
 
 def _pulse():
     from importlib import resources
@@ -108,7 +110,9 @@ def test_utf8_bom_keeps_the_first_keyword(tmp_path):
     # *INITIAL_VELOCITY_NODE first: with the BOM glued to it, it used to be dropped
     iv = b"*INITIAL_VELOCITY_NODE\n         2  -15555.6       0.0       0.0\n"
     body = text.replace(b"*KEYWORD\n", b"").replace(
-        b"*INITIAL_VELOCITY_NODE\n$#     nid        vx        vy        vz\n         2      -&v0       0.0       0.0\n", b"")
+        b"*INITIAL_VELOCITY_NODE\n$#     nid        vx        vy        vz\n         2      -&v0       0.0       0.0\n",
+        b"",
+    )
     (tmp_path / "bom.k").write_bytes(b"\xef\xbb\xbf" + iv + body)
     m = read_deck(tmp_path / "bom.k")
     ivs = m.find("INITIAL_VELOCITY_NODE")
@@ -123,7 +127,9 @@ def test_utf16_deck_is_refused(tmp_path):
 
 def test_integer_past_64_bits_in_a_long_format_shell_row(deck):
     big = "18446744073709551619"  # 2**64 + 3: used to wrap round to node 3
-    p = deck("m.k", f"""\
+    p = deck(
+        "m.k",
+        f"""\
 *KEYWORD LONG=Y
 *NODE
                    1                 0.0                 0.0                 0.0
@@ -133,14 +139,17 @@ def test_integer_past_64_bits_in_a_long_format_shell_row(deck):
 *ELEMENT_SHELL
                    1                   1                   1                   2{big:>20}                   4
 *END
-""")
+""",
+    )
     probs = _problems(p)
-    assert any(x.line == 8 and x.keyword == "ELEMENT_SHELL" and x.field == "N3" and "64-bit" in x.message
-               for x in probs), probs
+    assert any(
+        x.line == 8 and x.keyword == "ELEMENT_SHELL" and x.field == "N3" and "64-bit" in x.message for x in probs
+    ), probs
 
 
-@pytest.mark.parametrize("big", ["18446744073709551700", "9223372036854775808", "-9223372036854775809",
-                                 "1e19", "99999999999999999999e0"])
+@pytest.mark.parametrize(
+    "big", ["18446744073709551700", "9223372036854775808", "-9223372036854775809", "1e19", "99999999999999999999e0"]
+)
 def test_integer_past_64_bits_in_a_free_format_spring(deck, big):
     p = deck("m.k", SPRING.replace("       1       1       1       2\n", f"1,1,1,{big}\n"))
     probs = _problems(p)
@@ -149,25 +158,43 @@ def test_integer_past_64_bits_in_a_free_format_spring(deck, big):
 
 def test_largest_64_bit_id_reads(deck):
     big = 2**63 - 1
-    p = deck("m.k", SPRING.replace("       2             1.0", f"{big},1.0,0.0,0.0\n$", 1)
-             .replace("       1       1       1       2\n", f"1,1,1,{big}\n"))
+    p = deck(
+        "m.k",
+        SPRING.replace("       2             1.0", f"{big},1.0,0.0,0.0\n$", 1).replace(
+            "       1       1       1       2\n", f"1,1,1,{big}\n"
+        ),
+    )
     m = read_deck(p)
     assert int(m.nodes.ids[1]) == big
 
 
-@pytest.mark.parametrize("tc, rc, field, shown", [
-    ("300", "0", "TC", "300"), ("-12", "0", "TC", "-12"), ("8", "0", "TC", "8"), ("0", "9", "RC", "9")])
+@pytest.mark.parametrize(
+    "tc, rc, field, shown",
+    [("300", "0", "TC", "300"), ("-12", "0", "TC", "-12"), ("8", "0", "TC", "8"), ("0", "9", "RC", "9")],
+)
 def test_constraint_codes_out_of_range(deck, tc, rc, field, shown):
-    p = deck("m.k", SPRING.replace("       2             1.0             0.0             0.0",
-                                    f"       2             1.0             0.0             0.0{tc:>8}{rc:>8}"))
+    p = deck(
+        "m.k",
+        SPRING.replace(
+            "       2             1.0             0.0             0.0",
+            f"       2             1.0             0.0             0.0{tc:>8}{rc:>8}",
+        ),
+    )
     probs = _problems(p)
-    assert any(x.keyword == "NODE" and x.field == field and f"node 2: {field} = {shown} is not a constraint code"
-               in x.message for x in probs), probs
+    assert any(
+        x.keyword == "NODE" and x.field == field and f"node 2: {field} = {shown} is not a constraint code" in x.message
+        for x in probs
+    ), probs
 
 
 def test_constraint_codes_in_range_read(deck):
-    p = deck("m.k", SPRING.replace("       2             1.0             0.0             0.0",
-                                    "       2             1.0             0.0             0.0       7       5"))
+    p = deck(
+        "m.k",
+        SPRING.replace(
+            "       2             1.0             0.0             0.0",
+            "       2             1.0             0.0             0.0       7       5",
+        ),
+    )
     m = read_deck(p)
     assert m.nodes.tc.tolist() == [0, 7] and m.nodes.rc.tolist() == [0, 5]
 
@@ -182,8 +209,9 @@ def test_node_id_zero_or_negative(deck, nid):
 def test_element_id_zero(deck):
     p = deck("m.k", SPRING.replace("       1       1       1       2\n", "       0       1       1       2\n"))
     probs = _problems(p)
-    assert any(x.keyword == "ELEMENT_DISCRETE" and x.field == "EID" and "discrete ID 0" in x.message
-               for x in probs), probs
+    assert any(x.keyword == "ELEMENT_DISCRETE" and x.field == "EID" and "discrete ID 0" in x.message for x in probs), (
+        probs
+    )
 
 
 @pytest.mark.parametrize("value", [b"\xa0.85e-09", b"1\xa0000.0", b"1000.0\xa0", b"1_000.0"])
@@ -197,8 +225,9 @@ def test_no_break_space_or_underscore_in_a_number(tmp_path, value):
 
 
 def test_no_break_space_in_a_node_row_and_a_parameter(tmp_path):
-    text = SPRING.encode().replace(b"             1.0             0.0             0.0",
-                                    b"          \xa0.85e-09             0.0             0.0")
+    text = SPRING.encode().replace(
+        b"             1.0             0.0             0.0", b"          \xa0.85e-09             0.0             0.0"
+    )
     text = text.replace(b"*KEYWORD\n", b"*KEYWORD\n*PARAMETER\nR a        \xa01.0\n")
     (tmp_path / "m.k").write_bytes(text)
     probs = _problems(tmp_path / "m.k")
@@ -206,14 +235,17 @@ def test_no_break_space_in_a_node_row_and_a_parameter(tmp_path):
     assert any(x.keyword == "PARAMETER" and x.field == "VAL" and x.line == 3 for x in probs), probs
 
 
-@pytest.mark.parametrize("content, says", [
-    (bytes(range(256)) * 4, "binary data"),
-    (b"\x00" * 1000, "binary data"),
-    (bytes(range(1, 32)) * 40, "binary data"),
-    (b"just some words\nand more\n", "no keyword"),
-    (b"", "empty"),
-    (b"$ only a comment\n\n", "no keyword"),
-])
+@pytest.mark.parametrize(
+    "content, says",
+    [
+        (bytes(range(256)) * 4, "binary data"),
+        (b"\x00" * 1000, "binary data"),
+        (bytes(range(1, 32)) * 40, "binary data"),
+        (b"just some words\nand more\n", "no keyword"),
+        (b"", "empty"),
+        (b"$ only a comment\n\n", "no keyword"),
+    ],
+)
 def test_non_deck_main_file_is_refused(tmp_path, content, says):
     (tmp_path / "x.k").write_bytes(content)
     probs = _problems(tmp_path / "x.k")
@@ -233,10 +265,14 @@ def test_blank_include_is_an_error(deck, card):
     assert any(x.keyword.startswith("INCLUDE") and x.field == "FILENAME" and x.line == 14 for x in probs), probs
 
 
-@pytest.mark.parametrize("content, says", [
-    (bytes(range(256)), "binary data"), (b"\x00" * 64, "binary data"),
-    (b"results of something\n1 2 3\n", "no keyword"),
-])
+@pytest.mark.parametrize(
+    "content, says",
+    [
+        (bytes(range(256)), "binary data"),
+        (b"\x00" * 64, "binary data"),
+        (b"results of something\n1 2 3\n", "no keyword"),
+    ],
+)
 def test_include_of_a_non_deck_file_is_an_error(tmp_path, content, says):
     (tmp_path / "other.dat").write_bytes(content)
     (tmp_path / "m.k").write_bytes(SPRING.replace("*END\n", "*INCLUDE\nother.dat\n*END\n").encode())
@@ -317,8 +353,11 @@ def test_include_chain_of_moderate_depth_reads(tmp_path):
 
 
 def test_fixed_format_expression_with_a_comma(deck):
-    p = deck("m.k", "*KEYWORD\n*PARAMETER\nR t              1.5\n*PARAMETER_EXPRESSION\n"
-                    "R s       max(t, 2.0)*2\nR u,min(t,1.0)\n*END\n")
+    p = deck(
+        "m.k",
+        "*KEYWORD\n*PARAMETER\nR t              1.5\n*PARAMETER_EXPRESSION\n"
+        "R s       max(t, 2.0)*2\nR u,min(t,1.0)\n*END\n",
+    )
     params = {x.name: x.value for x in read_deck(p).parameters}
     assert params["s"] == 4.0 and params["u"] == 1.0
 

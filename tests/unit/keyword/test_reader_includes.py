@@ -17,7 +17,9 @@ $ cards 2-4 blank: defaults
 
 
 def test_acceptance_relative_include_params_expression_thickness_touching(deck):
-    deck("model/mesh/plate.k", """
+    deck(
+        "model/mesh/plate.k",
+        """
         *KEYWORD
         *NODE
                1             0.0             0.0             0.0
@@ -28,9 +30,12 @@ def test_acceptance_relative_include_params_expression_thickness_touching(deck):
                1       1       1       2       3       4
                      1.1             1.2             1.3             1.4            30.0
         *END
-        """)
+        """,
+    )
     deck("model/props.k", "*KEYWORD\n*PART\nplate\n         1         1         1" + MAT_SEC + "*END\n")
-    main = deck("model/main.k", """
+    main = deck(
+        "model/main.k",
+        """
         *KEYWORD
         *PARAMETER
         r thk            2.0i n                3
@@ -44,7 +49,8 @@ def test_acceptance_relative_include_params_expression_thickness_touching(deck):
         props.k
         plate.k
         *END
-        """)
+        """,
+    )
     m = read_deck(main)
     assert m.sections[1]["t1"] == 2.0
     mat = m.materials[1]
@@ -52,40 +58,48 @@ def test_acceptance_relative_include_params_expression_thickness_touching(deck):
     np.testing.assert_array_equal(m.shells.thickness, [[1.1, 1.2, 1.3, 1.4]])
     assert m.shells.beta[0] == 30.0
     params = {p.name: (p.type, p.value) for p in m.parameters}
-    assert params == {"thk": ("R", 2.0), "n": ("I", 3), "base": ("R", 200.0),
-                      "sigy": ("R", 300.0), "twice": ("I", 6)}
+    assert params == {"thk": ("R", 2.0), "n": ("I", 3), "base": ("R", 200.0), "sigy": ("R", 300.0), "twice": ("I", 6)}
     assert len(m.files) == 3
 
 
 def test_negative_parameter_reference(deck):
-    p = deck("neg.k", """
+    p = deck(
+        "neg.k",
+        """
         *KEYWORD
         *PARAMETER
         R x       5.0
         *NODE
                1             &x             -&x             0.0
         *END
-        """)
+        """,
+    )
     assert read_deck(p).nodes.xyz[0].tolist() == [5.0, -5.0, 0.0]
 
 
 def test_local_parameters_do_not_leak(deck):
-    deck("inc.k", """
+    deck(
+        "inc.k",
+        """
         *KEYWORD
         *PARAMETER_LOCAL
         R y       2.0
         *NODE
                1             &y             0.0             0.0
         *END
-        """)
-    main = deck("main.k", """
+        """,
+    )
+    main = deck(
+        "main.k",
+        """
         *KEYWORD
         *INCLUDE
         inc.k
         *NODE
                2             &y             0.0             0.0
         *END
-        """)
+        """,
+    )
     with pytest.raises(DeckError) as e:
         read_deck(main)
     assert "undefined parameter '&y'" in str(e.value)
@@ -93,7 +107,9 @@ def test_local_parameters_do_not_leak(deck):
 
 
 def test_include_transform_offsets_and_translation(deck):
-    deck("part.k", """
+    deck(
+        "part.k",
+        """
         *KEYWORD
         *NODE
                1             0.0             0.0             0.0
@@ -110,8 +126,11 @@ def test_include_transform_offsets_and_translation(deck):
         *MAT_ELASTIC
                  1     1e-09    2000.0       0.3
         *END
-        """)
-    main = deck("main.k", """
+        """,
+    )
+    main = deck(
+        "main.k",
+        """
         *KEYWORD
         *INCLUDE
         part.k
@@ -129,7 +148,8 @@ def test_include_transform_offsets_and_translation(deck):
                  5
         TRANSL          0.0       0.0     500.0
         *END
-        """)
+        """,
+    )
     m = read_deck(main)
     assert m.nodes.ids.tolist() == [1, 2, 3, 101, 102, 103]
     np.testing.assert_array_equal(m.nodes.xyz[3:], [[0, 0, 500], [10, 0, 500], [10, 10, 500]])
@@ -140,10 +160,14 @@ def test_include_transform_offsets_and_translation(deck):
 
 
 def test_long_include_name_continued_and_include_path(deck):
-    deck("a/very_long_directory_name_for_the_include_test/nodes_of_the_model.k",
-         "*KEYWORD\n*NODE\n       1             1.0             2.0             3.0\n*END\n")
+    deck(
+        "a/very_long_directory_name_for_the_include_test/nodes_of_the_model.k",
+        "*KEYWORD\n*NODE\n       1             1.0             2.0             3.0\n*END\n",
+    )
     deck("lib/other.k", "*KEYWORD\n*NODE\n       2             1.0             2.0             3.0\n*END\n")
-    main = deck("main.k", """
+    main = deck(
+        "main.k",
+        """
         *KEYWORD
         *INCLUDE_PATH
         lib
@@ -152,7 +176,8 @@ def test_long_include_name_continued_and_include_path(deck):
         nodes_of_the_model.k
         other.k
         *END
-        """)
+        """,
+    )
     m = read_deck(main)
     assert m.nodes.ids.tolist() == [1, 2]
 
@@ -167,7 +192,9 @@ def test_include_loop_is_reported(deck):
 def test_include_transform_rotate_and_scale(deck):
     """ROTATE 90° about z through (10, 0, 0), then SCALE 2 in x."""
     deck("pt.k", "*KEYWORD\n*NODE\n       1            20.0             0.0             5.0\n*END\n")
-    main = deck("main.k", """
+    main = deck(
+        "main.k",
+        """
         *KEYWORD
         *INCLUDE_TRANSFORM
         pt.k
@@ -180,7 +207,8 @@ def test_include_transform_rotate_and_scale(deck):
         ROTATE          0.0       0.0       1.0      10.0       0.0       0.0      90.0
         SCALE           2.0       1.0       1.0
         *END
-        """)
+        """,
+    )
     m = read_deck(main)
     assert m.nodes.ids.tolist() == [101]
     np.testing.assert_allclose(m.nodes.xyz[0], [20.0, 10.0, 5.0], atol=1e-12)

@@ -57,9 +57,16 @@ ALL_NAMES = sorted(set(NAMES) | {a for v in EXPECTED.values() for a in v[0]})
 
 # keyword -> value dicts that drive the `when` cards to every branch
 BRANCHES = {
-    "SECTION_SHELL": [{"icomp": 0, "nip": 2}, {"icomp": 1, "nip": 1}, {"icomp": 1, "nip": 8},
-                      {"icomp": 1, "nip": 10}, {"icomp": 1, "nip": 16}, {"icomp": 1, "nip": 17},
-                      {"icomp": 1, "nip": 100}, {"icomp": 0, "nip": 100}],
+    "SECTION_SHELL": [
+        {"icomp": 0, "nip": 2},
+        {"icomp": 1, "nip": 1},
+        {"icomp": 1, "nip": 8},
+        {"icomp": 1, "nip": 10},
+        {"icomp": 1, "nip": 16},
+        {"icomp": 1, "nip": 17},
+        {"icomp": 1, "nip": 100},
+        {"icomp": 0, "nip": 100},
+    ],
     "SECTION_BEAM": [{"elform": e} for e in (1, 2, 3, 4, 5, 6, 9, 11, 12, 13, 14)],
 }
 
@@ -144,8 +151,15 @@ def test_aliases_are_the_numbered_forms():
 
 
 def test_unsupported_variants_stay_unknown():
-    for kw in ("MAT_ELASTIC_FLUID", "SECTION_SHELL_ALE", "SECTION_BEAM_AISC", "DEFINE_CURVE_SMOOTH",
-               "DEFINE_VECTOR_NODES", "DEFINE_CURVE_FUNCTION", "HOURGLASS_X"):
+    for kw in (
+        "MAT_ELASTIC_FLUID",
+        "SECTION_SHELL_ALE",
+        "SECTION_BEAM_AISC",
+        "DEFINE_CURVE_SMOOTH",
+        "DEFINE_VECTOR_NODES",
+        "DEFINE_CURVE_FUNCTION",
+        "HOURGLASS_X",
+    ):
         assert lookup(kw) == (None, frozenset())
 
 
@@ -220,8 +234,7 @@ def test_mat_elastic_and_plastic_kinematic():
 
 
 def test_mat_rigid():
-    assert _heads("MAT_RIGID") == ["mid ro e pr n couple m alias", "cmo con1 con2",
-                                   "lco a2 a3 v1 v2 v3"]
+    assert _heads("MAT_RIGID") == ["mid ro e pr n couple m alias", "cmo con1 con2", "lco a2 a3 v1 v2 v3"]
     c1, c2, c3 = _layout("MAT_020").head
     assert _field(c1, "alias").kind == STR and _col(c1, "alias") == (71, 80)
     assert _col(c2, "con2") == (21, 30) and c3.optional
@@ -232,8 +245,11 @@ def test_mat_rigid():
 def test_mat_piecewise_linear_plasticity():
     lay = _layout("MAT_PIECEWISE_LINEAR_PLASTICITY")
     assert [_names(c) for c in lay.head] == [
-        "mid ro e pr sigy etan fail tdel", "c p lcss lcsr vp lcf",
-        " ".join(f"eps{i}" for i in range(1, 9)), " ".join(f"es{i}" for i in range(1, 9))]
+        "mid ro e pr sigy etan fail tdel",
+        "c p lcss lcsr vp lcf",
+        " ".join(f"eps{i}" for i in range(1, 9)),
+        " ".join(f"es{i}" for i in range(1, 9)),
+    ]
     c1, c2, c3, c4 = lay.head
     assert _col(c1, "sigy") == (41, 50)  # manual: card 1, columns 41-50
     assert _col(c1, "fail") == (61, 70) and _field(c1, "fail").default == 1e21
@@ -252,7 +268,8 @@ def test_mat_honeycomb():
         "lca lcb lcc lcs lcab lcbc lcca lcsr",
         "eaau ebbu eccu gabu gbcu gcau aopt macf",
         "xp yp zp a1 a2 a3",
-        "d1 d2 d3 tsef ssef v1 v2 v3"]
+        "d1 d2 d3 tsef ssef v1 v2 v3",
+    ]
     c1, c2, c3, c4, c5 = lay.head
     assert _col(c4, "a1") == (31, 40)
     assert _field(c1, "mu").default == 0.05 and _col(c1, "vf") == (51, 60)
@@ -269,13 +286,16 @@ def test_mat_crushable_foam():
     assert _field(c, "damp").default == 0.1
 
 
-@pytest.mark.parametrize("name,names,curves", [
-    ("MAT_SPRING_ELASTIC", "mid k", ()),
-    ("MAT_DAMPER_VISCOUS", "mid dc", ()),
-    ("MAT_SPRING_NONLINEAR_ELASTIC", "mid lcd lcr", ("lcd", "lcr")),
-    ("MAT_SPRING_GENERAL_NONLINEAR", "mid lcdl lcdu beta tyi cyi", ("lcdl", "lcdu")),
-    ("MAT_SPRING_INELASTIC", "mid lcfd ku ctf", ("lcfd",)),
-])
+@pytest.mark.parametrize(
+    "name,names,curves",
+    [
+        ("MAT_SPRING_ELASTIC", "mid k", ()),
+        ("MAT_DAMPER_VISCOUS", "mid dc", ()),
+        ("MAT_SPRING_NONLINEAR_ELASTIC", "mid lcd lcr", ("lcd", "lcr")),
+        ("MAT_SPRING_GENERAL_NONLINEAR", "mid lcdl lcdu beta tyi cyi", ("lcdl", "lcdu")),
+        ("MAT_SPRING_INELASTIC", "mid lcfd ku ctf", ("lcfd",)),
+    ],
+)
 def test_spring_and_damper_materials(name, names, curves):
     (c,) = _layout(name).head
     assert _names(c) == names
@@ -302,8 +322,15 @@ def test_section_shell_cards_and_columns():
     assert _names(c1) == "secid elform shrf nip propt qr icomp setyp"
     assert _names(c2) == "t1 t2 t3 t4 nloc marea idof edgset"
     assert c1.fields[0].ref == "sec"
-    assert [_field(c1, n).default for n in ("elform", "shrf", "nip", "propt", "qr", "icomp", "setyp")] \
-        == [2, 1.0, 2, 1.0, 0.0, 0, 1]
+    assert [_field(c1, n).default for n in ("elform", "shrf", "nip", "propt", "qr", "icomp", "setyp")] == [
+        2,
+        1.0,
+        2,
+        1.0,
+        0.0,
+        0,
+        1,
+    ]
     assert _col(c2, "t1") == (1, 10)  # manual: card 2, columns 1-10
     assert _col(c1, "icomp") == (61, 70) and _col(c2, "edgset") == (71, 80)
     angles = head[2:]
@@ -312,10 +339,21 @@ def test_section_shell_cards_and_columns():
     assert _names(angles[1]) == " ".join(f"b{i}" for i in range(9, 17))
 
 
-@pytest.mark.parametrize("icomp,nip,n_angle_cards", [
-    (0, 2, 0), (0, 10, 0), (1, 1, 1), (1, 8, 1), (1, 9, 2), (1, 10, 2), (1, 16, 2), (1, 17, 3),
-    (1, 100, 13), (1, None, 1),  # blank NIP is 2
-])
+@pytest.mark.parametrize(
+    "icomp,nip,n_angle_cards",
+    [
+        (0, 2, 0),
+        (0, 10, 0),
+        (1, 1, 1),
+        (1, 8, 1),
+        (1, 9, 2),
+        (1, 10, 2),
+        (1, 16, 2),
+        (1, 17, 3),
+        (1, 100, 13),
+        (1, None, 1),  # blank NIP is 2
+    ],
+)
 def test_section_shell_angle_cards(icomp, nip, n_angle_cards):
     active = _active("SECTION_SHELL", {"icomp": icomp, "nip": nip})
     assert len(active) == 2 + n_angle_cards
@@ -335,7 +373,8 @@ def test_section_solid_and_discrete():
 
 
 BEAM_CARD2 = {
-    1: "ts1 ts2 tt1 tt2 nsloc ntloc", 11: "ts1 ts2 tt1 tt2 nsloc ntloc",
+    1: "ts1 ts2 tt1 tt2 nsloc ntloc",
+    11: "ts1 ts2 tt1 tt2 nsloc ntloc",
     3: "a rampt stress",
     6: "vol iner cid ca offset rrcon srcon trcon",
 }
@@ -378,8 +417,15 @@ def test_define_curve():
     assert [_names(c) for c in lay.row] == ["a1 o1"]
     c = lay.head[0]
     assert c.fields[0].ref == "curve"
-    assert [_field(c, n).default for n in ("sidr", "sfa", "sfo", "offa", "offo", "dattyp", "lcint")] \
-        == [0, 1.0, 1.0, 0.0, 0.0, 0, 0]
+    assert [_field(c, n).default for n in ("sidr", "sfa", "sfo", "offa", "offo", "dattyp", "lcint")] == [
+        0,
+        1.0,
+        1.0,
+        0.0,
+        0.0,
+        0,
+        0,
+    ]
     assert [f.width for f in lay.row[0].fields] == [20, 20] and _col(lay.row[0], "o1") == (21, 40)
 
 
@@ -455,9 +501,18 @@ def test_small_deck_reads(tmp_path):
     p.write_text(DECK)
     recs = [r for r in read_records(p)[0] if isinstance(r, Record)]
     assert [r.keyword for r in recs] == [
-        "TITLE", "MAT_PIECEWISE_LINEAR_PLASTICITY", "MAT_RIGID", "MAT_SPRING_ELASTIC", "HOURGLASS",
-        "SECTION_SHELL", "SECTION_BEAM", "SECTION_BEAM", "DEFINE_CURVE", "DEFINE_COORDINATE_NODES",
-        "DEFINE_TRANSFORMATION"]
+        "TITLE",
+        "MAT_PIECEWISE_LINEAR_PLASTICITY",
+        "MAT_RIGID",
+        "MAT_SPRING_ELASTIC",
+        "HOURGLASS",
+        "SECTION_SHELL",
+        "SECTION_BEAM",
+        "SECTION_BEAM",
+        "DEFINE_CURVE",
+        "DEFINE_COORDINATE_NODES",
+        "DEFINE_TRANSFORMATION",
+    ]
     title, m24, rigid, spring, hg, shell, truss, discrete, curve, cs, tr = recs
     assert title["title"] == "crash box"
     assert m24.title == "steel" and m24.id == 1 and m24["sigy"] == 250.0 and m24["lcss"] == 7
@@ -467,8 +522,7 @@ def test_small_deck_reads(tmp_path):
     assert hg.id == 1 and hg["ihq"] == 4 and hg["qm"] == 0.1 and hg["qb"] is None
     assert shell.title == "laminate" and shell["nip"] == 10 and shell["icomp"] == 1
     assert shell["shrf"] == 0.833 and shell["t4"] == 1.5
-    assert [shell[f"b{i}"] for i in range(1, 11)] == [0.0, 45.0, -45.0, 90.0, 90.0, -45.0, 45.0, 0.0,
-                                                      30.0, -30.0]
+    assert [shell[f"b{i}"] for i in range(1, 11)] == [0.0, 45.0, -45.0, 90.0, 90.0, -45.0, 45.0, 0.0, 30.0, -30.0]
     assert shell["b11"] == 0.0
     assert truss["elform"] == 3 and truss["a"] == 12.5 and truss["ts1"] == 0.0
     assert discrete["elform"] == 6 and discrete["vol"] == 100.0 and discrete["iner"] == 2.0

@@ -69,8 +69,10 @@ EXPECTED = {
     "CONTROL_HOURGLASS": ((), False, "keywords", None),
     "CONTROL_CONTACT": ((), False, "keywords", None),
     "CONTROL_SHELL": ((), False, "keywords", None),
-    **{f"DATABASE_{db}": ((), False, "keywords", None)
-       for db in ("GLSTAT", "MATSUM", "NODOUT", "RWFORC", "SECFORC", "DEFORC", "RCFORC", "SPCFORC")},
+    **{
+        f"DATABASE_{db}": ((), False, "keywords", None)
+        for db in ("GLSTAT", "MATSUM", "NODOUT", "RWFORC", "SECFORC", "DEFORC", "RCFORC", "SPCFORC")
+    },
     "DATABASE_BINARY_D3PLOT": ((), False, "keywords", None),
     "DATABASE_HISTORY_NODE": (("SET", "ID"), False, "keywords", None),
     "DATABASE_CROSS_SECTION_PLANE": (("ID",), False, "keywords", "csid"),
@@ -135,13 +137,16 @@ def test_options_combine_in_any_order():
     spec2, o2 = lookup("RIGIDWALL_PLANAR_ID_FORCES_MOVING")
     assert spec is spec2 and o1 == o2 == frozenset({"MOVING", "FORCES", "ID"})
     assert lookup("CONTACT_TIED_NODES_TO_SURFACE_OFFSET_ID")[1] == frozenset({"OFFSET", "ID"})
-    assert lookup("CONSTRAINED_NODAL_RIGID_BODY_SPC_INERTIA_TITLE")[1] == frozenset(
-        {"SPC", "INERTIA", "TITLE"})
+    assert lookup("CONSTRAINED_NODAL_RIGID_BODY_SPC_INERTIA_TITLE")[1] == frozenset({"SPC", "INERTIA", "TITLE"})
 
 
 def test_unsupported_variants_stay_unknown():
-    for kw in ("RIGIDWALL_PLANAR_ORTHO", "CONSTRAINED_SPOTWELD_FILTERED_FORCE",
-               "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_MPP", "SET_NODE_LIST_GENERATE_INCREMENT"):
+    for kw in (
+        "RIGIDWALL_PLANAR_ORTHO",
+        "CONSTRAINED_SPOTWELD_FILTERED_FORCE",
+        "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_MPP",
+        "SET_NODE_LIST_GENERATE_INCREMENT",
+    ):
         assert lookup(kw) == (None, frozenset())
 
 
@@ -196,12 +201,12 @@ def test_every_card_round_trips(name):
             assert back == values, f"{name} {sorted(options)} {_names(c)}"
             # blank fields read as the schema's default
             blank = cards.format_card([None] * len(c.fields), c.fields, "std")
-            assert [cards.convert(t, f, {}) for t, f in zip(cards.split(blank, c.fields, "std"), c.fields)] \
-                == [f.default for f in c.fields]
+            assert [cards.convert(t, f, {}) for t, f in zip(cards.split(blank, c.fields, "std"), c.fields)] == [
+                f.default for f in c.fields
+            ]
             # free format too
             free = cards.format_free(values, c.fields)
-            assert [cards.convert(t, f, {}) for t, f in zip(cards.split(free, c.fields, "std"), c.fields)] \
-                == values
+            assert [cards.convert(t, f, {}) for t, f in zip(cards.split(free, c.fields, "std"), c.fields)] == values
 
 
 # --- card layouts as in the manual -------------------------------------------
@@ -221,10 +226,15 @@ def _field(card, name):
     return next(f for f in card.fields if f.name == name)
 
 
-KIND_OF_MEMBER = {"NODE": "node", "PART": "part", "SHELL": "elem", "SOLID": "elem", "BEAM": "elem",
-                  "DISCRETE": "elem"}
-SET_HEAD = {"NODE": "sid da1 da2 da3 da4 solver", "PART": "sid da1 da2 da3 da4 solver",
-            "SHELL": "sid da1 da2 da3 da4", "SOLID": "sid solver", "BEAM": "sid", "DISCRETE": "sid"}
+KIND_OF_MEMBER = {"NODE": "node", "PART": "part", "SHELL": "elem", "SOLID": "elem", "BEAM": "elem", "DISCRETE": "elem"}
+SET_HEAD = {
+    "NODE": "sid da1 da2 da3 da4 solver",
+    "PART": "sid da1 da2 da3 da4 solver",
+    "SHELL": "sid da1 da2 da3 da4",
+    "SOLID": "sid solver",
+    "BEAM": "sid",
+    "DISCRETE": "sid",
+}
 
 
 @pytest.mark.parametrize("kind", sorted(KIND_OF_MEMBER))
@@ -258,8 +268,9 @@ def test_set_segment():
     assert _col(lay.row[0], "a1") == (41, 50)
 
 
-@pytest.mark.parametrize("name,first,ref", [
-    ("BOUNDARY_SPC_NODE", "nid", "node"), ("BOUNDARY_SPC_SET", "nsid", "set_node")])
+@pytest.mark.parametrize(
+    "name,first,ref", [("BOUNDARY_SPC_NODE", "nid", "node"), ("BOUNDARY_SPC_SET", "nsid", "set_node")]
+)
 def test_boundary_spc(name, first, ref):
     lay = _layout(name)
     assert not lay.head
@@ -272,10 +283,14 @@ def test_boundary_spc(name, first, ref):
     assert _field(with_id.head[0], "heading").width == 70
 
 
-@pytest.mark.parametrize("name,first,ref", [
-    ("BOUNDARY_PRESCRIBED_MOTION_NODE", "nid", "node"),
-    ("BOUNDARY_PRESCRIBED_MOTION_SET", "nsid", "set_node"),
-    ("BOUNDARY_PRESCRIBED_MOTION_RIGID", "pid", "part")])
+@pytest.mark.parametrize(
+    "name,first,ref",
+    [
+        ("BOUNDARY_PRESCRIBED_MOTION_NODE", "nid", "node"),
+        ("BOUNDARY_PRESCRIBED_MOTION_SET", "nsid", "set_node"),
+        ("BOUNDARY_PRESCRIBED_MOTION_RIGID", "pid", "part"),
+    ],
+)
 def test_prescribed_motion(name, first, ref):
     lay = _layout(name)
     card = lay.row[0]
@@ -292,7 +307,10 @@ def test_prescribed_motion(name, first, ref):
 def test_initial_velocity():
     lay = _layout("INITIAL_VELOCITY")
     assert [_names(c) for c in lay.head] == [
-        "nsid nsidex boxid irigid icid", "vx vy vz vxr vyr vzr", "vxe vye vze vxre vyre vzre"]
+        "nsid nsidex boxid irigid icid",
+        "vx vy vz vxr vyr vzr",
+        "vxe vye vze vxre vyre vzre",
+    ]
     third = lay.head[2]
     assert third.when is not None  # only with an exempted node set
     assert not third.when({"nsidex": 0}, frozenset()) and not third.when({"nsidex": None}, frozenset())
@@ -302,8 +320,7 @@ def test_initial_velocity():
     assert [_names(c) for c in node.row] == ["nid vx vy vz vxr vyr vzr icid"]
     gen = _layout("INITIAL_VELOCITY_GENERATION")
     assert not gen.row  # instances repeat under one keyword
-    assert [_names(c) for c in gen.head] == ["id styp omega vx vy vz ivatn icid",
-                                             "xc yc zc nx ny nz phase irigid"]
+    assert [_names(c) for c in gen.head] == ["id styp omega vx vy vz ivatn icid", "xc yc zc nx ny nz phase irigid"]
 
 
 @pytest.mark.parametrize("axis", "XYZ")
@@ -319,7 +336,10 @@ def test_rigidwall_planar():
     assert [_names(c) for c in _layout("RIGIDWALL_PLANAR").head] == base
     lay = _layout("RIGIDWALL_PLANAR", "ID", "FINITE", "MOVING", "FORCES")
     assert [_names(c) for c in lay.head] == ["rwid heading"] + base + [
-        "xhev yhev zhev lenl lenm", "mass v0", "soft ssid n1 n2 n3 n4"]
+        "xhev yhev zhev lenl lenm",
+        "mass v0",
+        "soft ssid n1 n2 n3 n4",
+    ]
     assert lay.head[0].fields[0].ref == "rigidwall"
     c1, c2 = lay.head[1], lay.head[2]
     assert _field(c1, "death").default == 1e20 and _field(c1, "rwksf").default == 1.0
@@ -331,12 +351,20 @@ def test_rigidwall_planar():
 def test_rigidwall_geometric_cylinder():
     lay = _layout("RIGIDWALL_GEOMETRIC_CYLINDER", "ID", "MOTION", "DISPLAY")
     assert [_names(c) for c in lay.head] == [
-        "rwid heading", "nsid nsidex boxid birth death", "xt yt zt xh yh zh fric", "radcyl lencyl",
-        "lcid opt vx vy vz", "pid ro e pr"]
+        "rwid heading",
+        "nsid nsidex boxid birth death",
+        "xt yt zt xh yh zh fric",
+        "radcyl lencyl",
+        "lcid opt vx vy vz",
+        "pid ro e pr",
+    ]
     assert [_names(c) for c in _layout("RIGIDWALL_GEOMETRIC_CYLINDER", "DISPLAY").head][-1] == "pid ro e pr"
     display = lay.head[-1]
-    assert (_field(display, "ro").default, _field(display, "e").default, _field(display, "pr").default) \
-        == (1e-9, 1e-4, 0.3)
+    assert (_field(display, "ro").default, _field(display, "e").default, _field(display, "pr").default) == (
+        1e-9,
+        1e-4,
+        0.3,
+    )
 
 
 CONTACT_NAMES = [n for n in NAMES if n.startswith("CONTACT_")]
@@ -372,11 +400,15 @@ def test_contact_cards(name):
 
 def test_constrained_nodal_rigid_body():
     assert [_names(c) for c in _layout("CONSTRAINED_NODAL_RIGID_BODY").head] == [
-        "pid cid nsid pnode iprt drflag rrflag"]
+        "pid cid nsid pnode iprt drflag rrflag"
+    ]
     lay = _layout("CONSTRAINED_NODAL_RIGID_BODY", "INERTIA")
     assert [_names(c) for c in lay.head] == [
-        "pid cid nsid pnode iprt drflag rrflag", "xc yc zc tm ircs nodeid",
-        "ixx ixy ixz iyy iyz izz", "vtx vty vtz vrx vry vrz"]
+        "pid cid nsid pnode iprt drflag rrflag",
+        "xc yc zc tm ircs nodeid",
+        "ixx ixy ixz iyy iyz izz",
+        "vtx vty vtz vrx vry vrz",
+    ]
     assert _field(lay.head[0], "nsid").ref == "set_node" and _field(lay.head[0], "pnode").ref == "node"
     spc = _layout("CONSTRAINED_NODAL_RIGID_BODY", "SPC")
     assert [_names(c) for c in spc.head][1:] == ["cmo con1 con2"]
@@ -385,8 +417,11 @@ def test_constrained_nodal_rigid_body():
 
 
 def test_constrained_extra_nodes_and_rigid_bodies():
-    node, plain, nset = (_layout("CONSTRAINED_EXTRA_NODES", "NODE"), _layout("CONSTRAINED_EXTRA_NODES"),
-                         _layout("CONSTRAINED_EXTRA_NODES", "SET"))
+    node, plain, nset = (
+        _layout("CONSTRAINED_EXTRA_NODES", "NODE"),
+        _layout("CONSTRAINED_EXTRA_NODES"),
+        _layout("CONSTRAINED_EXTRA_NODES", "SET"),
+    )
     assert node == plain
     assert [_names(c) for c in node.row] == ["pid nid iflag"]
     assert [_names(c) for c in nset.row] == ["pid nsid iflag"]
@@ -424,18 +459,20 @@ def test_controls():
     cc = _layout("CONTROL_CONTACT")
     assert head("CONTROL_CONTACT")[:2] == [
         "slsfac rwpnal islchk shlthk penopt thkchg orien enmass",
-        "usrstr usrfrc nsbcs interm xpene ssthk ecdt tiedprj"]
+        "usrstr usrfrc nsbcs interm xpene ssthk ecdt tiedprj",
+    ]
     assert not cc.head[0].optional and all(c.optional for c in cc.head[1:])
     assert _field(cc.head[0], "slsfac").default == 0.1 and _field(cc.head[1], "xpene").default == 4.0
     sh = _layout("CONTROL_SHELL")
-    assert head("CONTROL_SHELL")[:2] == ["wrpang esort irnxx istupd theory bwc miter proj",
-                                         "rotascl intgrd lamsht cstyp6 thshel"]
+    assert head("CONTROL_SHELL")[:2] == [
+        "wrpang esort irnxx istupd theory bwc miter proj",
+        "rotascl intgrd lamsht cstyp6 thshel",
+    ]
     assert all(c.optional for c in sh.head[1:])
     assert _field(sh.head[0], "irnxx").default == -1 and _field(sh.head[0], "theory").default == 2
 
 
-@pytest.mark.parametrize("db", ["GLSTAT", "MATSUM", "NODOUT", "RWFORC", "SECFORC", "DEFORC", "RCFORC",
-                                "SPCFORC"])
+@pytest.mark.parametrize("db", ["GLSTAT", "MATSUM", "NODOUT", "RWFORC", "SECFORC", "DEFORC", "RCFORC", "SPCFORC"])
 def test_database_ascii_outputs(db):
     lay = _layout(f"DATABASE_{db}")
     assert [_names(c) for c in lay.head] == ["dt binary lcur ioopt"]
@@ -454,12 +491,21 @@ def test_database_d3plot_history_and_cross_sections():
     assert _layout("DATABASE_HISTORY_NODE", "SET", "ID").row[0].fields[0].ref == "set_node"
     plane = _layout("DATABASE_CROSS_SECTION_PLANE", "ID")
     assert [_names(c) for c in plane.head] == [
-        "csid title", "psid xct yct zct xch ych zch radius", "xhev yhev zhev lenl lenm id itype"]
+        "csid title",
+        "psid xct yct zct xch ych zch radius",
+        "xhev yhev zhev lenl lenm id itype",
+    ]
     assert plane.head[0].fields[0].ref == "sect" and _field(plane.head[0], "title").width == 70
     cs_set = _layout("DATABASE_CROSS_SECTION_SET")
     assert [_names(c) for c in cs_set.head] == ["nsid hsid bsid ssid tsid dsid id itype"]
     assert [f.ref for f in cs_set.head[0].fields[:6]] == [
-        "set_node", "set_solid", "set_beam", "set_shell", None, "set_discrete"]
+        "set_node",
+        "set_solid",
+        "set_beam",
+        "set_shell",
+        None,
+        "set_discrete",
+    ]
 
 
 # --- a small deck through the reader --------------------------------------------

@@ -67,8 +67,19 @@ def grid_hexes(xs, ys, zs):
     X, Y, Z = np.meshgrid(xs, ys, zs, indexing="ij")
     xyz = np.stack([X.ravel(), Y.ravel(), Z.ravel()], axis=1)
     i = np.arange(X.size).reshape(X.shape)
-    conn = np.stack([i[:-1, :-1, :-1], i[1:, :-1, :-1], i[1:, 1:, :-1], i[:-1, 1:, :-1],
-                     i[:-1, :-1, 1:], i[1:, :-1, 1:], i[1:, 1:, 1:], i[:-1, 1:, 1:]], axis=-1)
+    conn = np.stack(
+        [
+            i[:-1, :-1, :-1],
+            i[1:, :-1, :-1],
+            i[1:, 1:, :-1],
+            i[:-1, 1:, :-1],
+            i[:-1, :-1, 1:],
+            i[1:, :-1, 1:],
+            i[1:, 1:, 1:],
+            i[:-1, 1:, 1:],
+        ],
+        axis=-1,
+    )
     return xyz, conn.reshape(-1, 8)
 
 
@@ -88,6 +99,7 @@ def expected_from_tets(p, tets):
 
 
 # -- shells ------------------------------------------------------------------
+
 
 def test_rectangular_plate_meshed_and_rotated():
     """Plate a × b × t from 3 × 2 uneven quads: box formulas; rotated and
@@ -140,8 +152,7 @@ def test_plate_with_linear_nodal_thickness():
     ixx = t0 * a**3 / 3 + k * a**4 / 4  # ∫ t x² dx
     m = RHO * b * iu(1)
     first = RHO * np.array([b * ix, iu(1) * b**2 / 2, 0.0])
-    second = RHO * np.array([[b * ixx, ix * b**2 / 2, 0], [ix * b**2 / 2, iu(1) * b**3 / 3, 0],
-                             [0, 0, b * iu(3) / 12]])
+    second = RHO * np.array([[b * ixx, ix * b**2 / 2, 0], [ix * b**2 / 2, iu(1) * b**3 / 3, 0], [0, 0, b * iu(3) / 12]])
     c = first / m
     check(combine(shell_moments(xyz, conn, tn, RHO)), m, c, inertia_from_second(m, c, second))
 
@@ -163,6 +174,7 @@ def test_triangle_as_degenerate_quad():
 
 
 # -- solids ------------------------------------------------------------------
+
 
 def test_brick_from_hexes_with_moved_inner_node():
     """Brick a × b × c as 2 × 2 × 2 hexes: exact box values, also after the
@@ -200,15 +212,19 @@ def test_parallelepiped_from_affine_hexes():
     check(combine(solid_moments(xyz, conn, RHO)), m, c, inertia_from_second(m, c, second))
 
 
-@pytest.mark.parametrize("order", [[0, 1, 2, 2, 3, 3, 3, 3], [0, 1, 2, 3, 3, 3, 3, 3], [3, 2, 1, 0, 0, 0, 0, 0]],
-                         ids=["n3-n4-repeated", "ls-dyna-n4-repeated", "reversed"])
+@pytest.mark.parametrize(
+    "order",
+    [[0, 1, 2, 2, 3, 3, 3, 3], [0, 1, 2, 3, 3, 3, 3, 3], [3, 2, 1, 0, 0, 0, 0, 0]],
+    ids=["n3-n4-repeated", "ls-dyna-n4-repeated", "reversed"],
+)
 def test_tetrahedron_as_degenerate_hex(order):
     p = np.array([[1.0, 2.0, 0.5], [41.0, 5.0, -3.0], [8.0, 33.0, 4.0], [6.0, 9.0, 27.0]])
     check(combine(solid_moments(p, [order], RHO)), *expected_from_tets(p, [[0, 1, 2, 3]]))
 
 
-@pytest.mark.parametrize("order", [[0, 1, 2, 2, 3, 4, 5, 5], [0, 1, 4, 3, 2, 2, 5, 5]],
-                         ids=["n3-n6-repeated", "ls-dyna-n5-n6-repeated"])
+@pytest.mark.parametrize(
+    "order", [[0, 1, 2, 2, 3, 4, 5, 5], [0, 1, 4, 3, 2, 2, 5, 5]], ids=["n3-n6-repeated", "ls-dyna-n5-n6-repeated"]
+)
 def test_wedge_as_degenerate_hex(order):
     """Oblique triangular prism (triangles 0 1 2 and 3 4 5) = 3 tetrahedra."""
     tri = np.array([[0.0, 0.0, 0.0], [30.0, 2.0, 1.0], [5.0, 25.0, -2.0]])
@@ -221,11 +237,16 @@ def test_pyramid_as_degenerate_hex():
     """Planar convex quad base, apex repeated 4 times = 2 tetrahedra."""
     p = np.array([[0.0, 0.0, 0.0], [40.0, -5.0, 0.0], [45.0, 30.0, 0.0], [-3.0, 35.0, 0.0], [12.0, 8.0, 33.0]])
     expected = expected_from_tets(p, [[0, 1, 2, 4], [0, 2, 3, 4]])
-    check(combine(solid_moments(p @ R.T, [[0, 1, 2, 3, 4, 4, 4, 4]], RHO)),
-          expected[0], R @ expected[1], R @ expected[2] @ R.T)
+    check(
+        combine(solid_moments(p @ R.T, [[0, 1, 2, 3, 4, 4, 4, 4]], RHO)),
+        expected[0],
+        R @ expected[1],
+        R @ expected[2] @ R.T,
+    )
 
 
 # -- beams and points -------------------------------------------------------
+
 
 def test_beam_segment():
     """Uniform rod: m = ρAL, CoG at mid-length, I = m L²/12 (1 − e⊗e)."""
@@ -238,8 +259,12 @@ def test_beam_segment():
     check(props, m, (a + b) / 2, m * L * L / 12 * (np.eye(3) - np.outer(e, e)))
     # split in two at an uneven point: same body
     mid = a + 0.3 * (b - a)
-    check(combine(beam_moments(np.array([a, mid, b]), [[0, 1], [1, 2]], area, RHO)),
-          m, (a + b) / 2, m * L * L / 12 * (np.eye(3) - np.outer(e, e)))
+    check(
+        combine(beam_moments(np.array([a, mid, b]), [[0, 1], [1, 2]], area, RHO)),
+        m,
+        (a + b) / 2,
+        m * L * L / 12 * (np.eye(3) - np.outer(e, e)),
+    )
 
 
 def test_point_masses_with_inertia():
@@ -259,6 +284,7 @@ def test_point_masses_with_inertia():
 
 
 # -- combining ---------------------------------------------------------------
+
 
 def _bodies():
     xyz, conn = grid_quads([0.0, 50.0, 120.0], [0.0, 40.0])
@@ -318,10 +344,13 @@ def test_zero_mass_and_empty_inputs_do_not_warn():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         with np.errstate(all="raise"):
-            for props in (combine(), combine(shell_moments(np.zeros((0, 3)), np.zeros((0, 4), int), [], [])),
-                          combine(solid_moments(np.ones((1, 3)), np.zeros((1, 8), int), 1.0)),
-                          combine(shell_moments(np.ones((1, 3)), np.zeros((1, 4), int), 1.0, 1.0)),
-                          combine(beam_moments(np.eye(3), [[0, 1]], 10.0, 0.0))):
+            for props in (
+                combine(),
+                combine(shell_moments(np.zeros((0, 3)), np.zeros((0, 4), int), [], [])),
+                combine(solid_moments(np.ones((1, 3)), np.zeros((1, 8), int), 1.0)),
+                combine(shell_moments(np.ones((1, 3)), np.zeros((1, 4), int), 1.0, 1.0)),
+                combine(beam_moments(np.eye(3), [[0, 1]], 10.0, 0.0)),
+            ):
                 assert props.mass == 0.0
                 assert np.array_equal(props.cog, np.zeros(3))
                 assert np.array_equal(props.inertia, np.zeros((3, 3)))

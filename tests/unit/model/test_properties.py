@@ -26,26 +26,62 @@ def _deck():
     for i in range(2):
         for j in range(2):
             eid += 1
-            shells.append(f"{eid:8d}{1:8d}{g[i][j]:8d}{g[i+1][j]:8d}{g[i+1][j+1]:8d}{g[i][j+1]:8d}")
+            shells.append(f"{eid:8d}{1:8d}{g[i][j]:8d}{g[i + 1][j]:8d}{g[i + 1][j + 1]:8d}{g[i][j + 1]:8d}")
     q = [node(0, 0, 500), node(100, 0, 500), node(100, 100, 500), node(0, 100, 500)]
     eid += 1
     thick = [f"{eid:8d}{2:8d}" + "".join(f"{n:8d}" for n in q), f"{3.0:16}{3.0:16}{3.0:16}{3.0:16}"]
     b = [[[node(1000 + 25.0 * i, 40.0 * j, 30.0 * k) for k in range(2)] for j in range(2)] for i in range(3)]
     for i in range(2):
         eid += 1
-        c = [b[i][0][0], b[i + 1][0][0], b[i + 1][1][0], b[i][1][0],
-             b[i][0][1], b[i + 1][0][1], b[i + 1][1][1], b[i][1][1]]
+        c = [
+            b[i][0][0],
+            b[i + 1][0][0],
+            b[i + 1][1][0],
+            b[i][1][0],
+            b[i][0][1],
+            b[i + 1][0][1],
+            b[i + 1][1][1],
+            b[i][1][1],
+        ]
         solids.append(f"{eid:8d}{3:8d}" + "".join(f"{n:8d}" for n in c))
     pm = node(0.0, 0.0, 1000.0)
-    text = "\n".join([
-        "*KEYWORD", "*NODE", *nodes, "*ELEMENT_SHELL", *shells, "*ELEMENT_SHELL_THICKNESS", *thick,
-        "*ELEMENT_SOLID", *solids,
-        "*ELEMENT_MASS", f"{eid + 1:8d}{pm:8d}{0.01:16}{3:8d}",
-        "*PART", "plate", "1,1,1", "*PART", "thick plate", "2,1,1", "*PART", "brick", "3,2,2",
-        "*SECTION_SHELL", "1,2", "2.0", "*SECTION_SOLID", "2,1",
-        "*MAT_ELASTIC", f"1,{RO_S},210000.0,0.3", "*MAT_ELASTIC", f"2,{RO_B},70000.0,0.33",
-        "*SET_PART_LIST", "7", "1,3",
-        "*END"])
+    text = "\n".join(
+        [
+            "*KEYWORD",
+            "*NODE",
+            *nodes,
+            "*ELEMENT_SHELL",
+            *shells,
+            "*ELEMENT_SHELL_THICKNESS",
+            *thick,
+            "*ELEMENT_SOLID",
+            *solids,
+            "*ELEMENT_MASS",
+            f"{eid + 1:8d}{pm:8d}{0.01:16}{3:8d}",
+            "*PART",
+            "plate",
+            "1,1,1",
+            "*PART",
+            "thick plate",
+            "2,1,1",
+            "*PART",
+            "brick",
+            "3,2,2",
+            "*SECTION_SHELL",
+            "1,2",
+            "2.0",
+            "*SECTION_SOLID",
+            "2,1",
+            "*MAT_ELASTIC",
+            f"1,{RO_S},210000.0,0.3",
+            "*MAT_ELASTIC",
+            f"2,{RO_B},70000.0,0.33",
+            "*SET_PART_LIST",
+            "7",
+            "1,3",
+            "*END",
+        ]
+    )
     return text
 
 
@@ -111,22 +147,50 @@ def test_beams_and_part_inertia(tmp_path):
     with its given mass, CoG and tensor instead of its elements."""
     import math
 
-    text = "\n".join([
-        "*KEYWORD", "*NODE", "1,0,0,0", "2,1000,0,0", "3,0,0,0", "4,10,0,0", "5,10,10,0",
-        "*ELEMENT_BEAM", "1,1,1,2", "*ELEMENT_SHELL", "2,2,3,4,5",
-        "*PART", "tube beam", "1,1,1", "*SECTION_BEAM", "1,1,,,1", "40.0,40.0,36.0,36.0",
-        "*PART_INERTIA", "rigid", "2,2,2",
-        "5.0,6.0,7.0,0.25", "1.0,0.0,0.0,2.0,0.0,3.0", "0,0,0,0,0,0",
-        "*SECTION_SHELL", "2,2", "1.0", "*MAT_ELASTIC", "1,7.85e-9,210000.0,0.3", "*MAT_RIGID", "2,7.85e-9,210000.0,0.3",
-        "*END"])
+    text = "\n".join(
+        [
+            "*KEYWORD",
+            "*NODE",
+            "1,0,0,0",
+            "2,1000,0,0",
+            "3,0,0,0",
+            "4,10,0,0",
+            "5,10,10,0",
+            "*ELEMENT_BEAM",
+            "1,1,1,2",
+            "*ELEMENT_SHELL",
+            "2,2,3,4,5",
+            "*PART",
+            "tube beam",
+            "1,1,1",
+            "*SECTION_BEAM",
+            "1,1,,,1",
+            "40.0,40.0,36.0,36.0",
+            "*PART_INERTIA",
+            "rigid",
+            "2,2,2",
+            "5.0,6.0,7.0,0.25",
+            "1.0,0.0,0.0,2.0,0.0,3.0",
+            "0,0,0,0,0,0",
+            "*SECTION_SHELL",
+            "2,2",
+            "1.0",
+            "*MAT_ELASTIC",
+            "1,7.85e-9,210000.0,0.3",
+            "*MAT_RIGID",
+            "2,7.85e-9,210000.0,0.3",
+            "*END",
+        ]
+    )
     p = tmp_path / "b.k"
     p.write_text(text)
     model = read_deck(p)
     beam = model.mass_properties([1])
     m = 7.85e-9 * math.pi / 4 * (40.0**2 - 36.0**2) * 1000.0
     assert beam.mass == pytest.approx(m, rel=1e-12)
-    np.testing.assert_allclose(beam.inertia, np.diag([0.0, m * 1000.0**2 / 12, m * 1000.0**2 / 12]),
-                               atol=1e-9 * m * 1000.0**2)
+    np.testing.assert_allclose(
+        beam.inertia, np.diag([0.0, m * 1000.0**2 / 12, m * 1000.0**2 / 12]), atol=1e-9 * m * 1000.0**2
+    )
     rigid = model.mass_properties(["rigid"])
     assert rigid.mass == 0.25 and rigid.cog.tolist() == [5.0, 6.0, 7.0]
     np.testing.assert_allclose(rigid.inertia, np.diag([1.0, 2.0, 3.0]), atol=1e-12)

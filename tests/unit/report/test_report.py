@@ -23,8 +23,24 @@ PNG = b"\x89PNG\r\n\x1a\n"
 
 def plate_states(scale):
     """A 2 x 1 quad plate and one brick whose free edge moves by 10·scale in x."""
-    x0 = np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0], [0, 1, 0], [1, 1, 0], [2, 1, 0],
-                   [0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]], float) * 100.0
+    x0 = (
+        np.array(
+            [
+                [0, 0, 0],
+                [1, 0, 0],
+                [2, 0, 0],
+                [0, 1, 0],
+                [1, 1, 0],
+                [2, 1, 0],
+                [0, 0, 1],
+                [1, 0, 1],
+                [1, 1, 1],
+                [0, 1, 1],
+            ],
+            float,
+        )
+        * 100.0
+    )
     u = np.zeros_like(x0)
     u[[2, 5], 0] = 10.0 * scale
     cells = [np.array([0, 1, 4, 3]), np.array([1, 2, 5, 4]), np.array([0, 1, 4, 3, 6, 7, 8, 9]), np.array([2, 5])]
@@ -52,16 +68,37 @@ def test_page_is_self_contained_with_embedded_plots_and_pictures(report):
     assert "deformed at 0.05" in alts and "deformed at 0.1" in alts and "crash pulse" in alts
     assert len([a for a in alts if a.startswith("part ")]) == 2
     assert not re.search(r"<(script|link)\b|src=\"http", html)
-    for heading in ("Runs and settings", "Crash pulse", "Global energies", "Internal energy per part",
-                    "Section forces", "Rigid-wall forces", "History-node displacements",
-                    "History-node accelerations", "Node fields and deformed structures", "Entities not matched"):
+    for heading in (
+        "Runs and settings",
+        "Crash pulse",
+        "Global energies",
+        "Internal energy per part",
+        "Section forces",
+        "Rigid-wall forces",
+        "History-node displacements",
+        "History-node accelerations",
+        "Node fields and deformed structures",
+        "Entities not matched",
+    ):
         assert heading in html, heading
 
 
 def test_summary_holds_every_figure(report):
     c, _, html, s = report
-    assert {"reference", "comparison", "options", "time_range", "overall", "curves", "fields", "pulse",
-            "timing", "mismatches", "notes", "report"} <= set(s)
+    assert {
+        "reference",
+        "comparison",
+        "options",
+        "time_range",
+        "overall",
+        "curves",
+        "fields",
+        "pulse",
+        "timing",
+        "mismatches",
+        "notes",
+        "report",
+    } <= set(s)
     assert s["reference"]["name"] == "detailed" and s["time_range"] == [0.0, 0.1]
     (wall,) = s["curves"]["wall"]
     assert wall["peak_deviation_percent"] == pytest.approx(10.0, abs=1e-9)

@@ -48,23 +48,48 @@ def _strip(tmp_path, solid: bool = False, fail: float = 0.0, name: str = "strip.
     held = [nid[0, j] for j in range(len(corners))]
     pulled = [nid[4, j] for j in range(len(corners))]
     if solid:
-        lines += ["*ELEMENT_SOLID"] + [f"{100 + i},{1 + i // 3}," + ",".join(str(nid[k, j]) for k, j in (
-            (i, 0), (i + 1, 0), (i + 1, 1), (i, 1), (i, 2), (i + 1, 2), (i + 1, 3), (i, 3))) for i in range(4)]
+        lines += ["*ELEMENT_SOLID"] + [
+            f"{100 + i},{1 + i // 3},"
+            + ",".join(
+                str(nid[k, j])
+                for k, j in ((i, 0), (i + 1, 0), (i + 1, 1), (i, 1), (i, 2), (i + 1, 2), (i + 1, 3), (i, 3))
+            )
+            for i in range(4)
+        ]
         lines += ["*SECTION_SOLID", "1,1"]
     else:
-        lines += ["*ELEMENT_SHELL"] + [f"{100 + i},{1 + i // 3},{nid[i, 0]},{nid[i + 1, 0]},{nid[i + 1, 1]},"
-                                       f"{nid[i, 1]}" for i in range(4)]
+        lines += ["*ELEMENT_SHELL"] + [
+            f"{100 + i},{1 + i // 3},{nid[i, 0]},{nid[i + 1, 0]},{nid[i + 1, 1]},{nid[i, 1]}" for i in range(4)
+        ]
         lines += ["*SECTION_SHELL", "1,2,1.0,3", "1.0,1.0,1.0,1.0"]
     lines += ["*PART", "strip", "1,1,1", "*PART", "strong", "2,1,2"]
     for mid, sy, f in ((1, SY, fail), (2, 2 * SY, 0.0)):
-        lines += ["*MAT_PIECEWISE_LINEAR_PLASTICITY", f"{mid},7.85e-9,{E!r},0.3,{sy!r},{ET!r},{f!r}", "0.0,0.0",
-                  "", ""]
-    lines += ["*SET_NODE_LIST", "1", ",".join(map(str, held)), "*SET_NODE_LIST", "2", ",".join(map(str, pulled)),
-              "*BOUNDARY_SPC_SET", "1,0,1,0,0,0,0,0", "*BOUNDARY_SPC_NODE", f"{nid[0, 0]},0,0,1,1,0,0,0",
-              "*DEFINE_CURVE", "5", "0.0,0.0", f"{RAMP!r},1000.0", "1.0,1000.0",
-              "*BOUNDARY_PRESCRIBED_MOTION_SET", "2,1,0,5,1.0",
-              "*DATABASE_HISTORY_NODE", ",".join(map(str, pulled)),
-              "*CONTROL_TERMINATION", repr(END), "*DATABASE_BINARY_D3PLOT", repr(END / 4)]
+        lines += ["*MAT_PIECEWISE_LINEAR_PLASTICITY", f"{mid},7.85e-9,{E!r},0.3,{sy!r},{ET!r},{f!r}", "0.0,0.0", "", ""]
+    lines += [
+        "*SET_NODE_LIST",
+        "1",
+        ",".join(map(str, held)),
+        "*SET_NODE_LIST",
+        "2",
+        ",".join(map(str, pulled)),
+        "*BOUNDARY_SPC_SET",
+        "1,0,1,0,0,0,0,0",
+        "*BOUNDARY_SPC_NODE",
+        f"{nid[0, 0]},0,0,1,1,0,0,0",
+        "*DEFINE_CURVE",
+        "5",
+        "0.0,0.0",
+        f"{RAMP!r},1000.0",
+        "1.0,1000.0",
+        "*BOUNDARY_PRESCRIBED_MOTION_SET",
+        "2,1,0,5,1.0",
+        "*DATABASE_HISTORY_NODE",
+        ",".join(map(str, pulled)),
+        "*CONTROL_TERMINATION",
+        repr(END),
+        "*DATABASE_BINARY_D3PLOT",
+        repr(END / 4),
+    ]
     lines += ["*CONTROL_TIMESTEP", "0.0,0.7", "*END"] if solid else ["*END"]
     p = tmp_path / name
     p.write_text("\n".join(lines) + "\n")
@@ -116,8 +141,11 @@ def test_a_shell_run_writes_its_states_as_a_d3plot(tmp_path):
     for k, t in enumerate(r.states_time[1:], start=1):
         j = int(np.flatnonzero(r.time == t)[0])
         _close(a[A.node_velocity][k, rows], r.node_velocity[j], scale=1000.0)
-        _close(a[A.node_acceleration][k, rows], r.node_acceleration[j],
-               scale=max(np.abs(r.node_acceleration[j]).max(), 1.0))
+        _close(
+            a[A.node_acceleration][k, rows],
+            r.node_acceleration[j],
+            scale=max(np.abs(r.node_acceleration[j]).max(), 1.0),
+        )
     assert np.abs(a[A.node_acceleration][1, rows]).max() > 1e5  # the end of the ramp: 2e6 mm/s² before it
     assert np.all(a[A.node_velocity][0] == 0.0)  # at rest at t = 0
     _close(a[A.node_velocity][-1, rows, 0], np.full(len(rows), 1000.0))
@@ -184,8 +212,7 @@ def test_shell_stresses_turn_from_the_element_frame_to_global_axes():
     g = _shell_global(local, x, np.array([[0, 1, 2, 3]]))[0, 0]
     s = np.array([[100.0, 20.0, -7.0], [20.0, -30.0, 5.0], [-7.0, 5.0, 0.0]])
     want = rot @ s @ rot.T
-    np.testing.assert_allclose(g, [want[0, 0], want[1, 1], want[2, 2], want[0, 1], want[1, 2], want[0, 2]],
-                               atol=1e-9)
+    np.testing.assert_allclose(g, [want[0, 0], want[1, 1], want[2, 2], want[0, 1], want[1, 2], want[0, 2]], atol=1e-9)
 
 
 def test_without_lasso_the_run_says_so_once_and_writes_the_vtk_states(tmp_path, monkeypatch):
@@ -255,9 +282,11 @@ def test_field_states_of_an_lsdyna_d3plot():
     st = load_states(folder)
     assert len(st.time) == 10 and st.time[0] == 0.0
     np.testing.assert_allclose(np.diff(st.time[:9]), 0.004, rtol=0.01)
-    deck = {int(ln.split()[0]): [float(v) for v in ln.split()[1:4]]
-            for ln in (folder / "sph_test.k").read_text().split("*NODE")[1].split("*")[0].splitlines()[2:]
-            if ln.strip()}
+    deck = {
+        int(ln.split()[0]): [float(v) for v in ln.split()[1:4]]
+        for ln in (folder / "sph_test.k").read_text().split("*NODE")[1].split("*")[0].splitlines()[2:]
+        if ln.strip()
+    }
     k = [list(st.ids).index(i) for i in deck]
     np.testing.assert_allclose(st.x[0, k], np.array(list(deck.values())), rtol=1e-6, atol=1e-6)
     assert np.abs(st.x[-1] - st.x[0]).max() > 0.1  # the particles moved

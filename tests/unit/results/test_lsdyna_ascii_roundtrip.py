@@ -33,9 +33,19 @@ TIME = np.array([0.0, 1.23456789e-4, 2.5e-3, 0.15])
 
 
 def test_glstat_round_trip(tmp_path):
-    names = ["time_step", "kinetic_energy", "internal_energy", "stonewall_energy", "spring_and_damper_energy",
-             "hourglass_energy", "sliding_interface_energy", "external_work", "total_energy", "energy_ratio",
-             "added_mass"]
+    names = [
+        "time_step",
+        "kinetic_energy",
+        "internal_energy",
+        "stonewall_energy",
+        "spring_and_damper_energy",
+        "hourglass_energy",
+        "sliding_interface_energy",
+        "external_work",
+        "total_energy",
+        "energy_ratio",
+        "added_mass",
+    ]
     data = {"time": TIME, "cycle": np.array([0, 10, 200, 12000])} | {k: values(4) for k in names}
     back = glstat.read(glstat.write(tmp_path / "glstat", data, "round trip"))
     assert set(back) == set(data)
@@ -47,8 +57,14 @@ def test_glstat_round_trip(tmp_path):
 def test_matsum_round_trip_with_nan_rules(tmp_path):
     ids = np.array([1, 7, 123456])  # IDs >= 100000 take the wide mat.# field
     n, m = len(TIME), len(ids)
-    data = {"time": TIME, "ids": ids, "internal_energy": values(n, m), "kinetic_energy": values(n, m),
-            "hourglass_energy": values(n, m), "mass": values(n, m)}
+    data = {
+        "time": TIME,
+        "ids": ids,
+        "internal_energy": values(n, m),
+        "kinetic_energy": values(n, m),
+        "hourglass_energy": values(n, m),
+        "mass": values(n, m),
+    }
     for a in "xyz":
         data[f"{a}_momentum"] = values(n, m)
     rbv = values(n, m, 3)
@@ -134,8 +150,12 @@ def test_spcforc_round_trip_with_moments(tmp_path):
         assert_printed(back[k], data[k], 5)
     # resultants: the sums of the printed forces, themselves printed with 5 digits
     for a in "xyz":
-        np.testing.assert_allclose(back[f"{a}_resultant"], data[f"{a}_force"].sum(axis=1),
-                                   rtol=5e-5, atol=5e-5 * np.abs(data[f"{a}_force"]).sum(axis=1).max())
+        np.testing.assert_allclose(
+            back[f"{a}_resultant"],
+            data[f"{a}_force"].sum(axis=1),
+            rtol=5e-5,
+            atol=5e-5 * np.abs(data[f"{a}_force"]).sum(axis=1).max(),
+        )
 
 
 @pytest.mark.parametrize("name", sorted(FILES))

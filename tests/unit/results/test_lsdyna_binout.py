@@ -22,11 +22,33 @@ def test_glstat_of_a_binout_balances_as_lsdyna_wrote_it():
     damping energies (to single precision), and the last output is within
     the run's cycles (d3hsp: 640)."""
     h = load(RUN)
-    g = {q: np.asarray(h.read("glstat", q), float) for q in (
-        "time", "cycle", "kinetic_energy", "internal_energy", "sliding_interface_energy", "hourglass_energy",
-        "stonewall_energy", "spring_and_damper_energy", "system_damping_energy", "total_energy")}
-    parts = sum(g[q] for q in ("kinetic_energy", "internal_energy", "sliding_interface_energy", "hourglass_energy",
-                               "stonewall_energy", "spring_and_damper_energy", "system_damping_energy"))
+    g = {
+        q: np.asarray(h.read("glstat", q), float)
+        for q in (
+            "time",
+            "cycle",
+            "kinetic_energy",
+            "internal_energy",
+            "sliding_interface_energy",
+            "hourglass_energy",
+            "stonewall_energy",
+            "spring_and_damper_energy",
+            "system_damping_energy",
+            "total_energy",
+        )
+    }
+    parts = sum(
+        g[q]
+        for q in (
+            "kinetic_energy",
+            "internal_energy",
+            "sliding_interface_energy",
+            "hourglass_energy",
+            "stonewall_energy",
+            "spring_and_damper_energy",
+            "system_damping_energy",
+        )
+    )
     assert g["total_energy"].max() > 1.0
     np.testing.assert_allclose(parts, g["total_energy"], rtol=0, atol=1e-6 * g["total_energy"].max())
     cycles = int((RUN / "d3hsp").read_text(errors="replace").split("Problem cycle      =")[1].split()[0])
@@ -43,15 +65,49 @@ def test_compare_a_binout_with_its_ascii_translation(tmp_path):
     h = load(RUN)
     out = tmp_path / "ascii"
     out.mkdir()
-    glstat.write(out / "glstat", {k: np.asarray(h.read("glstat", k)) for k in h.read("glstat")
-                                  if k in ("time", "kinetic_energy", "internal_energy", "total_energy",
-                                           "sliding_interface_energy", "hourglass_energy", "external_work",
-                                           "time_step", "energy_ratio", "stonewall_energy",
-                                           "spring_and_damper_energy", "system_damping_energy")})
-    matsum.write(out / "matsum", {k: np.asarray(h.read("matsum", k)) for k in h.read("matsum")
-                                  if k in ("time", "ids", "internal_energy", "kinetic_energy", "hourglass_energy",
-                                           "x_momentum", "y_momentum", "z_momentum", "x_rbvelocity",
-                                           "y_rbvelocity", "z_rbvelocity")})
+    glstat.write(
+        out / "glstat",
+        {
+            k: np.asarray(h.read("glstat", k))
+            for k in h.read("glstat")
+            if k
+            in (
+                "time",
+                "kinetic_energy",
+                "internal_energy",
+                "total_energy",
+                "sliding_interface_energy",
+                "hourglass_energy",
+                "external_work",
+                "time_step",
+                "energy_ratio",
+                "stonewall_energy",
+                "spring_and_damper_energy",
+                "system_damping_energy",
+            )
+        },
+    )
+    matsum.write(
+        out / "matsum",
+        {
+            k: np.asarray(h.read("matsum", k))
+            for k in h.read("matsum")
+            if k
+            in (
+                "time",
+                "ids",
+                "internal_energy",
+                "kinetic_energy",
+                "hourglass_energy",
+                "x_momentum",
+                "y_momentum",
+                "z_momentum",
+                "x_rbvelocity",
+                "y_rbvelocity",
+                "z_rbvelocity",
+            )
+        },
+    )
     c = compare_paths(RUN, out)
     groups = {p.group for p in c.pairs}
     assert {"energy", "part"} <= groups

@@ -45,9 +45,23 @@ class Point:
         self.sig[:], self.back[:], self.ep[:] = st
 
     def step(self, de, dt=1.0):
-        ps.update_points(self.mtype, self.props, self.mcurve, self.cs, self.ce, self.cx, self.cy,
-                         np.zeros(1, np.int64), self.sig, self.back, self.ep, np.asarray(de, float)[None, :],
-                         dt, self.dez, self.failed)
+        ps.update_points(
+            self.mtype,
+            self.props,
+            self.mcurve,
+            self.cs,
+            self.ce,
+            self.cx,
+            self.cy,
+            np.zeros(1, np.int64),
+            self.sig,
+            self.back,
+            self.ep,
+            np.asarray(de, float)[None, :],
+            dt,
+            self.dez,
+            self.failed,
+        )
         return self.dez[0]
 
     def uniaxial(self, dex, dt=1.0):
@@ -146,8 +160,13 @@ def _radial_return_3d(sig, alpha, ep, deps, sy_fun, h_iso, h_kin):
 
 def _tensor(v, zz=0.0, shear_scale=1.0):
     x, y, xy, yz, zx = v
-    return np.array([[x, shear_scale * xy, shear_scale * zx], [shear_scale * xy, y, shear_scale * yz],
-                     [shear_scale * zx, shear_scale * yz, zz]])
+    return np.array(
+        [
+            [x, shear_scale * xy, shear_scale * zx],
+            [shear_scale * xy, y, shear_scale * yz],
+            [shear_scale * zx, shear_scale * yz, zz],
+        ]
+    )
 
 
 @pytest.mark.parametrize("case", ["mat024_curve", "mat003_kinematic"])
@@ -159,10 +178,12 @@ def test_exact_plane_stress_against_3d_return_with_the_thickness_strain(case):
     rng = np.random.default_rng(4)
     if case == "mat024_curve":
         pt = Point(ps.PIECEWISE, _row(), [(CURVE_EP, CURVE_SY)], (0, -1))
-        sy_fun = (lambda e: np.interp(e, CURVE_EP, CURVE_SY) if e <= CURVE_EP[-1]  # noqa: E731
-                  else CURVE_SY[-1] + (e - CURVE_EP[-1]) * 250.0)
+
+        def sy_fun(e):
+            return np.interp(e, CURVE_EP, CURVE_SY) if e <= CURVE_EP[-1] else CURVE_SY[-1] + (e - CURVE_EP[-1]) * 250.0
+
         slopes = np.diff(CURVE_SY) / np.diff(CURVE_EP)
-        h_iso = (lambda e: slopes[min(max(np.searchsorted(CURVE_EP, e, side="right") - 1, 0), len(slopes) - 1)])  # noqa: E731
+        h_iso = lambda e: slopes[min(max(np.searchsorted(CURVE_EP, e, side="right") - 1, 0), len(slopes) - 1)]  # noqa: E731
         h_kin = 0.0
     else:
         et, beta = 5000.0, 0.3
@@ -262,8 +283,7 @@ BLOCK_CASES = {  # kind, material row, curves (ε̄p or rate, value), slots (LCS
     "failure": (ps.PIECEWISE, _row(sigy=250.0, etan=500.0, fail=0.03), (), (-1, -1)),
     "curve": (ps.PIECEWISE, _row(), ((CURVE_EP, CURVE_SY),), (0, -1)),
     "cowper-symonds": (ps.PIECEWISE, _row(c=40.0, p=5.0), ((CURVE_EP, CURVE_SY),), (0, -1)),
-    "mat003 rates": (ps.KINEMATIC, _row(ps.KINEMATIC, sigy=200.0, etan=2000.0, beta=0.4, c=40.0, p=5.0), (),
-                     (-1, -1)),
+    "mat003 rates": (ps.KINEMATIC, _row(ps.KINEMATIC, sigy=200.0, etan=2000.0, beta=0.4, c=40.0, p=5.0), (), (-1, -1)),
     "lcsr": (ps.PIECEWISE, _row(), ((CURVE_EP, CURVE_SY), RATE_CURVE), (0, 1)),
 }
 
@@ -287,12 +307,31 @@ def test_vectorised_block_equals_update_point(case, scale):
     P = np.zeros(ps.N_ROWS * ps.W)
     n = n_el * nip
     for i in range(5):
-        P[(ps.R_D + i) * ps.W:(ps.R_D + i) * ps.W + n] = de[:, i]
+        P[(ps.R_D + i) * ps.W : (ps.R_D + i) * ps.W + n] = de[:, i]
     kk = np.arange(ps.W) % nip
     s1, b1, e1, f1 = sig.copy(), back.copy(), ep.copy(), ipfail.copy()
-    ps.update_block(n, P, kk, nk, s1.reshape(-1), b1.reshape(-1), e1.reshape(-1), f1.reshape(-1), 0, pt.mtype,
-                    pt.props, 0, pt.mcurve, pt.cs, pt.ce, pt.cx, pt.cy, ks, dt)
-    row_of = lambda r: P[r * ps.W:r * ps.W + n]  # noqa: E731
+    ps.update_block(
+        n,
+        P,
+        kk,
+        nk,
+        s1.reshape(-1),
+        b1.reshape(-1),
+        e1.reshape(-1),
+        f1.reshape(-1),
+        0,
+        pt.mtype,
+        pt.props,
+        0,
+        pt.mcurve,
+        pt.cs,
+        pt.ce,
+        pt.cx,
+        pt.cy,
+        ks,
+        dt,
+    )
+    row_of = lambda r: P[r * ps.W : r * ps.W + n]  # noqa: E731
     ok, failed = row_of(ps.R_OK), row_of(ps.R_FAILED)
     live = (kk[:n] < nk) & (ipfail.reshape(-1) == 0)
     assert ok[live].mean() > (0.5 if curves else 0.9)  # the pass declines few points
@@ -300,8 +339,23 @@ def test_vectorised_block_equals_update_point(case, scale):
         assert (ok[live] == 0.0).any()  # and here some: past their segment
     ref_sig, ref_back, ref_ep = sig.reshape(-1, 5).copy(), back.reshape(-1, 5).copy(), ep.reshape(-1).copy()
     dez, fl = np.zeros(n), np.zeros(n, np.int8)
-    ps.update_points(pt.mtype, pt.props, pt.mcurve, pt.cs, pt.ce, pt.cx, pt.cy, np.zeros(n, np.int64), ref_sig,
-                     ref_back, ref_ep, de, dt, dez, fl)
+    ps.update_points(
+        pt.mtype,
+        pt.props,
+        pt.mcurve,
+        pt.cs,
+        pt.ce,
+        pt.cx,
+        pt.cy,
+        np.zeros(n, np.int64),
+        ref_sig,
+        ref_back,
+        ref_ep,
+        de,
+        dt,
+        dez,
+        fl,
+    )
     tol = 1e-9 * np.abs(ref_sig).max()
     done = live & (ok == 1.0)
     np.testing.assert_allclose(s1.reshape(-1, 5)[done], ref_sig[done], atol=tol)

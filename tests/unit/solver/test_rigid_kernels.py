@@ -62,8 +62,17 @@ def test_spin_bound_bounds_omega_and_is_reached_about_the_softest_axis():
     rng = np.random.default_rng(5)
     a = rng.normal(size=(3, 3))
     inertia = a @ a.T + 2 * np.eye(3)
-    body = RigidBody(1, np.zeros(1, np.int64), 1.0, np.zeros(3), inertia, np.zeros((1, 3)), np.zeros(3),
-                     np.zeros(3), rotation(rng.normal(size=3)))
+    body = RigidBody(
+        1,
+        np.zeros(1, np.int64),
+        1.0,
+        np.zeros(3),
+        inertia,
+        np.zeros((1, 3)),
+        np.zeros(3),
+        np.zeros(3),
+        rotation(rng.normal(size=3)),
+    )
     for _ in range(20):
         body.momentum = rng.normal(size=3)
         body.rot = rotation(rng.normal(size=3))

@@ -16,9 +16,26 @@ def _call(x, v, mass, wall_v=10000.0, wall_mass=5.0, finite=True):
     nodes = np.arange(len(x))
     hit = np.zeros(len(x), np.bool_)
     ln = 100.0 if finite else 0.0
-    v_new = planar_wall(x, v, v.copy(), mass, nodes, np.zeros(3), np.array([1.0, 0.0, 0.0]), wall_v, wall_mass, 0.0, DT,
-                        force, hit, np.array([0.0, 1.0, 0.0]), np.array([0.0, 0.0, 1.0]), ln, ln,
-                        np.zeros((N_CHUNKS, 2)))
+    v_new = planar_wall(
+        x,
+        v,
+        v.copy(),
+        mass,
+        nodes,
+        np.zeros(3),
+        np.array([1.0, 0.0, 0.0]),
+        wall_v,
+        wall_mass,
+        0.0,
+        DT,
+        force,
+        hit,
+        np.array([0.0, 1.0, 0.0]),
+        np.array([0.0, 0.0, 1.0]),
+        ln,
+        ln,
+        np.zeros((N_CHUNKS, 2)),
+    )
     return v_new, force
 
 
@@ -79,4 +96,5 @@ def test_many_nodes_struck_at_once_keep_momentum_the_same_on_one_and_two_threads
     np.testing.assert_allclose(v[struck, 0] + x[struck, 0] / DT, v_new, rtol=1e-12)  # they land on the wall
     brought = (mass[struck] * (v0[struck, 0] + x[struck, 0] / DT)).sum()
     assert 5.0 * v_new + (mass[struck] * (v[struck, 0] + x[struck, 0] / DT)).sum() == pytest.approx(
-        5.0 * 10000.0 + brought, rel=1e-12)
+        5.0 * 10000.0 + brought, rel=1e-12
+    )

@@ -46,11 +46,22 @@ def test_run_and_unrun_cards_are_told_apart():
     from crashlite.solver.support import NEUTRAL, RUN
 
     known = RUN + NEUTRAL
-    for card in ("CONSTRAINED_SPOTWELD", "CONSTRAINED_GENERALIZED_WELD_SPOT", "CONTACT_TIED_NODES_TO_SURFACE",
-                 "LOAD_NODE_POINT", "CONTACT_AUTOMATIC_SINGLE_SURFACE", "DATABASE_HISTORY_NODE"):
+    for card in (
+        "CONSTRAINED_SPOTWELD",
+        "CONSTRAINED_GENERALIZED_WELD_SPOT",
+        "CONTACT_TIED_NODES_TO_SURFACE",
+        "LOAD_NODE_POINT",
+        "CONTACT_AUTOMATIC_SINGLE_SURFACE",
+        "DATABASE_HISTORY_NODE",
+    ):
         assert card.startswith(known), card
-    for card in ("DAMPING_GLOBAL", "CONSTRAINED_JOINT_SPHERICAL", "CONTACT_ERODING_SINGLE_SURFACE",
-                 "INITIAL_STRESS_SHELL", "LOAD_SEGMENT"):
+    for card in (
+        "DAMPING_GLOBAL",
+        "CONSTRAINED_JOINT_SPHERICAL",
+        "CONTACT_ERODING_SINGLE_SURFACE",
+        "INITIAL_STRESS_SHELL",
+        "LOAD_SEGMENT",
+    ):
         assert not card.startswith(known), card
 
 

@@ -32,13 +32,42 @@ def no_hang():
     signal.signal(signal.SIGALRM, old)
 
 
-def _deck(tmp_path, nodes: list[str], masses: list[str], body_nodes: str, spring: str, body: list[str] | None = None,
-          name: str = "d.k", end: float = 0.01) -> str:
+def _deck(
+    tmp_path,
+    nodes: list[str],
+    masses: list[str],
+    body_nodes: str,
+    spring: str,
+    body: list[str] | None = None,
+    name: str = "d.k",
+    end: float = 0.01,
+) -> str:
     body = body or ["*CONSTRAINED_NODAL_RIGID_BODY", "50,0,1"]
-    lines = ["*KEYWORD", "*NODE", *nodes, "*ELEMENT_MASS", *masses, "*ELEMENT_DISCRETE", spring,
-             "*PART", "s", "1,1,1", "*SECTION_DISCRETE", "1,0", "*MAT_SPRING_ELASTIC", f"1,{K!r}",
-             "*SET_NODE_LIST", "1", body_nodes, *body,
-             "*INITIAL_VELOCITY_NODE", "4,100.0,0,0", "*CONTROL_TERMINATION", repr(end), "*END"]
+    lines = [
+        "*KEYWORD",
+        "*NODE",
+        *nodes,
+        "*ELEMENT_MASS",
+        *masses,
+        "*ELEMENT_DISCRETE",
+        spring,
+        "*PART",
+        "s",
+        "1,1,1",
+        "*SECTION_DISCRETE",
+        "1,0",
+        "*MAT_SPRING_ELASTIC",
+        f"1,{K!r}",
+        "*SET_NODE_LIST",
+        "1",
+        body_nodes,
+        *body,
+        "*INITIAL_VELOCITY_NODE",
+        "4,100.0,0,0",
+        "*CONTROL_TERMINATION",
+        repr(end),
+        "*END",
+    ]
     p = tmp_path / name
     p.write_text("\n".join(lines) + "\n")
     return str(p)
@@ -54,8 +83,13 @@ def test_point_mass_body_with_a_spring_on_a_massless_member_is_refused(tmp_path)
         build(read_deck(deck))
     (p,) = e.value.problems
     assert p.keyword == "CONSTRAINED_NODAL_RIGID_BODY" and p.line == 23 and p.field == "NSID"
-    for part in ("nodal rigid body 50", "sits at node 1", "no rotational inertia about any axis",
-                 "node 2 carries *ELEMENT_DISCRETE 7 at 100 from it", "_INERTIA"):
+    for part in (
+        "nodal rigid body 50",
+        "sits at node 1",
+        "no rotational inertia about any axis",
+        "node 2 carries *ELEMENT_DISCRETE 7 at 100 from it",
+        "_INERTIA",
+    ):
         assert part in p.message, part
     with pytest.raises(SetupError, match="ELEMENT_DISCRETE 7"):
         run(deck)  # the run stops before its first cycle
@@ -65,8 +99,7 @@ def test_a_tiny_given_inertia_stops_before_the_first_cycle_naming_the_spring(tmp
     """_INERTIA of 1e-30 t·mm²: the body exists, but its spring's step
     (2/√(k/m_eff), m_eff = I/r² = 1e-34 t) is 5.7e-18 s, 1.8e15 cycles to
     the end: refused at t = 0 with the element, its nodes and the body."""
-    body = ["*CONSTRAINED_NODAL_RIGID_BODY_INERTIA", "50,0,1", "0,0,0,1.0", "1e-30,0,0,1e-30,0,1e-30",
-            "0,0,0,0,0,0"]
+    body = ["*CONSTRAINED_NODAL_RIGID_BODY_INERTIA", "50,0,1", "0,0,0,1.0", "1e-30,0,0,1e-30,0,1e-30", "0,0,0,0,0,0"]
     deck = _deck(tmp_path, POINT, ["1,1,1.0", "4,4,0.1"], "1,2,3", "7,1,2,4", body)
     s = build(read_deck(deck))
     m_eff = 1.0 / (1.0 / 1.0 + 100.0**2 / 1e-30)
@@ -76,8 +109,9 @@ def test_a_tiny_given_inertia_stops_before_the_first_cycle_naming_the_spring(tmp
     (p,) = e.value.problems
     assert p.keyword == "ELEMENT_DISCRETE" and p.file == deck
     assert "the run would not end" in p.message
-    assert "*ELEMENT_DISCRETE 7 on node 2 (of rigid body 50, effective mass 1e-34 there), node 4 (mass 0.1)" \
-        in p.message
+    assert (
+        "*ELEMENT_DISCRETE 7 on node 2 (of rigid body 50, effective mass 1e-34 there), node 4 (mass 0.1)" in p.message
+    )
 
 
 def test_masses_on_a_line_turn_about_the_others_only(tmp_path):
@@ -96,8 +130,11 @@ def test_masses_on_a_line_turn_about_the_others_only(tmp_path):
     assert r.cycles == pytest.approx(3.0 / stable_dt(s), abs=1)  # steps of the closed form to the end
     assert np.isfinite(r.final_x).all() and np.abs(r.final_x[3] - [300.0, 0.0, 0.0]).max() < 100.0
     off = _deck(tmp_path, nodes, ["1,1,0.5", "2,2,0.5", "4,4,0.1"], "1,2,3,5", "7,1,5,4", name="off.k")
-    with pytest.raises(SetupError, match=r"on one line, so it has no rotational inertia about the axis \(-?1, "
-                                         r"-?0, -?0\); node 5 carries \*ELEMENT_DISCRETE 7 at 100 from it"):
+    with pytest.raises(
+        SetupError,
+        match=r"on one line, so it has no rotational inertia about the axis \(-?1, "
+        r"-?0, -?0\); node 5 carries \*ELEMENT_DISCRETE 7 at 100 from it",
+    ):
         build(read_deck(off))
 
 

@@ -94,7 +94,7 @@ def test_the_design_bound_follows_the_memory(study, monkeypatch):
     with pytest.raises(StudyError, match=r"holds at most 64,527"):
         load_study(study(replace={"designs = 3": "designs = 70000"}))
     with pytest.raises(StudyError, match=r"\[sensitivity\] trajectories"):  # r·(d + 1) Morris designs
-        load_study(study("[sensitivity]\nmethod = \"morris\"\ntrajectories = 40000\n"))
+        load_study(study('[sensitivity]\nmethod = "morris"\ntrajectories = 40000\n'))
 
 
 @pytest.mark.parametrize("where", ["under_a_file", "a_folder"])

@@ -115,7 +115,7 @@ def test_unknown_response_in_objectives_and_constraints(study):
 def test_unknown_response_type_and_key(study):
     msg = _error(study, replace={'type = "mass"': 'type = "masses"'})
     assert "[responses.mass]" in msg and "'masses'" in msg
-    msg = _error(study, replace={"stat = \"min\"": "stat = \"min\"\nnodes = 3"})
+    msg = _error(study, replace={'stat = "min"': 'stat = "min"\nnodes = 3'})
     assert "[responses.crush]" in msg and "'nodes'" in msg
 
 
@@ -139,8 +139,10 @@ def test_unknown_keys_and_missing_parts(study):
 def test_yield_of_elastic_part_refused(tmp_path):
     front_structure(tmp_path / "car.k", "full", element_size=25.0)
     p = tmp_path / "study.toml"
-    p.write_text('[study]\ndeck = "car.k"\n[variables.s]\npart = "rear frame"\nproperty = "yield"\n'
-                 'bounds = [200.0, 300.0]\n[responses.m]\ntype = "mass"\n[doe]\ndesigns = 2\n')
+    p.write_text(
+        '[study]\ndeck = "car.k"\n[variables.s]\npart = "rear frame"\nproperty = "yield"\n'
+        'bounds = [200.0, 300.0]\n[responses.m]\ntype = "mass"\n[doe]\ndesigns = 2\n'
+    )
     with pytest.raises(StudyError, match=r"\[variables.s\] parts: part 'rear frame' has \*MAT_ELASTIC"):
         load_study(p)
 
@@ -150,8 +152,10 @@ def test_integer_and_text_parameters(tmp_path):
     text = (tmp_path / "pulse.k").read_text().replace("R crush      600.0", "R crush      600.0\nI n            3")
     (tmp_path / "pulse.k").write_text(text)
     p = tmp_path / "study.toml"
-    p.write_text('[study]\ndeck = "pulse.k"\n[variables.n]\nparameter = "n"\nbounds = [1.5, 4]\n'
-                 '[responses.m]\ntype = "mass"\n[doe]\ndesigns = 2\n')
+    p.write_text(
+        '[study]\ndeck = "pulse.k"\n[variables.n]\nparameter = "n"\nbounds = [1.5, 4]\n'
+        '[responses.m]\ntype = "mass"\n[doe]\ndesigns = 2\n'
+    )
     with pytest.raises(StudyError, match=r"\[variables.n\] bounds: 'n' is an integer"):
         load_study(p)
     p.write_text(p.read_text().replace("[1.5, 4]", "[1, 4]"))

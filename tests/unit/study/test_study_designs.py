@@ -16,16 +16,42 @@ from crashlite.study.models import front_structure
 EXAMPLES = Path(__file__).parents[3] / "src" / "crashlite" / "examples"
 
 
-@pytest.mark.parametrize("line, name, value, typ, width, expr, expected", [
-    ("r thick          1.5r mass        0.05", "mass", 0.0625, "R", 10, False, "r thick          1.5r mass    " + "0.0625".rjust(10)),
-    ("r thick          1.5r mass        0.05", "thick", 1.25, "R", 10, False, "r thick         1.25r mass        0.05"),
-    ("R v0,-1.0e4", "v0", -12000.0, "R", 10, False, "R v0,-12000.0"),
-    ("R t,1.0,R u,2.0", "u", 3.5, "R", 10, False, "R t,1.0,R u,3.5"),
-    ("R sigy    235.0*1.05", "sigy", 250.0, "R", 10, True, "R sigy    250.0"),
-    ("I n             3", "n", 5, "I", 10, False, "I n       " + "5".rjust(10)),
-    ("R long_name_param                 1.0", "long_name_param", 2.0, "R", 20, False,
-     "R long_name_param   " + "2.0".rjust(20)),
-])
+@pytest.mark.parametrize(
+    "line, name, value, typ, width, expr, expected",
+    [
+        (
+            "r thick          1.5r mass        0.05",
+            "mass",
+            0.0625,
+            "R",
+            10,
+            False,
+            "r thick          1.5r mass    " + "0.0625".rjust(10),
+        ),
+        (
+            "r thick          1.5r mass        0.05",
+            "thick",
+            1.25,
+            "R",
+            10,
+            False,
+            "r thick         1.25r mass        0.05",
+        ),
+        ("R v0,-1.0e4", "v0", -12000.0, "R", 10, False, "R v0,-12000.0"),
+        ("R t,1.0,R u,2.0", "u", 3.5, "R", 10, False, "R t,1.0,R u,3.5"),
+        ("R sigy    235.0*1.05", "sigy", 250.0, "R", 10, True, "R sigy    250.0"),
+        ("I n             3", "n", 5, "I", 10, False, "I n       " + "5".rjust(10)),
+        (
+            "R long_name_param                 1.0",
+            "long_name_param",
+            2.0,
+            "R",
+            20,
+            False,
+            "R long_name_param   " + "2.0".rjust(20),
+        ),
+    ],
+)
 def test_rewrite_parameter_line(line, name, value, typ, width, expr, expected):
     assert rewrite_parameter_line(line, name, value, typ, width, expr) == expected
 
@@ -46,8 +72,12 @@ def test_parameter_design_mirrors_includes(tmp_path):
     tend by *PARAMETER_EXPRESSION: a design of thick and v0 reads back with
     the new values, expressions evaluated from them, the mesh linked."""
     shutil.copytree(EXAMPLES / "tube", tmp_path / "tube")
-    cfg = _study(tmp_path, "tube/tube.k", '[variables.t]\nparameter = "thick"\nbounds = [1.0, 2.0]\n'
-                                          '[variables.v]\nparameter = "v0"\nbounds = [-12000.0, -8000.0]\n')
+    cfg = _study(
+        tmp_path,
+        "tube/tube.k",
+        '[variables.t]\nparameter = "thick"\nbounds = [1.0, 2.0]\n'
+        '[variables.v]\nparameter = "v0"\nbounds = [-12000.0, -8000.0]\n',
+    )
     out = cfg.template.write({"t": 1.75, "v": -8000.0}, tmp_path / "d1")
     assert out == tmp_path / "d1" / "deck" / "tube.k"
     assert (tmp_path / "d1" / "deck" / "tube_mesh.k").is_symlink()
@@ -69,7 +99,7 @@ def test_parameter_in_an_include(tmp_path):
     (tmp_path / "sub").mkdir()
     shutil.copy(EXAMPLES / "pulse" / "pulse.k", tmp_path / "sub" / "model.k")
     text = (tmp_path / "sub" / "model.k").read_text()
-    params = text[text.index("*PARAMETER\n"):text.index("*NODE")]
+    params = text[text.index("*PARAMETER\n") : text.index("*NODE")]
     (tmp_path / "sub" / "model.k").write_text(text.replace(params, ""))
     (tmp_path / "params.k").write_text("*KEYWORD\n" + params + "*END\n")
     (tmp_path / "main.k").write_text("*KEYWORD\n*INCLUDE\nparams.k\n*INCLUDE\nsub/model.k\n*END\n")
@@ -90,8 +120,12 @@ def test_part_variables_copy_shared_section_and_material(tmp_path):
     text = path.read_text().replace("1,2,0.8333,5\n1.2,1.2,1.2,1.2", "1,2,0.8333,5\n1.2,1.2,1.2,1.2", 1)
     text = text.replace("rail\n2,2,2,0,0", "rail\n2,1,1,0,0")  # rail: section 1, material 1
     path.write_text(text)
-    cfg = _study(tmp_path, "car.k", '[variables.t]\npart = "crash box"\nproperty = "thickness"\nbounds = [0.5, 2.0]\n'
-                                    '[variables.s]\npart = "crash box"\nproperty = "yield"\nbounds = [200.0, 400.0]\n')
+    cfg = _study(
+        tmp_path,
+        "car.k",
+        '[variables.t]\npart = "crash box"\nproperty = "thickness"\nbounds = [0.5, 2.0]\n'
+        '[variables.s]\npart = "crash box"\nproperty = "yield"\nbounds = [200.0, 400.0]\n',
+    )
     out = cfg.template.write({"t": 0.9, "s": 350.0}, tmp_path / "d")
     m = read_deck(out)
     box, rail = m.parts[1], m.parts[2]
@@ -110,8 +144,10 @@ def test_part_variables_copy_shared_section_and_material(tmp_path):
 
 def test_eight_point_hardening_scales_with_yield(tmp_path):
     path = front_structure(tmp_path / "car.k", "surrogate", element_size=25.0)
-    text = path.read_text().replace("1,7.85e-9,210000.0,0.3,300.0,1.0\n0,0,0,0",
-                                    "1,7.85e-9,210000.0,0.3,300.0,1.0\n0,0,0,0\n0.0,0.1,0.2\n300.0,360.0,390.0")
+    text = path.read_text().replace(
+        "1,7.85e-9,210000.0,0.3,300.0,1.0\n0,0,0,0",
+        "1,7.85e-9,210000.0,0.3,300.0,1.0\n0,0,0,0\n0.0,0.1,0.2\n300.0,360.0,390.0",
+    )
     path.write_text(text)
     cfg = _study(tmp_path, "car.k", '[variables.s]\npart = "crash box"\nproperty = "yield"\nbounds = [200.0, 400.0]\n')
     m = read_deck(cfg.template.write({"s": 330.0}, tmp_path / "d"))

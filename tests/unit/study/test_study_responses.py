@@ -31,15 +31,17 @@ def _eval(pulse, **tables):
 
 
 def test_closed_form_responses(pulse):
-    r = _eval(pulse,
-              mass={"type": "mass", "scale": 1000.0},
-              crush={"type": "node_displacement", "node": 2, "stat": "min", "scale": -1.0},
-              crush_pulse={"type": "pulse", "node": 2, "figure": "dynamic_crush"},
-              decel={"type": "deceleration", "node": 2, "cfc": 60},
-              force={"type": "discrete_force", "id": 1, "stat": "absmax"},
-              ke={"type": "energy", "quantity": "kinetic", "stat": "max"},
-              intrusion={"type": "intrusion", "nodes": [2], "component": "x", "over": "history"},
-              ratio={"type": "expression", "expression": "crush / crush_pulse * x"})
+    r = _eval(
+        pulse,
+        mass={"type": "mass", "scale": 1000.0},
+        crush={"type": "node_displacement", "node": 2, "stat": "min", "scale": -1.0},
+        crush_pulse={"type": "pulse", "node": 2, "figure": "dynamic_crush"},
+        decel={"type": "deceleration", "node": 2, "cfc": 60},
+        force={"type": "discrete_force", "id": 1, "stat": "absmax"},
+        ke={"type": "energy", "quantity": "kinetic", "stat": "max"},
+        intrusion={"type": "intrusion", "nodes": [2], "component": "x", "over": "history"},
+        ratio={"type": "expression", "expression": "crush / crush_pulse * x"},
+    )
     assert r["mass"] == pytest.approx(1263.0, rel=1e-12)
     assert r["crush"] == pytest.approx(CRUSH, rel=0.01)
     assert r["crush_pulse"] == pytest.approx(CRUSH, rel=0.01)
@@ -54,8 +56,11 @@ def test_final_displacement_of_any_node(pulse):
     """final displacements come from the final state, so any node works;
     the mass is back near its start after the half period of 0.121 s."""
     res, model = pulse
-    r = _eval(pulse, d={"type": "node_displacement", "node": 2},
-              fixed={"type": "intrusion", "nodes": [1], "component": "magnitude"})
+    r = _eval(
+        pulse,
+        d={"type": "node_displacement", "node": 2},
+        fixed={"type": "intrusion", "nodes": [1], "component": "magnitude"},
+    )
     expected = -V0 / OMEGA * math.sin(OMEGA * res.time[-1])
     assert r["d"] == pytest.approx(expected, abs=0.02 * CRUSH)
     assert r["fixed"] == 0.0
@@ -70,16 +75,19 @@ def test_missing_entity_is_a_response_error(pulse):
         _eval(pulse, v={"type": "node_velocity", "node": 7, "stat": "max"})
 
 
-@pytest.mark.parametrize("table, match", [
-    ({"type": "energy", "quantity": "potential"}, "quantity"),
-    ({"type": "wall_force", "stat": "peak"}, "stat"),
-    ({"type": "node_displacement"}, "node"),
-    ({"type": "intrusion", "nodes": [1], "set": 2}, "nodes"),
-    ({"type": "section_force", "component": "normal"}, "normal"),
-    ({"type": "pulse", "node": 2, "figure": "hic"}, "figure"),
-    ({"type": "mass", "scale": 0}, "scale"),
-    ({"type": "expression", "expression": "a +* b"}, "expression"),
-])
+@pytest.mark.parametrize(
+    "table, match",
+    [
+        ({"type": "energy", "quantity": "potential"}, "quantity"),
+        ({"type": "wall_force", "stat": "peak"}, "stat"),
+        ({"type": "node_displacement"}, "node"),
+        ({"type": "intrusion", "nodes": [1], "set": 2}, "nodes"),
+        ({"type": "section_force", "component": "normal"}, "normal"),
+        ({"type": "pulse", "node": 2, "figure": "hic"}, "figure"),
+        ({"type": "mass", "scale": 0}, "scale"),
+        ({"type": "expression", "expression": "a +* b"}, "expression"),
+    ],
+)
 def test_bad_response_tables(table, match):
     with pytest.raises(ValueError, match=match):
         parse_response("r", table)

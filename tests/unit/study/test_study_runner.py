@@ -69,7 +69,7 @@ def _run(cfg, **kw):
 
 
 def _trials(cfg):
-    db = cfg.storage[len("sqlite:///"):]
+    db = cfg.storage[len("sqlite:///") :]
     with sqlite3.connect(db) as c:
         return c.execute("select number, state from trials order by number").fetchall()
 
@@ -115,7 +115,7 @@ def test_designs_left_running_by_a_killed_session_run_again(tmp_path):
     trial, _ = store.start_fixed("doe-0099", "doe", {"m": 1.5, "crush": 500.0})  # a foreign design
     store.study.enqueue_trial({"m": 1.5, "crush": 500.0}, user_attrs={"design": "doe-0098", "phase": "doe"})
     # pretend doe-0002 never finished: its trial RUNNING in the database
-    with sqlite3.connect(cfg.storage[len("sqlite:///"):]) as c:
+    with sqlite3.connect(cfg.storage[len("sqlite:///") :]) as c:
         c.execute("update trials set state = 'RUNNING', datetime_complete = NULL where number = 2")
     s = _run(cfg)
     assert s.rerun >= 1 and s.ran == 1
@@ -158,8 +158,14 @@ def test_optuna_optimisation_and_report(tmp_path):
     for f in summary["figures"]:
         assert (out / f["file"]).stat().st_size > 1000
     names = {f["file"] for f in summary["figures"]}
-    assert {"parallel_coordinates.png", "responses_vs_variables.png", "history.png", "metamodels.png",
-            "sensitivity.png", "scatter.png"} <= names
+    assert {
+        "parallel_coordinates.png",
+        "responses_vs_variables.png",
+        "history.png",
+        "metamodels.png",
+        "sensitivity.png",
+        "scatter.png",
+    } <= names
     best = summary["best"]
     ok = [d for d in summary["designs"] if d["status"] == "complete" and d["feasible"]]
     assert best["responses"]["peak"] == min(d["responses"]["peak"] for d in ok)

@@ -73,8 +73,9 @@ def shell_model(xyz, quads, thickness=1.0, pids=None, young=E, poisson=NU, densi
     per distinct ``pids`` value (default all part 1)."""
     m = Model()
     n = len(xyz)
-    m.nodes = Nodes(np.arange(1, n + 1, dtype=np.int64), np.asarray(xyz, float), np.zeros(n, np.int8),
-                    np.zeros(n, np.int8))
+    m.nodes = Nodes(
+        np.arange(1, n + 1, dtype=np.int64), np.asarray(xyz, float), np.zeros(n, np.int8), np.zeros(n, np.int8)
+    )
     sh = Shells.zeros(len(quads))
     sh.ids = np.arange(1, len(quads) + 1, dtype=np.int64)
     sh.pid = np.ones(len(quads), np.int64) if pids is None else np.asarray(pids, np.int64)
@@ -82,7 +83,8 @@ def shell_model(xyz, quads, thickness=1.0, pids=None, young=E, poisson=NU, densi
     m.shells = sh
     m.materials[1] = record("MAT_ELASTIC", mid=1, ro=density, e=young, pr=poisson)
     for p in np.unique(sh.pid):
-        m.sections[int(p)] = record("SECTION_SHELL", secid=int(p), elform=16, t1=thickness, t2=thickness,
-                                    t3=thickness, t4=thickness)
+        m.sections[int(p)] = record(
+            "SECTION_SHELL", secid=int(p), elform=16, t1=thickness, t2=thickness, t3=thickness, t4=thickness
+        )
         m.parts[int(p)] = record("PART", heading=f"part {int(p)}", pid=int(p), secid=int(p), mid=1)
     return m

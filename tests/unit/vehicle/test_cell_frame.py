@@ -9,8 +9,9 @@ from crashlite.vehicle.connection.rigidfit import rearward_in_frame as _in_cell
 from crashlite.vehicle.connection.rigidfit import rigid_motion as cell_motion
 from crashlite.vehicle.connection.rigidfit import warping, warping_history
 
-CELL = np.array([[-2200.0, 350.0, 350.0], [-2200.0, -350.0, 350.0], [-1490.0, 700.0, 300.0],
-                 [-1490.0, -700.0, 300.0]])  # rear seats and B-pillar sills of the generic car
+CELL = np.array(
+    [[-2200.0, 350.0, 350.0], [-2200.0, -350.0, 350.0], [-1490.0, 700.0, 300.0], [-1490.0, -700.0, 300.0]]
+)  # rear seats and B-pillar sills of the generic car
 FIREWALL = np.array([[-250.0, y, z] for y in (-400.0, 0.0, 400.0) for z in (300.0, 500.0, 750.0)])
 
 
@@ -100,4 +101,4 @@ def test_a_plane_that_moves_rigidly_does_not_bend_one_that_bows_does():
     np.testing.assert_allclose(warping(moved(kappa), x0, nodes, 0), expect, atol=1e-6 * np.abs(expect).max())
     h = warping_history(np.stack([moved(0.0), moved(kappa), moved(0.4 * kappa)]), x0, nodes, 0)
     assert h["max"] == pytest.approx(np.abs(expect).max(), rel=1e-6) and h["state_of_max"] == 1
-    assert h["rms"] == pytest.approx(np.sqrt((expect ** 2).mean()), rel=1e-6) and h["state_of_rms"] == 1
+    assert h["rms"] == pytest.approx(np.sqrt((expect**2).mean()), rel=1e-6) and h["state_of_rms"] == 1

@@ -54,7 +54,9 @@ def test_superelement_leaves_rigid_motions_free(tube):
     _, cond = tube
     anchors = cond.cog + 300.0 * np.array([[1, 1, 1], [1, -1, -1], [-1, 1, -1], [-1, -1, 1]]) / np.sqrt(3.0)
     k = superelement_matrix(cond, anchors)
-    phi = np.vstack([rigid_modes(cond.xyz_nodes, cond.cog).reshape(-1, 6), rigid_modes(anchors, cond.cog).reshape(-1, 6)])
+    phi = np.vstack(
+        [rigid_modes(cond.xyz_nodes, cond.cog).reshape(-1, 6), rigid_modes(anchors, cond.cog).reshape(-1, 6)]
+    )
     assert np.abs(k @ phi).max() < 1e-9 * np.abs(k).max() * np.abs(phi).max()
     nb = 3 * len(cond.nodes)
     np.testing.assert_allclose(k[:nb, :nb], cond.stiffness, rtol=1e-12)

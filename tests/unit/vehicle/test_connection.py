@@ -50,8 +50,13 @@ def test_connection_is_that_of_the_written_surrogate_deck():
     back = read_deck(s.write(_tmp() / "surrogate.k"))
     rear = back.find("CONSTRAINED_NODAL_RIGID_BODY_INERTIA")[0]
     iface = back.find("CONSTRAINED_NODAL_RIGID_BODY")[0]
-    fe = structure_stiffness(back, ("set", int(rear["nsid"])), ("set", int(iface["nsid"])),
-                             direction=(-1.0, 0.0, 0.0), transverse=(1000.0, 1.0e6))
+    fe = structure_stiffness(
+        back,
+        ("set", int(rear["nsid"])),
+        ("set", int(iface["nsid"])),
+        direction=(-1.0, 0.0, 0.0),
+        transverse=(1000.0, 1.0e6),
+    )
     c = np.linalg.inv(connection_stiffness(s, fe.load_point))
     assert 1.0 / c[0, 0] == pytest.approx(fe.stiffness, rel=1e-6)
     assert 1.0 / c[1, 1] == pytest.approx(fe.transverse["lateral"], rel=1e-6)

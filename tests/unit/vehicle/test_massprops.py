@@ -95,8 +95,11 @@ def test_generic_car_replaced_and_kept_make_the_whole_car():
     cut = cut_behind(m, x=v.interface_x)
     rm = replaced_mass(cut, axle_nodes="rear axle attachment", axle_parts=["rear axle"])
     em = element_moments(m)
-    kept = mk.combine(em["shells"], mk.point_moments(m.nodes.xyz[m.masses.node], m.masses.mass),
-                      weights_mask=[~cut.replaced["shells"], ~cut.removed_nodes[m.masses.node]])
+    kept = mk.combine(
+        em["shells"],
+        mk.point_moments(m.nodes.xyz[m.masses.node], m.masses.mass),
+        weights_mask=[~cut.replaced["shells"], ~cut.removed_nodes[m.masses.node]],
+    )
     whole = m.mass_properties()
     both = rm.structure + kept
     assert both.mass == pytest.approx(whole.mass, rel=1e-12) and whole.mass * 1e3 == pytest.approx(v.mass)

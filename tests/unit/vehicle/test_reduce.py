@@ -56,12 +56,19 @@ def _two_rails():
         record("RIGIDWALL_PLANAR_ID", rwid=1, heading="wall", nsid=2, xt=L + 1.0, xh=L),
         record("DATABASE_CROSS_SECTION_PLANE_ID", csid=1, title="rail left", psid=1, xct=L / 2, xch=L / 2 + 1),
         record("DATABASE_CROSS_SECTION_PLANE_ID", csid=2, title="rail right", psid=2, xct=L / 2, xch=L / 2 + 1),
-        record("DATABASE_HISTORY_NODE_ID", rows={"id": ids[[rear[0], front[0]]],
-                                                 "heading": np.array(["rear", "front"], object)}),
-        record("CONTROL_TERMINATION", endtim=END), record("CONTROL_TIMESTEP", tssfac=0.9),
-        record("DATABASE_SECFORC", dt=5e-5), record("DATABASE_RWFORC", dt=5e-5), record("DATABASE_NODOUT", dt=5e-5),
-        record("DATABASE_GLSTAT", dt=5e-5), record("DATABASE_MATSUM", dt=5e-5),
-        record("DATABASE_BINARY_D3PLOT", dt=END / 12)]
+        record(
+            "DATABASE_HISTORY_NODE_ID",
+            rows={"id": ids[[rear[0], front[0]]], "heading": np.array(["rear", "front"], object)},
+        ),
+        record("CONTROL_TERMINATION", endtim=END),
+        record("CONTROL_TIMESTEP", tssfac=0.9),
+        record("DATABASE_SECFORC", dt=5e-5),
+        record("DATABASE_RWFORC", dt=5e-5),
+        record("DATABASE_NODOUT", dt=5e-5),
+        record("DATABASE_GLSTAT", dt=5e-5),
+        record("DATABASE_MATSUM", dt=5e-5),
+        record("DATABASE_BINARY_D3PLOT", dt=END / 12),
+    ]
     return m, rear, front
 
 
@@ -80,8 +87,9 @@ def reduced(full_run, request):
     # an elastic impact of a short structure: what reaches the cut comes back from the rear masses within
     # the run, which the cut dashpots (made for a crash's first passage into a large rear) would keep
     # (the wall impulse 7 % short); the condensation alone here
-    red = reduce_vehicle(full_deck, [root / "full"], load_cases=["wall"], modes=4, connection=request.param,
-                         cut_dashpots=False)
+    red = reduce_vehicle(
+        full_deck, [root / "full"], load_cases=["wall"], modes=4, connection=request.param, cut_dashpots=False
+    )
     files = red.write(d / "simplified.k")
     sur = run(files["deck"], out=d / "simplified")
     return m, full, red, files, sur, d
@@ -163,8 +171,16 @@ def test_verification_figures(reduced):
     the front ring's compression towards the rear body (the "intrusion"
     here) within 5 % of the full model's at every node."""
     m, full, red, files, sur, d = reduced
-    v = verify_vehicle(d.parent / "full", d / "simplified", d.parent / "full.k", files["deck"], load_case="wall",
-                       crash_boxes=("rail left", "rail right"), reference="rear", engine="front")
+    v = verify_vehicle(
+        d.parent / "full",
+        d / "simplified",
+        d.parent / "full.k",
+        files["deck"],
+        load_case="wall",
+        crash_boxes=("rail left", "rail right"),
+        reference="rear",
+        engine="front",
+    )
     f = v.figures
     t_stop = f["deceleration_phase_end"]
     k = list(full.history_nodes).index(f["reference_node"])
@@ -183,9 +199,13 @@ def test_verification_figures(reduced):
     assert f["time"]["elements_simplified"] < f["time"]["elements_full"]
     out = v.write(d / "verify")
     summary = json.loads(out["summary"].read_text())
-    for key in ("crash_box_internal_energy_deviation_percent", "firewall_intrusion_max_deviation_percent",
-                "firewall_intrusion_mean_deviation_percent", "energy_ratings_deceleration_phase",
-                "time_reduction_percent"):
+    for key in (
+        "crash_box_internal_energy_deviation_percent",
+        "firewall_intrusion_max_deviation_percent",
+        "firewall_intrusion_mean_deviation_percent",
+        "energy_ratings_deceleration_phase",
+        "time_reduction_percent",
+    ):
         assert key in summary
     assert "data:image/png;base64" in out["html"].read_text()
 
@@ -203,17 +223,28 @@ def test_elastic_twin_splits_the_deviations(reduced, tmp_path, capsys):
     out = capsys.readouterr().out
     assert f"0 elements behind x = {L / 2:g} elastic" in out and "*MAT_ELASTIC left as they are: 1, 2" in out
     assert np.array_equal(read_deck(twin_deck).shells.pid, m.shells.pid)
-    v = verify_vehicle(d.parent / "full", d / "simplified", d.parent / "full.k", files["deck"], load_case="wall",
-                       crash_boxes=("rail left", "rail right"), reference="rear", engine="front",
-                       twin=d.parent / "full", twin_deck=twin_deck)
+    v = verify_vehicle(
+        d.parent / "full",
+        d / "simplified",
+        d.parent / "full.k",
+        files["deck"],
+        load_case="wall",
+        crash_boxes=("rail left", "rail right"),
+        reference="rear",
+        engine="front",
+        twin=d.parent / "full",
+        twin_deck=twin_deck,
+    )
     f, tw = v.figures, v.figures["elastic_twin"]
     assert tw["premise"]["crash_box_internal_energy_deviation_percent"] == 0.0
     assert tw["premise"]["firewall_intrusion_max_deviation_percent"] == 0.0
     assert tw["surrogate"]["crash_box_internal_energy_deviation_percent"] == pytest.approx(
-        f["crash_box_internal_energy_deviation_percent"], rel=1e-12)
+        f["crash_box_internal_energy_deviation_percent"], rel=1e-12
+    )
     for k in ("max", "mean"):
         assert tw["surrogate"][f"firewall_intrusion_{k}_deviation_percent"] == pytest.approx(
-            f[f"firewall_intrusion_{k}_deviation_percent"], rel=1e-12)
+            f[f"firewall_intrusion_{k}_deviation_percent"], rel=1e-12
+        )
     assert "elastic premise" in verification_page(v)
 
 
@@ -226,8 +257,22 @@ def test_cli_reduce_with_modes_writes_a_deck_that_runs(full_run, tmp_path, capsy
 
     _, _, full_deck, root = full_run
     out = tmp_path / "cut.k"
-    assert main(["vehicle", "reduce", str(full_deck), "--results", str(root / "full"), "-o", str(out),
-                 "--condensed-modes", "2"]) == 0
+    assert (
+        main(
+            [
+                "vehicle",
+                "reduce",
+                str(full_deck),
+                "--results",
+                str(root / "full"),
+                "-o",
+                str(out),
+                "--condensed-modes",
+                "2",
+            ]
+        )
+        == 0
+    )
     assert "wrote" in capsys.readouterr().out
     sim = read_deck(out)
     rec = sim.find("ELEMENT_DIRECT_MATRIX_INPUT")[0]

@@ -53,14 +53,15 @@ def test_end_mass_on_the_axis_against_the_closed_form():
     ring = np.flatnonzero(xyz[:, 0] == 0.0)
     m_end = 0.008
     n = len(ring)
-    model.masses = Masses(np.arange(1, n + 1, dtype=np.int64), ring.astype(np.int32), np.full(n, m_end / n),
-                          np.zeros(n, np.int64))
+    model.masses = Masses(
+        np.arange(1, n + 1, dtype=np.int64), ring.astype(np.int32), np.full(n, m_end / n), np.zeros(n, np.int64)
+    )
     cut = cut_behind(model, x=X)
     r = relieved_stiffness(cut)
     ea, rho_a, f = E * 4 * B * T, RHO * 4 * B * T, r.force
     big_m = rho_a * X + m_end
-    u_end = f / ea * (X - rho_a * X ** 2 / (2 * big_m))
-    u_bar = (rho_a * f / ea * (X ** 2 / 2 - rho_a * X ** 3 / (6 * big_m)) + m_end * u_end) / big_m
+    u_end = f / ea * (X - rho_a * X**2 / (2 * big_m))
+    u_bar = (rho_a * f / ea * (X**2 / 2 - rho_a * X**3 / (6 * big_m)) + m_end * u_end) / big_m
     assert r.stiffness == pytest.approx(f / u_bar, rel=2e-3)
     assert ea / X < r.stiffness < 1.2 * ea / X
 

@@ -132,8 +132,9 @@ def _frame_model(h, a, area, inertia):
     """An L frame of resultant beams: column (0,0,0)-(0,0,h), beam to (a,0,h)."""
     m = Model()
     pts = np.array([[0, 0, z] for z in np.linspace(0, h, 11)] + [[x, 0, h] for x in np.linspace(0, a, 11)[1:]])
-    m.nodes = Nodes(np.arange(1, len(pts) + 1), pts.astype(float), np.zeros(len(pts), np.int8),
-                    np.zeros(len(pts), np.int8))
+    m.nodes = Nodes(
+        np.arange(1, len(pts) + 1), pts.astype(float), np.zeros(len(pts), np.int8), np.zeros(len(pts), np.int8)
+    )
     bm = Beams.zeros(len(pts) - 1)
     bm.ids = np.arange(1, len(pts))
     bm.pid = np.ones(len(pts) - 1, np.int64)
@@ -159,8 +160,9 @@ def test_l_frame_of_beams():
 
 def test_springs_in_series_and_spot_welded_tube_halves():
     m = Model()
-    m.nodes = Nodes(np.arange(1, 4), np.array([[0, 0, 0], [100, 0, 0], [250, 0, 0.0]]), np.zeros(3, np.int8),
-                    np.zeros(3, np.int8))
+    m.nodes = Nodes(
+        np.arange(1, 4), np.array([[0, 0, 0], [100, 0, 0], [250, 0, 0.0]]), np.zeros(3, np.int8), np.zeros(3, np.int8)
+    )
     d = Discretes.zeros(2)
     d.ids = np.array([1, 2])
     d.pid = np.array([1, 2])
@@ -179,8 +181,9 @@ def test_springs_in_series_and_spot_welded_tube_halves():
     a = np.flatnonzero(xyz[:, 0] == L / 2)
     b = len(xyz) + np.flatnonzero(second[:, 0] == L / 2)
     ids = model.nodes.ids
-    model.keywords.append(record("CONSTRAINED_SPOTWELD_ID", rows={"wid": np.arange(1, len(a) + 1), "n1": ids[a],
-                                                                 "n2": ids[b]}))
+    model.keywords.append(
+        record("CONSTRAINED_SPOTWELD_ID", rows={"wid": np.arange(1, len(a) + 1), "n1": ids[a], "n2": ids[b]})
+    )
     allx = model.nodes.xyz[:, 0]
     r = structure_stiffness(model, np.flatnonzero(allx == 0.0), np.flatnonzero(allx == L), force=1000.0)
     assert r.stiffness == pytest.approx(E * 4 * B * T / L, rel=1e-9)
@@ -218,8 +221,11 @@ def test_generic_car_longitudinal_stiffness():
     r = longitudinal_stiffness(cut, "rear axle attachment")
     assert 5e3 < r.stiffness < 1e5  # N/mm; the paper's car: 23 585
     np.testing.assert_allclose(r.support_reaction, [1000.0, 0.0, 0.0], atol=1e-6)
-    assert r.elements["shell"] == cut.replaced["shells"].sum() - np.isin(
-        v.model.shells.pid[cut.replaced["shells"]], [v.part_ids["rear axle"]]).sum()
+    assert (
+        r.elements["shell"]
+        == cut.replaced["shells"].sum()
+        - np.isin(v.model.shells.pid[cut.replaced["shells"]], [v.part_ids["rear axle"]]).sum()
+    )
     assert r.load_point[0] == pytest.approx(v.interface_x, abs=40.0)
 
 

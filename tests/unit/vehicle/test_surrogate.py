@@ -34,8 +34,12 @@ def _tube(per_side=4, n_len=20, length=L, masses=True):
         ms.mass = np.concatenate([np.full(len(front), M_FRONT / len(front)), np.full(len(rear), M_REAR / len(rear))])
         m.masses = ms
     m.sets[("NODE", 1)] = id_list("SET_NODE_LIST_TITLE", 1, m.nodes.ids[rear], title="axle")
-    m.keywords.append(record("DATABASE_HISTORY_NODE_ID", rows={
-        "id": m.nodes.ids[[front[0], rear[0]]], "heading": np.array(["front", "rear"], object)}))
+    m.keywords.append(
+        record(
+            "DATABASE_HISTORY_NODE_ID",
+            rows={"id": m.nodes.ids[[front[0], rear[0]]], "heading": np.array(["front", "rear"], object)},
+        )
+    )
     return m, front, rear
 
 
@@ -133,9 +137,13 @@ def _oscillator(model, rear_nodes, v0=-2000.0, end=0.006):
     """The model with the rear nodes moving away at v0 [mm/s], the front at rest."""
     sid = 99
     model.sets[("NODE", sid)] = id_list("SET_NODE_LIST", sid, model.nodes.ids[rear_nodes])
-    model.keywords += [record("INITIAL_VELOCITY", nsid=sid, vx=v0), record("CONTROL_TERMINATION", endtim=end),
-                       record("CONTROL_TIMESTEP", tssfac=0.9), record("DATABASE_NODOUT", dt=2e-5),
-                       record("DATABASE_GLSTAT", dt=2e-5)]
+    model.keywords += [
+        record("INITIAL_VELOCITY", nsid=sid, vx=v0),
+        record("CONTROL_TERMINATION", endtim=end),
+        record("CONTROL_TIMESTEP", tssfac=0.9),
+        record("DATABASE_NODOUT", dt=2e-5),
+        record("DATABASE_GLSTAT", dt=2e-5),
+    ]
     return run(model, output_dt=2e-5)
 
 
@@ -164,7 +172,9 @@ def test_surrogate_oscillates_like_the_full_tube():
     ids = list(full.history_nodes)
     f_idx = ids.index(int(m.nodes.ids[front[0]]))
     t_full = _first_peak_time(full.time, -full.node_velocity[:, f_idx, 0])
-    t_sur = _first_peak_time(sur.time, -sur.node_velocity[:, list(sur.history_nodes).index(int(m.nodes.ids[front[0]])), 0])
+    t_sur = _first_peak_time(
+        sur.time, -sur.node_velocity[:, list(sur.history_nodes).index(int(m.nodes.ids[front[0]])), 0]
+    )
     assert t_full == pytest.approx(half, rel=0.04)
     assert t_sur == pytest.approx(half, rel=0.04)
     assert t_sur == pytest.approx(t_full, rel=0.04)
@@ -190,8 +200,9 @@ def test_interface_proposal_finds_the_elastic_rear(tmp_path):
     front = x0[:, 0] > 300.0
     x1[front, 0] = 300.0 + 0.9 * (x0[front, 0] - 300.0)
     x1[:, 0] -= 50.0  # the whole tube moves on: no strain from that
-    np.savez(tmp_path / "results.npz", states_time=np.array([0.0, 0.01]), states_x=np.stack([x0, x1]),
-             node_ids=m.nodes.ids)
+    np.savez(
+        tmp_path / "results.npz", states_time=np.array([0.0, 0.01]), states_x=np.stack([x0, x1]), node_ids=m.nodes.ids
+    )
     eps, work, how = shell_measures(m, tmp_path)
     centre = x0[m.shells.nodes].mean(axis=1)[:, 0]
     assert np.all(eps[centre > 300.0] == pytest.approx(0.1 - 200.0 / E, rel=1e-6))
@@ -228,20 +239,23 @@ def test_interface_proposal_reports_how_far_the_cut_bends(tmp_path):
     x1[:, 0] -= 50.0
     rear = x0[:, 0] < 300.0
     x1[rear, 0] -= kappa * x0[rear, 1] ** 2
-    np.savez(tmp_path / "results.npz", states_time=np.array([0.0, 0.01]), states_x=np.stack([x0, x1]),
-             node_ids=m.nodes.ids)
+    np.savez(
+        tmp_path / "results.npz", states_time=np.array([0.0, 0.01]), states_x=np.stack([x0, x1]), node_ids=m.nodes.ids
+    )
     ring = x0[np.isclose(x0[:, 0], 200.0), 1] ** 2  # y² of one ring's nodes
     bent = kappa * (ring - ring.mean())
     at = {round(c["x"]): c for c in propose_interface(m, tmp_path, step=50.0).candidates}
     for x in (100, 200, 250):
         assert at[x]["interface_warping_max"] == pytest.approx(np.abs(bent).max(), rel=1e-6)
-        assert at[x]["interface_warping_rms"] == pytest.approx(np.sqrt((bent ** 2).mean()), rel=1e-6)
+        assert at[x]["interface_warping_rms"] == pytest.approx(np.sqrt((bent**2).mean()), rel=1e-6)
     for x in (350, 400):
         assert at[x]["interface_warping_max"] < 1e-9
     # without field states (measures given) nothing is said about it
     eps = np.zeros(len(m.shells))
-    assert all("interface_warping_max" not in c
-               for c in propose_interface(m, None, step=50.0, measures=(eps, eps + 1.0)).candidates)
+    assert all(
+        "interface_warping_max" not in c
+        for c in propose_interface(m, None, step=50.0, measures=(eps, eps + 1.0)).candidates
+    )
 
 
 def test_interface_proposal_takes_both_criteria():
@@ -280,8 +294,9 @@ def _two_tubes():
     the node set "axle", a point mass on each front ring."""
     xyz, quads = tube_mesh(B, L, 4, 20)
     xyz2 = xyz + [0.0, 3 * B, 0.0]
-    m = shell_model(np.vstack([xyz, xyz2]), np.vstack([quads, quads + len(xyz)]),
-                    pids=np.repeat([1, 2], len(quads)), thickness=T)
+    m = shell_model(
+        np.vstack([xyz, xyz2]), np.vstack([quads, quads + len(xyz)]), pids=np.repeat([1, 2], len(quads)), thickness=T
+    )
     x = m.nodes.xyz
     rear, front = np.flatnonzero(np.isclose(x[:, 0], 0.0)), np.flatnonzero(np.isclose(x[:, 0], L))
     ms = Masses.zeros(len(front))
@@ -297,12 +312,15 @@ def test_split_shares_of_disjoint_parts_add_up_to_the_whole():
     from crashlite.vehicle.steps.massprops import split_replaced
 
     m = _two_tubes()
-    m.masses.node[:] = np.flatnonzero(np.isclose(m.nodes.xyz[:, 0], L / 4))[:len(m.masses.node)]  # behind the cut
+    m.masses.node[:] = np.flatnonzero(np.isclose(m.nodes.xyz[:, 0], L / 4))[: len(m.masses.node)]  # behind the cut
     cut = cut_behind(m, x=L / 2)
     axle = m.nodes.xyz[np.isclose(m.nodes.xyz[:, 0], 0.0)].mean(axis=0)
     whole = split_replaced(cut, axle)[0]
-    parts = [split_replaced(cut, axle, only=[1])[0], split_replaced(cut, axle, only=[2])[0],
-             split_replaced(cut, axle, without=[1, 2])[0]]
+    parts = [
+        split_replaced(cut, axle, only=[1])[0],
+        split_replaced(cut, axle, only=[2])[0],
+        split_replaced(cut, axle, without=[1, 2])[0],
+    ]
     assert parts[0].mass == pytest.approx(parts[1].mass, rel=1e-12) and parts[0].mass > 0
     assert parts[2].mass > 0  # the point masses: only in the rest
     assert sum(p.mass for p in parts) == pytest.approx(whole.mass, rel=1e-12)
@@ -321,14 +339,20 @@ def test_assembly_bodies_carry_their_own_share_of_the_interface_mass():
     cut = cut_behind(m, x=L / 2)
     rm = replaced_mass(cut, axle_nodes="axle")
     k = longitudinal_stiffness(cut, "axle")
-    s = build_surrogate(cut, {"tube 1": [1], "tube 2": [2]}, {"tube 1": 0.5, "tube 2": 0.5}, k.stiffness, rm,
-                        interface="assembly")
+    s = build_surrogate(
+        cut, {"tube 1": [1], "tube 2": [2]}, {"tube 1": 0.5, "tube 2": 0.5}, k.stiffness, rm, interface="assembly"
+    )
     own = split_replaced(cut, rm.axle_points, only=[1])[0]
     assert own.mass > 0
     it = s.model.inertias
     for name in ("tube 1", "tube 2"):
-        nsid = int([r for r in s.model.find("CONSTRAINED_NODAL_RIGID_BODY") if "INERTIA" not in r.options
-                    and s.part_ids[f"interface {name}"] == int(r["pid"])][0]["nsid"])
+        nsid = int(
+            [
+                r
+                for r in s.model.find("CONSTRAINED_NODAL_RIGID_BODY")
+                if "INERTIA" not in r.options and s.part_ids[f"interface {name}"] == int(r["pid"])
+            ][0]["nsid"]
+        )
         members = s.model.node_index(s.model.set_members("NODE", nsid))
         held = it.mass[np.isin(it.node, members)]
         assert held.sum() == pytest.approx(own.mass, rel=1e-9)  # its own share (the rest: no elements, no points)

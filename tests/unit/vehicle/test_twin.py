@@ -20,18 +20,21 @@ def model():
     pids = np.where(cx > 400.0, 1, np.where(cx > 150.0, 2, 3))
     m = shell_model(xyz, q, thickness=1.5, pids=pids)
     m.curves[1] = record("DEFINE_CURVE", lcid=1, rows={"a1": np.array([0.0, 1.0]), "o1": np.array([300.0, 400.0])})
-    m.materials[1] = record("MAT_PIECEWISE_LINEAR_PLASTICITY_TITLE", card_title="DP600", mid=1, ro=RHO, e=2.1e5,
-                            pr=0.3, sigy=300.0, lcss=1)
+    m.materials[1] = record(
+        "MAT_PIECEWISE_LINEAR_PLASTICITY_TITLE", card_title="DP600", mid=1, ro=RHO, e=2.1e5, pr=0.3, sigy=300.0, lcss=1
+    )
     m.materials[2] = record("MAT_PLASTIC_KINEMATIC", mid=2, ro=RHO, e=2.0e5, pr=0.29, sigy=200.0, etan=1000.0)
     m.materials[3] = record("MAT_RIGID", mid=3, ro=RHO, e=2.1e5, pr=0.3)
     for p in (1, 2, 3):
         m.parts[p].values["mid"] = p
     m.sets[("PART", 1)] = id_list("SET_PART_LIST_TITLE", 1, [1, 2, 3], title="tube")
-    m.sets[("PART", 2)] = record("SET_PART_LIST_GENERATE", sid=2, rows={"b1beg": np.array([2]),
-                                                                       "b1end": np.array([3])})
+    m.sets[("PART", 2)] = record("SET_PART_LIST_GENERATE", sid=2, rows={"b1beg": np.array([2]), "b1end": np.array([3])})
     m.keywords.append(record("CONTACT_AUTOMATIC_SURFACE_TO_SURFACE", ssid=2, msid=1, sstyp=3, mstyp=3))
-    m.keywords.append(record("ELEMENT_MASS_PART", rows={"pid": np.array([2]), "addmass": np.array([0.002]),
-                                                        "finmass": np.array([0.0])}))
+    m.keywords.append(
+        record(
+            "ELEMENT_MASS_PART", rows={"pid": np.array([2]), "addmass": np.array([0.002]), "finmass": np.array([0.0])}
+        )
+    )
     return m
 
 

@@ -59,11 +59,34 @@ def test_size_and_layout(car):
 def test_parts_and_assemblies_by_name(car):
     names = set(car.part_ids)
     for side in ("left", "right"):
-        for n in ("crash box", "front rail", "upper rail", "A-pillar", "hinge pillar", "sill", "floor", "door inner",
-                  "door outer", "B-pillar", "rear rail", "roof rail"):
+        for n in (
+            "crash box",
+            "front rail",
+            "upper rail",
+            "A-pillar",
+            "hinge pillar",
+            "sill",
+            "floor",
+            "door inner",
+            "door outer",
+            "B-pillar",
+            "rear rail",
+            "roof rail",
+        ):
             assert f"{n} {side}" in names
-    for n in ("bumper beam", "radiator support", "engine and gearbox", "engine mounts", "firewall", "tunnel",
-              "exhaust", "windshield", "roof", "rear floor", "rear axle"):
+    for n in (
+        "bumper beam",
+        "radiator support",
+        "engine and gearbox",
+        "engine mounts",
+        "firewall",
+        "tunnel",
+        "exhaust",
+        "windshield",
+        "roof",
+        "rear floor",
+        "rear axle",
+    ):
         assert n in names
     for a in INTERFACE_ASSEMBLIES + ("crash box left", "crash box right", "firewall", "engine and gearbox"):
         assert f"assembly {a}" in car.set_ids
@@ -119,7 +142,6 @@ def test_interface_position_moves_the_sections():
     assert "A-pillar left" in v.sections and "roof" not in v.sections
 
 
-
 @pytest.mark.parametrize("mesh", [COARSE, 20.0])
 def test_door_joints_are_weld_patches_across_the_gap(mesh):
     """Each hinge and latch welds every door node within HINGE_REACH of it
@@ -141,6 +163,7 @@ def test_door_joints_are_weld_patches_across_the_gap(mesh):
         span = patch[:, 2].max() - patch[:, 2].min()
         assert 1.0 * body.HINGE_REACH <= span <= 2.0 * body.HINGE_REACH + 1e-9, j.name
     assert len(w["n1"]) == len(np.unique(w["n1"]))
+
 
 def test_mesh_is_one_conforming_body(car):
     """Every part is tied into the body through shared nodes, the doors

@@ -55,7 +55,7 @@ def test_ruled_piece_needs_matching_ends():
     ok = Ruled(((0.0, 0.0, 0.0), (0.0, 100.0, 0.0)), ((100.0, 0.0, 100.0), (100.0, 100.0, 100.0)), 141.0)
     xyz, q = ok.mesh(g)
     assert len(xyz) == 15 * len(g.span(1, 0.0, 100.0)) and q.max() < len(xyz)
-    assert np.allclose(xyz[-len(g.span(1, 0.0, 100.0)):, [0, 2]], 100.0)
+    assert np.allclose(xyz[-len(g.span(1, 0.0, 100.0)) :, [0, 2]], 100.0)
     coarse = _grid(30.0, (2, 50.0))  # y: 0-40-100 in 3 cells, z: 0-50-100 in 4
     bad = Ruled(((0.0, 0.0, 0.0), (0.0, 100.0, 0.0)), ((0.0, 0.0, 0.0), (0.0, 0.0, 100.0)), 100.0)
     with pytest.raises(ValueError, match="must match"):

@@ -75,7 +75,9 @@ def test_odb_offset_barrier_on_the_driver_side(car_deck, tmp_path, barrier):
 def test_load_case_for_another_deck_in_other_units(deck, tmp_path):
     """Any vehicle deck: a steel plate in mm-kg-ms gets 56 km/h as mm/ms and
     the wall ahead of its front."""
-    car = deck("plate.k", """
+    car = deck(
+        "plate.k",
+        """
         *KEYWORD
         *NODE
         1,0.0,0.0,300.0
@@ -93,7 +95,8 @@ def test_load_case_for_another_deck_in_other_units(deck, tmp_path):
         *MAT_ELASTIC
                  3   7.85e-6     210.0       0.3
         *END
-        """)
+        """,
+    )
     m = read_deck(usncap_deck(car, tmp_path / "plate_usncap.k"))
     s = build(m)
     assert np.allclose(s.v0[:, 0], 56.0 / 3.6)  # mm/ms

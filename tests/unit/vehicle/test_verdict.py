@@ -6,10 +6,14 @@ from crashlite.vehicle.verify.verdict import intrusion_bound, verdict, verdict_l
 
 
 def _figures(**kw):
-    f = {"energy_rating_min": 0.96, "crash_box_internal_energy_deviation_percent": -1.9,
-         "firewall_intrusion_mean_deviation_percent": 2.9, "firewall_intrusion_max_deviation_percent": 14.0,
-         "time_reduction_percent": 61.0,
-         "elastic_twin": {"premise": {"firewall_intrusion_max_deviation_percent": 10.0}}}
+    f = {
+        "energy_rating_min": 0.96,
+        "crash_box_internal_energy_deviation_percent": -1.9,
+        "firewall_intrusion_mean_deviation_percent": 2.9,
+        "firewall_intrusion_max_deviation_percent": 14.0,
+        "time_reduction_percent": 61.0,
+        "elastic_twin": {"premise": {"firewall_intrusion_max_deviation_percent": 10.0}},
+    }
     f.update(kw)
     return f
 
@@ -20,14 +24,17 @@ def test_every_figure_inside_its_bound_passes():
     assert intrusion_bound(_figures()) == pytest.approx(15.0)  # the twin's 10 % + 5 points
 
 
-@pytest.mark.parametrize("key, value, row", [
-    ("energy_rating_min", 0.949, 0),
-    ("crash_box_internal_energy_deviation_percent", 2.01, 1),
-    ("crash_box_internal_energy_deviation_percent", -2.01, 1),
-    ("firewall_intrusion_mean_deviation_percent", 3.01, 2),
-    ("firewall_intrusion_max_deviation_percent", 15.01, 3),
-    ("time_reduction_percent", 59.9, 4),
-])
+@pytest.mark.parametrize(
+    "key, value, row",
+    [
+        ("energy_rating_min", 0.949, 0),
+        ("crash_box_internal_energy_deviation_percent", 2.01, 1),
+        ("crash_box_internal_energy_deviation_percent", -2.01, 1),
+        ("firewall_intrusion_mean_deviation_percent", 3.01, 2),
+        ("firewall_intrusion_max_deviation_percent", 15.01, 3),
+        ("time_reduction_percent", 59.9, 4),
+    ],
+)
 def test_a_figure_past_its_bound_fails_alone(key, value, row):
     rows = verdict(_figures(**{key: value}))
     assert [r.passed for r in rows] == [i != row for i in range(5)]

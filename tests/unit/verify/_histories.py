@@ -20,13 +20,26 @@ def history(scale=1.0, shift=0.0, parts=(1, 2), nodes=(5,), sections=(11,), wall
     ke = 0.5 * V0**2 * (1 - y / 2)
     ie = 0.5 * V0**2 * y / 2
     data = {
-        "glstat": {"time": t, "kinetic_energy": ke, "internal_energy": ie, "total_energy": ke + ie,
-                   "hourglass_energy": np.zeros(n)},
+        "glstat": {
+            "time": t,
+            "kinetic_energy": ke,
+            "internal_energy": ie,
+            "total_energy": ke + ie,
+            "hourglass_energy": np.zeros(n),
+        },
         "matsum": {"time": t, "ids": np.array(parts), "internal_energy": np.outer(ie, np.arange(1, len(parts) + 1))},
-        "secforc": {"time": t, "ids": np.array(sections), "x_force": np.outer(1e5 * y, np.ones(len(sections))),
-                    "y_force": np.zeros((n, len(sections))), "z_force": np.zeros((n, len(sections)))},
-        "rwforc": {("forces", "time"): t, ("forces", "ids"): np.array(walls),
-                   ("forces", "normal_force"): np.outer(2e5 * y, np.ones(len(walls)))},
+        "secforc": {
+            "time": t,
+            "ids": np.array(sections),
+            "x_force": np.outer(1e5 * y, np.ones(len(sections))),
+            "y_force": np.zeros((n, len(sections))),
+            "z_force": np.zeros((n, len(sections))),
+        },
+        "rwforc": {
+            ("forces", "time"): t,
+            ("forces", "ids"): np.array(walls),
+            ("forces", "normal_force"): np.outer(2e5 * y, np.ones(len(walls))),
+        },
         "nodout": {"time": t, "ids": np.array(nodes)},
     }
     v = -V0 * np.cos(math.pi * (t - shift) / 0.1)  # the body slows and rebounds (same in every run)

@@ -33,29 +33,67 @@ def deck_text(k: float = 672.0, extra: bool = False, end: float = END) -> str:
     front = [1, 2, 3, 4] + ([9] if extra else [])
     rear = [5, 6, 7, 8] + ([10] if extra else [])
     everything = front + rear
-    cards = ["*KEYWORD", "*TITLE", f"mini car k={k:g}{' with bumper' if extra else ''}", "*NODE", *nodes,
-             "*ELEMENT_DISCRETE", *springs,
-             "*ELEMENT_MASS", *[f"{100 + n},{n},{MASS / 4!r}" for n in (5, 6, 7, 8)],
-             *[f"{100 + n},{n},1e-5" for n in front],
-             "*PART", "crash box L", "1,1,1", "*PART", "crash box R", "2,1,1",
-             *(["*PART", "bumper", "3,1,1"] if extra else []),
-             "*SECTION_DISCRETE", "1,0", "*MAT_SPRING_ELASTIC", f"1,{k!r}",
-             "*SET_NODE_LIST", "1", *_rows(rear), "*SET_NODE_LIST", "2", *_rows(front),
-             "*SET_NODE_LIST", "3", *_rows(everything),
-             "*SET_PART_LIST", "7", "1,2",
-             "*CONSTRAINED_NODAL_RIGID_BODY", "50,0,1",
-             "*INITIAL_VELOCITY", "3", f"{-V0!r},0,0",
-             "*RIGIDWALL_PLANAR", "2", "0,0,0,1,0,0",
-             "*DATABASE_CROSS_SECTION_PLANE_ID", "11,mid rail", "0,250,0,0,251,0,0",
-             "*DATABASE_HISTORY_NODE", "5,1" + (",9" if extra else ""),
-             "*DATABASE_BINARY_D3PLOT", "0.005",
-             "*CONTROL_TERMINATION", repr(end), "*CONTROL_TIMESTEP", ",0.5", "*END"]
+    cards = [
+        "*KEYWORD",
+        "*TITLE",
+        f"mini car k={k:g}{' with bumper' if extra else ''}",
+        "*NODE",
+        *nodes,
+        "*ELEMENT_DISCRETE",
+        *springs,
+        "*ELEMENT_MASS",
+        *[f"{100 + n},{n},{MASS / 4!r}" for n in (5, 6, 7, 8)],
+        *[f"{100 + n},{n},1e-5" for n in front],
+        "*PART",
+        "crash box L",
+        "1,1,1",
+        "*PART",
+        "crash box R",
+        "2,1,1",
+        *(["*PART", "bumper", "3,1,1"] if extra else []),
+        "*SECTION_DISCRETE",
+        "1,0",
+        "*MAT_SPRING_ELASTIC",
+        f"1,{k!r}",
+        "*SET_NODE_LIST",
+        "1",
+        *_rows(rear),
+        "*SET_NODE_LIST",
+        "2",
+        *_rows(front),
+        "*SET_NODE_LIST",
+        "3",
+        *_rows(everything),
+        "*SET_PART_LIST",
+        "7",
+        "1,2",
+        "*CONSTRAINED_NODAL_RIGID_BODY",
+        "50,0,1",
+        "*INITIAL_VELOCITY",
+        "3",
+        f"{-V0!r},0,0",
+        "*RIGIDWALL_PLANAR",
+        "2",
+        "0,0,0,1,0,0",
+        "*DATABASE_CROSS_SECTION_PLANE_ID",
+        "11,mid rail",
+        "0,250,0,0,251,0,0",
+        "*DATABASE_HISTORY_NODE",
+        "5,1" + (",9" if extra else ""),
+        "*DATABASE_BINARY_D3PLOT",
+        "0.005",
+        "*CONTROL_TERMINATION",
+        repr(end),
+        "*CONTROL_TIMESTEP",
+        ",0.5",
+        "*END",
+    ]
     return "\n".join(cards) + "\n"
 
 
 def _rows(ids) -> list[str]:
     """Set members, 8 to a card line."""
-    return [",".join(map(str, ids[i:i + 8])) for i in range(0, len(ids), 8)]
+    return [",".join(map(str, ids[i : i + 8])) for i in range(0, len(ids), 8)]
 
 
 def write_and_run(folder, k: float = 672.0, extra: bool = False, end: float = END) -> tuple[Path, Path]:

@@ -108,9 +108,11 @@ def test_parts_by_title_and_part_set_with_the_decks(deck):
     mb = read_deck(deck("b.k", text.format(r=4)))  # the right crash box has another ID in b
     c = compare(run("a", model=ma), run("b", parts=(1, 4), model=mb), Options(parts=["crash box R", "set:7", "1"]))
     names = [p.name for p in c.group("part")]
-    assert names == ["crash box R (part 2) | crash box R (part 4) internal energy",
-                     "part set 7 (parts 1, 2) | part set 7 (parts 1, 4) internal energy",
-                     "part 1 (crash box L) internal energy"]
+    assert names == [
+        "crash box R (part 2) | crash box R (part 4) internal energy",
+        "part set 7 (parts 1, 2) | part set 7 (parts 1, 4) internal energy",
+        "part 1 (crash box L) internal energy",
+    ]
     box_r, both, _ = c.group("part")
     # part 2 of a carries 2x the base energy, part 4 of b (its second column) as well
     assert box_r.deviation["peak_deviation_percent"] == 0.0
@@ -157,8 +159,16 @@ def test_field_from_history_nodes_of_a_run_without_field_states():
     t = np.array([0.0, 0.5, 1.0])
     ux = np.array([[0.0, 0.0], [-1.0, -2.0], [-3.0, -4.0]])
     zero = np.zeros_like(ux)
-    nod = {"time": t, "ids": np.array([7, 9]), "x_displacement": ux, "y_displacement": zero,
-           "z_displacement": zero, "x_coordinate": 100.0 + ux, "y_coordinate": zero + 5.0, "z_coordinate": zero}
+    nod = {
+        "time": t,
+        "ids": np.array([7, 9]),
+        "x_displacement": ux,
+        "y_displacement": zero,
+        "z_displacement": zero,
+        "x_coordinate": 100.0 + ux,
+        "y_coordinate": zero + 5.0,
+        "z_coordinate": zero,
+    }
     s = history_states(History({"nodout": nod}, "h"))
     assert s.ids.tolist() == [7, 9] and s.cells == [] and s.source == "h (history nodes)"
     np.testing.assert_array_equal(s.x[0], [[100.0, 5.0, 0.0], [100.0, 5.0, 0.0]])

@@ -40,8 +40,9 @@ def test_d3hsp_timing_lines():
         parse_d3hsp("no timing here")
 
 
-@pytest.mark.parametrize("s, text", [(20880, "5 h 48 min"), (200, "3 min 20 s"), (40, "40 s"),
-                                     (0.842, "0.842 s"), (None, "–")])
+@pytest.mark.parametrize(
+    "s, text", [(20880, "5 h 48 min"), (200, "3 min 20 s"), (40, "40 s"), (0.842, "0.842 s"), (None, "–")]
+)
 def test_durations(s, text):
     assert format_duration(s) == text
 
@@ -63,8 +64,13 @@ def test_run_info_of_a_crashlite_run(tmp_path):
     folder = run_info(tmp_path)  # no deck needed
     assert folder.elements == {"discrete": 1, "mass": 1}
     assert folder.cycles == res.cycles and folder.time_step == res.dt
-    assert (folder.wall_time, folder.cpu_time, folder.setup_time, folder.compile_time, folder.total_wall_time) == \
-        (res.loop_time, res.cpu_time, res.setup_time, res.compile_time, res.wall_time)
+    assert (folder.wall_time, folder.cpu_time, folder.setup_time, folder.compile_time, folder.total_wall_time) == (
+        res.loop_time,
+        res.cpu_time,
+        res.setup_time,
+        res.compile_time,
+        res.wall_time,
+    )
     assert folder.end_time == pytest.approx(res.time[-1]) and folder.end_time >= 0.12
     row = timing_table([folder])[0]
     assert row["setup_time"] == res.setup_time and row["total_wall_time"] == res.wall_time
@@ -79,8 +85,14 @@ def test_results_of_older_versions_give_their_whole_wall_time(tmp_path):
 
     np.savez(tmp_path / "results.npz", time=np.array([0.0, 0.1]), cycles=40, dt=2.5e-3, wall_time=3.5)
     ri = run_info(tmp_path, "old")
-    assert (ri.wall_time, ri.cpu_time, ri.setup_time, ri.cycles, ri.time_step, ri.elements) == \
-        (3.5, None, None, 40, 2.5e-3, {})
+    assert (ri.wall_time, ri.cpu_time, ri.setup_time, ri.cycles, ri.time_step, ri.elements) == (
+        3.5,
+        None,
+        None,
+        40,
+        2.5e-3,
+        {},
+    )
 
 
 def test_compilation_in_the_time_loop_is_start_up_not_run_time(tmp_path):

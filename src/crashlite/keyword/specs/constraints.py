@@ -18,9 +18,15 @@ def _nrb(options: frozenset) -> Layout:
     return Layout(head=tuple(head))
 
 
-register(Spec("CONSTRAINED_NODAL_RIGID_BODY", _nrb, options=("INERTIA", "SPC"), id_field="pid",
-              doc="Nodes of NSID move as one rigid body (PID names it); _INERTIA gives its "
-                  "mass, CoG and inertia."))
+register(
+    Spec(
+        "CONSTRAINED_NODAL_RIGID_BODY",
+        _nrb,
+        options=("INERTIA", "SPC"),
+        id_field="pid",
+        doc="Nodes of NSID move as one rigid body (PID names it); _INERTIA gives its mass, CoG and inertia.",
+    )
+)
 
 
 def _extra(options: frozenset) -> Layout:
@@ -28,10 +34,23 @@ def _extra(options: frozenset) -> Layout:
     return Layout(row=(card(f"pid:i@part {ref} iflag:i=0"),))
 
 
-register(Spec("CONSTRAINED_EXTRA_NODES", _extra, options=("NODE", "SET"), title_option=False,
-              doc="Nodes (or a node set) added to rigid part PID."))
-register(Spec("CONSTRAINED_RIGID_BODIES", lambda o: Layout(row=(card("pidl:i@part pidc:i@part iflag:i=0"),)),
-              title_option=False, doc="Rigid part PIDC merged into lead rigid part PIDL."))
+register(
+    Spec(
+        "CONSTRAINED_EXTRA_NODES",
+        _extra,
+        options=("NODE", "SET"),
+        title_option=False,
+        doc="Nodes (or a node set) added to rigid part PID.",
+    )
+)
+register(
+    Spec(
+        "CONSTRAINED_RIGID_BODIES",
+        lambda o: Layout(row=(card("pidl:i@part pidc:i@part iflag:i=0"),)),
+        title_option=False,
+        doc="Rigid part PIDC merged into lead rigid part PIDL.",
+    )
+)
 
 
 def _spotweld(options: frozenset) -> Layout:
@@ -39,16 +58,34 @@ def _spotweld(options: frozenset) -> Layout:
     return Layout(row=(card("wid:i"), data) if "ID" in options else (data,))
 
 
-register(Spec("CONSTRAINED_SPOTWELD", _spotweld, options=("ID",), title_option=False,
-              doc="Rigid weld between two nodes until the force criterion (SN, SS, N, M) "
-                  "or time TF or plastic strain EP."))
+register(
+    Spec(
+        "CONSTRAINED_SPOTWELD",
+        _spotweld,
+        options=("ID",),
+        title_option=False,
+        doc="Rigid weld between two nodes until the force criterion (SN, SS, N, M) or time TF or plastic strain EP.",
+    )
+)
 
 
 def _gws(options: frozenset) -> Layout:
     head = (card("wid:i"),) if "ID" in options else ()
-    return Layout(head=head + (card("nsid:i@set_node cid:i=0@coord filter:i=0 window:i=0 npr:i=0 nprt:i=0"),
-                               card("tfail:f~1e20 epsf:f~1e20 sn:f=0 ss:f=0 n:f=0 m:f=0")))
+    return Layout(
+        head=head
+        + (
+            card("nsid:i@set_node cid:i=0@coord filter:i=0 window:i=0 npr:i=0 nprt:i=0"),
+            card("tfail:f~1e20 epsf:f~1e20 sn:f=0 ss:f=0 n:f=0 m:f=0"),
+        )
+    )
 
 
-register(Spec("CONSTRAINED_GENERALIZED_WELD_SPOT", _gws, options=("ID",), title_option=False,
-              doc="Rigid weld of a node set until failure (time, plastic strain or forces)."))
+register(
+    Spec(
+        "CONSTRAINED_GENERALIZED_WELD_SPOT",
+        _gws,
+        options=("ID",),
+        title_option=False,
+        doc="Rigid weld of a node set until failure (time, plastic strain or forces).",
+    )
+)

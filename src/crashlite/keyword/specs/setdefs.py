@@ -2,8 +2,7 @@
 
 from ..layout import Layout, Spec, card, register
 
-_MEMBER = {"NODE": "node", "PART": "part", "SHELL": "elem", "SOLID": "elem", "BEAM": "elem",
-           "DISCRETE": "elem"}
+_MEMBER = {"NODE": "node", "PART": "part", "SHELL": "elem", "SOLID": "elem", "BEAM": "elem", "DISCRETE": "elem"}
 _HEAD = {
     "NODE": "da1:f=0 da2:f=0 da3:f=0 da4:f=0 solver:s=MECH",
     "PART": "da1:f=0 da2:f=0 da3:f=0 da4:f=0 solver:s=MECH",
@@ -32,12 +31,26 @@ def _set_layout(kind):
 
 
 for _kind in _MEMBER:
-    register(Spec(f"SET_{_kind}", _set_layout(_kind), options=("LIST", "GENERATE", "ADD"),
-                  group="sets", id_field="sid",
-                  doc=f"{_kind.lower()} set: members listed (LIST), as ranges (GENERATE) or "
-                      "as other sets (ADD)."))
+    register(
+        Spec(
+            f"SET_{_kind}",
+            _set_layout(_kind),
+            options=("LIST", "GENERATE", "ADD"),
+            group="sets",
+            id_field="sid",
+            doc=f"{_kind.lower()} set: members listed (LIST), as ranges (GENERATE) or as other sets (ADD).",
+        )
+    )
 
-register(Spec("SET_SEGMENT", lambda o: Layout(
-    head=(card("sid:i@set_segment da1:f=0 da2:f=0 da3:f=0 da4:f=0 solver:s=MECH"),),
-    row=(card("n1:i@node n2:i@node n3:i@node n4:i=0@node a1:f=0 a2:f=0 a3:f=0 a4:f=0"),)),
-    group="sets", id_field="sid", doc="Segments (3 or 4 nodes) for contact and loads."))
+register(
+    Spec(
+        "SET_SEGMENT",
+        lambda o: Layout(
+            head=(card("sid:i@set_segment da1:f=0 da2:f=0 da3:f=0 da4:f=0 solver:s=MECH"),),
+            row=(card("n1:i@node n2:i@node n3:i@node n4:i=0@node a1:f=0 a2:f=0 a3:f=0 a4:f=0"),),
+        ),
+        group="sets",
+        id_field="sid",
+        doc="Segments (3 or 4 nodes) for contact and loads.",
+    )
+)

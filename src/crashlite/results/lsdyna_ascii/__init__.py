@@ -16,8 +16,15 @@ import numpy as np
 
 from . import deforc, glstat, matsum, nodout, rwforc, secforc, spcforc
 
-FILES = {"glstat": glstat, "matsum": matsum, "nodout": nodout, "rwforc": rwforc, "deforc": deforc,
-         "secforc": secforc, "spcforc": spcforc}
+FILES = {
+    "glstat": glstat,
+    "matsum": matsum,
+    "nodout": nodout,
+    "rwforc": rwforc,
+    "deforc": deforc,
+    "secforc": secforc,
+    "spcforc": spcforc,
+}
 
 
 def _ids(data: dict):
@@ -38,8 +45,11 @@ def write_all(directory, categories: dict, title: str = "") -> list[Path]:
     has data; returns the paths written."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
-    return [FILES[name].write(directory / name, data, title)
-            for name, data in categories.items() if name in FILES and has_data(name, data)]
+    return [
+        FILES[name].write(directory / name, data, title)
+        for name, data in categories.items()
+        if name in FILES and has_data(name, data)
+    ]
 
 
 def present(directory) -> list[str]:

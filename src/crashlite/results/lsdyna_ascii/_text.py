@@ -20,8 +20,8 @@ import numpy as np
 # Fortran/C E-format, D exponents, the E-less 3-digit exponent Fortran
 # prints for |exponent| > 99 ("1.2345-100"), integers, NAN/INF.
 NUMBER = re.compile(
-    r"[-+]?(?:(?:\d+\.\d*|\.\d+)(?:[EeDd][-+]?\d+|[-+]\d{3}(?!\d))?|\d+(?:[EeDd][-+]?\d+)?|nan|inf)",
-    re.IGNORECASE)
+    r"[-+]?(?:(?:\d+\.\d*|\.\d+)(?:[EeDd][-+]?\d+|[-+]\d{3}(?!\d))?|\d+(?:[EeDd][-+]?\d+)?|nan|inf)", re.IGNORECASE
+)
 _BARE_EXP = re.compile(r"(\d)([-+]\d{3})$")
 # "label.......  value" lines of glstat and deforc (labels may hold dots: "cycle.(nanosec)")
 LABEL_LINE = re.compile(r"^\s*([A-Za-z+][\w /().#+-]*?)\s*\.{2,}\s*(\S+)(.*)$")
@@ -91,7 +91,7 @@ def assemble(states: list[State], names: list[str], drop_partial_last: bool = Tr
         for n, s in enumerate(states):
             for i, row in zip(s.ids, s.values):
                 row = list(row)[:k]
-                data[n, col[i], :len(row)] = row
+                data[n, col[i], : len(row)] = row
     out = {"time": np.array([s.time for s in states], float), "ids": np.array(ids, np.int64)}
     for q, name in enumerate(names):
         if name and not np.all(np.isnan(data[:, :, q])):

@@ -52,8 +52,10 @@ LABELS = [
     ("percentage increase", "percent_increase"),
 ]
 # labels of newer LS-DYNA versions whose Binout names are not the label's words
-_READ_ONLY = {"reached the minimum time step": "num_bad_shells",
-              "energy ratio w/o eroded energy": "energy_ratio_wo_eroded"}
+_READ_ONLY = {
+    "reached the minimum time step": "num_bad_shells",
+    "energy ratio w/o eroded energy": "energy_ratio_wo_eroded",
+}
 _NAMES = {" ".join(label.split()): name for label, name in LABELS} | _READ_ONLY
 _CYCLE = re.compile(r"dt of cycle\s*(\d+)")
 

@@ -25,12 +25,23 @@ import numpy as np
 from ._text import NUMBER, State, assemble, column, header, to_float
 
 # field in the file -> Binout name, in the file's order
-FIELDS = [("inten", "internal_energy"), ("kinen", "kinetic_energy"),
-          ("x-mom", "x_momentum"), ("y-mom", "y_momentum"), ("z-mom", "z_momentum"),
-          ("x-rbv", "x_rbvelocity"), ("y-rbv", "y_rbvelocity"), ("z-rbv", "z_rbvelocity"),
-          ("hgeng", "hourglass_energy"), ("+mass", "mass")]
-_EXTRA = {"eroded_ie": "eroded_internal_energy", "eroded_ke": "eroded_kinetic_energy",
-          "eroded_he": "eroded_hourglass_energy"}
+FIELDS = [
+    ("inten", "internal_energy"),
+    ("kinen", "kinetic_energy"),
+    ("x-mom", "x_momentum"),
+    ("y-mom", "y_momentum"),
+    ("z-mom", "z_momentum"),
+    ("x-rbv", "x_rbvelocity"),
+    ("y-rbv", "y_rbvelocity"),
+    ("z-rbv", "z_rbvelocity"),
+    ("hgeng", "hourglass_energy"),
+    ("+mass", "mass"),
+]
+_EXTRA = {
+    "eroded_ie": "eroded_internal_energy",
+    "eroded_ke": "eroded_kinetic_energy",
+    "eroded_he": "eroded_hourglass_energy",
+}
 _PAIR = re.compile(r"([A-Za-z+][\w.#+-]*)\s*=\s*(" + NUMBER.pattern + ")", re.IGNORECASE)
 _TIME = re.compile(r"^\s*time\s*=\s*(\S+)")
 
@@ -53,10 +64,13 @@ def write(path: Path, data: dict, title: str = "") -> Path:
             v = {name: q[name][i, j] for _, name in FIELDS}
             out.append(f" mat.#={pid:5d}   " if pid < 100000 else f" mat.#={pid:8d}")
             out.append(f"          inten={v['internal_energy']:13.4E}     kinen={v['kinetic_energy']:13.4E}\n")
-            out.append(f" x-mom={v['x_momentum']:13.4E}     y-mom={v['y_momentum']:13.4E}"
-                       f"     z-mom={v['z_momentum']:13.4E}\n")
-            out.append(f" x-rbv={v['x_rbvelocity']:13.4E}     y-rbv={v['y_rbvelocity']:13.4E}"
-                       f"     z-rbv={v['z_rbvelocity']:13.4E}\n")
+            out.append(
+                f" x-mom={v['x_momentum']:13.4E}     y-mom={v['y_momentum']:13.4E}     z-mom={v['z_momentum']:13.4E}\n"
+            )
+            out.append(
+                f" x-rbv={v['x_rbvelocity']:13.4E}     y-rbv={v['y_rbvelocity']:13.4E}"
+                f"     z-rbv={v['z_rbvelocity']:13.4E}\n"
+            )
             out.append(f"                         hgeng={v['hourglass_energy']:13.4E}     ")
             out.append(f"+mass={v['mass']:13.4E}\n" if has_mass else "\n")
     Path(path).write_text("".join(out))

@@ -25,15 +25,21 @@ import numpy as np
 from ._text import NUMBER, State, assemble, column, header, known_cycles, to_float
 
 _AXES = "xyz"
-TRANSLATION = ([f"{a}_displacement" for a in _AXES] + [f"{a}_velocity" for a in _AXES]
-               + [f"{a}_acceleration" for a in _AXES] + [f"{a}_coordinate" for a in _AXES])
-ROTATION = ([f"r{a}_displacement" for a in _AXES] + [f"r{a}_velocity" for a in _AXES]
-            + [f"r{a}_acceleration" for a in _AXES])
-_COLUMNS = (" nodal point  x-disp     y-disp      z-disp      x-vel       y-vel       z-vel      "
-            "x-accl      y-accl      z-accl      x-coor      y-coor      z-coor\n")
+TRANSLATION = (
+    [f"{a}_displacement" for a in _AXES]
+    + [f"{a}_velocity" for a in _AXES]
+    + [f"{a}_acceleration" for a in _AXES]
+    + [f"{a}_coordinate" for a in _AXES]
+)
+ROTATION = (
+    [f"r{a}_displacement" for a in _AXES] + [f"r{a}_velocity" for a in _AXES] + [f"r{a}_acceleration" for a in _AXES]
+)
+_COLUMNS = (
+    " nodal point  x-disp     y-disp      z-disp      x-vel       y-vel       z-vel      "
+    "x-accl      y-accl      z-accl      x-coor      y-coor      z-coor\n"
+)
 _ROW = "%9d%13.4E" + "%12.4E" * 11 + "\n"
-_HEAD = re.compile(r"t\s*i\s*m\s*e\s+s\s*t\s*e\s*p\s*(\d+)\s*\(\s*at\s+time\s*(" + NUMBER.pattern + r")",
-                   re.IGNORECASE)
+_HEAD = re.compile(r"t\s*i\s*m\s*e\s+s\s*t\s*e\s*p\s*(\d+)\s*\(\s*at\s+time\s*(" + NUMBER.pattern + r")", re.IGNORECASE)
 
 
 def write(path: Path, data: dict, title: str = "") -> Path:
@@ -46,8 +52,10 @@ def write(path: Path, data: dict, title: str = "") -> Path:
     block = np.stack([column(data, name, n, m) for name in TRANSLATION], axis=2)  # (n, m, 12)
     out = [header(title), "\n\n"]
     for i in range(n):
-        out.append(f"\n\n\n n o d a l   p r i n t   o u t   f o r   t i m e  s t e p{int(cycle[i]):8d}"
-                   f"                              ( at time{t[i]:14.7E} )\n\n")
+        out.append(
+            f"\n\n\n n o d a l   p r i n t   o u t   f o r   t i m e  s t e p{int(cycle[i]):8d}"
+            f"                              ( at time{t[i]:14.7E} )\n\n"
+        )
         out.append(_COLUMNS)
         out.append("".join(_ROW % (nid, *row) for nid, row in zip(ids, block[i].tolist())))
     Path(path).write_text("".join(out))
@@ -88,8 +96,8 @@ def read(path: Path) -> dict:
         target.ids.append(int(tokens[0]))
         target.values.append([to_float(v) for v in tokens[1:]])
     out = assemble(trans, TRANSLATION)
-    if out and known_cycles(cycles[:len(out["time"])]) is not None:
-        out["cycle"] = known_cycles(cycles[:len(out["time"])])
+    if out and known_cycles(cycles[: len(out["time"])]) is not None:
+        out["cycle"] = known_cycles(cycles[: len(out["time"])])
     if rot:
         r = assemble(rot, ROTATION)
         n = min(len(r.get("time", [])), len(out.get("time", [])))

@@ -24,8 +24,10 @@ from ._text import NUMBER, State, assemble, column, header, to_float
 GROUP = "forces"
 NAMES = ["normal_force", "x_force", "y_force", "z_force"]
 _COLUMNS = "    time       wall#   normal-force    x-force        y-force        z-force\n"
-_ROW = re.compile(r"^\s*(" + NUMBER.pattern + r")\s+(\d+)\s+((?:" + NUMBER.pattern + r")(?:\s*(?:"
-                  + NUMBER.pattern + r")){3})\s*$", re.IGNORECASE)
+_ROW = re.compile(
+    r"^\s*(" + NUMBER.pattern + r")\s+(\d+)\s+((?:" + NUMBER.pattern + r")(?:\s*(?:" + NUMBER.pattern + r")){3})\s*$",
+    re.IGNORECASE,
+)
 
 
 def write(path: Path, data: dict, title: str = "") -> Path:
@@ -38,8 +40,9 @@ def write(path: Path, data: dict, title: str = "") -> Path:
     q = np.stack([column(g, name, n, m) for name in NAMES], axis=2)  # (n, m, 4)
     out = [header(title), "\n\n", "\n\n", _COLUMNS]
     for i in range(n):
-        out.append("".join("%12.5E%8d%15.6E%15.6E%15.6E%15.6E\n" % (t[i], w, *row)
-                           for w, row in zip(ids, q[i].tolist())))
+        out.append(
+            "".join("%12.5E%8d%15.6E%15.6E%15.6E%15.6E\n" % (t[i], w, *row) for w, row in zip(ids, q[i].tolist()))
+        )
     Path(path).write_text("".join(out))
     return Path(path)
 

@@ -25,14 +25,30 @@ import numpy as np
 
 from ._text import NUMBER, State, assemble, column, header, to_float
 
-NAMES = ["x_force", "y_force", "z_force", "total_force", "x_moment", "y_moment", "z_moment", "total_moment",
-         "x_centroid", "y_centroid", "z_centroid", "area"]
-_HEAD = (" line#1  section#     time        x-force     y-force     z-force    magnitude\n"
-         " line#2  resultant  moments       x-moment    y-moment    z-moment   magnitude\n"
-         " line#3  centroids                x           y           z            area  \n")
-_BLOCK = ("%12d%15.5E%15.4E%12.4E%12.4E%12.4E\n"
-          "global system              %15.4E%12.4E%12.4E%12.4E\n"
-          "                           %15.4E%12.4E%12.4E%12.4E\n\n")
+NAMES = [
+    "x_force",
+    "y_force",
+    "z_force",
+    "total_force",
+    "x_moment",
+    "y_moment",
+    "z_moment",
+    "total_moment",
+    "x_centroid",
+    "y_centroid",
+    "z_centroid",
+    "area",
+]
+_HEAD = (
+    " line#1  section#     time        x-force     y-force     z-force    magnitude\n"
+    " line#2  resultant  moments       x-moment    y-moment    z-moment   magnitude\n"
+    " line#3  centroids                x           y           z            area  \n"
+)
+_BLOCK = (
+    "%12d%15.5E%15.4E%12.4E%12.4E%12.4E\n"
+    "global system              %15.4E%12.4E%12.4E%12.4E\n"
+    "                           %15.4E%12.4E%12.4E%12.4E\n\n"
+)
 
 
 def write(path: Path, data: dict, title: str = "") -> Path:
@@ -65,7 +81,7 @@ def read(path: Path) -> dict:
         if not tokens or line.lstrip().startswith("line#"):
             continue
         if expect and len(tokens) >= 4 and (expect == 2 or len(tokens) == 4):
-            row[4 * (3 - expect):4 * (4 - expect)] = [to_float(v) for v in tokens[-4:]]
+            row[4 * (3 - expect) : 4 * (4 - expect)] = [to_float(v) for v in tokens[-4:]]
             expect -= 1
             continue
         if len(tokens) == 6 and tokens[0].isdigit():

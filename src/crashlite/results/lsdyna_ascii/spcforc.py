@@ -27,8 +27,9 @@ import numpy as np
 from ._text import NUMBER, State, assemble, column, header, to_float
 
 _N = "(" + NUMBER.pattern + ")"
-_NODE = re.compile(r"node\s*=\s*(\d+)\s+local\s+x,y,z\s+(forces|moments)\s*=\s*" + _N + r"\s*" + _N + r"\s*" + _N,
-                   re.IGNORECASE)
+_NODE = re.compile(
+    r"node\s*=\s*(\d+)\s+local\s+x,y,z\s+(forces|moments)\s*=\s*" + _N + r"\s*" + _N + r"\s*" + _N, re.IGNORECASE
+)
 _TIME = re.compile(r"output\s+at\s+time\s*=\s*" + _N, re.IGNORECASE)
 _RESULTANT = re.compile(r"force\s+resultants\s*=\s*" + _N + r"\s*" + _N + r"\s*" + _N, re.IGNORECASE)
 FORCES = ["x_force", "y_force", "z_force"]
@@ -86,8 +87,11 @@ def read(path: Path) -> dict:
             continue
         m = _NODE.search(line)
         if m:
-            add(forces[-1] if m.group(2).lower() == "forces" else moments[-1], int(m.group(1)),
-                [to_float(m.group(k)) for k in (3, 4, 5)])
+            add(
+                forces[-1] if m.group(2).lower() == "forces" else moments[-1],
+                int(m.group(1)),
+                [to_float(m.group(k)) for k in (3, 4, 5)],
+            )
             continue
         m = _RESULTANT.search(line)
         if m:

@@ -144,8 +144,14 @@ def _far(box, s, px, py, pz, reach):
     """True when p lies farther than ``reach`` outside the bounding box of
     segment s (box (nm, 6): low and high corner): no point of the segment
     is within ``reach`` of it."""
-    return (px < box[s, 0] - reach or px > box[s, 3] + reach or py < box[s, 1] - reach or py > box[s, 4] + reach
-            or pz < box[s, 2] - reach or pz > box[s, 5] + reach)
+    return (
+        px < box[s, 0] - reach
+        or px > box[s, 3] + reach
+        or py < box[s, 1] - reach
+        or py > box[s, 4] + reach
+        or pz < box[s, 2] - reach
+        or pz > box[s, 5] + reach
+    )
 
 
 # --- search -------------------------------------------------------------------------------------
@@ -216,8 +222,14 @@ def _bucket(key, shift):
 @njit(cache=True, inline="always")
 def _cells(box, h, org, s):
     """Range of grid cells (a0, a1, b0, b1, c0, c1) of segment s's box."""
-    return (int((box[s, 0] - org[0]) / h), int((box[s, 3] - org[0]) / h), int((box[s, 1] - org[1]) / h),
-            int((box[s, 4] - org[1]) / h), int((box[s, 2] - org[2]) / h), int((box[s, 5] - org[2]) / h))
+    return (
+        int((box[s, 0] - org[0]) / h),
+        int((box[s, 3] - org[0]) / h),
+        int((box[s, 1] - org[1]) / h),
+        int((box[s, 4] - org[1]) / h),
+        int((box[s, 2] - org[2]) / h),
+        int((box[s, 5] - org[2]) / h),
+    )
 
 
 @njit(cache=True)
@@ -278,8 +290,9 @@ def _scan(i, x, snode, sside, seg, mside, box, h, org, ncell, start, skeys, sown
     cell whose grown box holds the node, in segment order; the first
     ``cap`` into out[at:]. Returns how many there are."""
     nd = snode[i]
-    key = ((int((x[nd, 0] - org[0]) / h) * ncell[1] + int((x[nd, 1] - org[1]) / h)) * ncell[2]
-           + int((x[nd, 2] - org[2]) / h))
+    key = (int((x[nd, 0] - org[0]) / h) * ncell[1] + int((x[nd, 1] - org[1]) / h)) * ncell[2] + int(
+        (x[nd, 2] - org[2]) / h
+    )
     m = 0
     b = _bucket(key, shift)
     for j in range(start[b], start[b + 1]):
@@ -304,8 +317,9 @@ def _candidates(x, snode, sside, seg, mside, box, h, org, ncell, start, skeys, s
     buf = np.empty(ns * CAP, np.int64)
     count = np.empty(ns, np.int64)
     for i in prange(ns):
-        count[i] = _scan(i, x, snode, sside, seg, mside, box, h, org, ncell, start, skeys, sowner, shift, buf,
-                         i * CAP, CAP)
+        count[i] = _scan(
+            i, x, snode, sside, seg, mside, box, h, org, ncell, start, skeys, sowner, shift, buf, i * CAP, CAP
+        )
     cptr = np.zeros(ns + 1, np.int64)
     for i in range(ns):
         cptr[i + 1] = cptr[i] + count[i]
@@ -315,8 +329,9 @@ def _candidates(x, snode, sside, seg, mside, box, h, org, ncell, start, skeys, s
             for m in range(count[i]):
                 cand[cptr[i] + m] = buf[i * CAP + m]
         else:
-            _scan(i, x, snode, sside, seg, mside, box, h, org, ncell, start, skeys, sowner, shift, cand, cptr[i],
-                  count[i])
+            _scan(
+                i, x, snode, sside, seg, mside, box, h, org, ncell, start, skeys, sowner, shift, cand, cptr[i], count[i]
+            )
     return cptr, cand
 
 
@@ -335,7 +350,7 @@ def find_candidates(x, snode, sside, seg, mside, grow):
         return np.zeros(ns + 1, np.int64), np.zeros(0, np.int64)
     box = np.empty((nm, 6))
     segment_boxes(x, seg, grow, box)
-    sample = box[::max(nm // 4096, 1)]
+    sample = box[:: max(nm // 4096, 1)]
     # cells of about the median box (of a sample: any size finds the same candidates, only faster or slower)
     h = max(float(np.median((sample[:, 3:] - sample[:, :3]).max(axis=1))), 1e-12 * float(np.abs(box).max()), 1e-300)
     while True:
@@ -368,14 +383,42 @@ def max_displacement(x, xref, nodes):
 @njit(cache=True, inline="always")
 def _relative_velocity(v, nd, n0, n1, n2, n3, w0, w1, w2, w3):
     """Velocity of node nd relative to the segment point of weights w."""
-    return (v[nd, 0] - (w0 * v[n0, 0] + w1 * v[n1, 0] + w2 * v[n2, 0] + w3 * v[n3, 0]),
-            v[nd, 1] - (w0 * v[n0, 1] + w1 * v[n1, 1] + w2 * v[n2, 1] + w3 * v[n3, 1]),
-            v[nd, 2] - (w0 * v[n0, 2] + w1 * v[n1, 2] + w2 * v[n2, 2] + w3 * v[n3, 2]))
+    return (
+        v[nd, 0] - (w0 * v[n0, 0] + w1 * v[n1, 0] + w2 * v[n2, 0] + w3 * v[n3, 0]),
+        v[nd, 1] - (w0 * v[n0, 1] + w1 * v[n1, 1] + w2 * v[n2, 1] + w3 * v[n3, 1]),
+        v[nd, 2] - (w0 * v[n0, 2] + w1 * v[n1, 2] + w2 * v[n2, 2] + w3 * v[n3, 2]),
+    )
 
 
 @njit(cache=True, parallel=True)
-def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, onesided, depth, msize, alive, box,
-                   cptr, cand, prm, ft, prev, side, rows, rnode, gap, offset):
+def contact_forces(
+    x,
+    v,
+    dt,
+    snode,
+    sthick,
+    sk,
+    smass,
+    seg,
+    mthick,
+    mk,
+    mmass,
+    onesided,
+    depth,
+    msize,
+    alive,
+    box,
+    cptr,
+    cand,
+    prm,
+    ft,
+    prev,
+    side,
+    rows,
+    rnode,
+    gap,
+    offset,
+):
     """Rows of the pair forces of every slave entry (see the module doc).
 
     The segment of an entry is the nearest one it penetrates; a node behind
@@ -445,8 +488,12 @@ def contact_forces(x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, o
                     cls = _OUTSIDE
                     sg = 1 if sd >= 0.0 else -1
                     tx, ty, tz = rx - sd * nx, ry - sd * ny, rz - sd * nz
-                    if (onesided[s] == 0 and s == prev[i] and side[i] != 0
-                            and math.sqrt(tx * tx + ty * ty + tz * tz) <= 1e-6 * msize[s]):
+                    if (
+                        onesided[s] == 0
+                        and s == prev[i]
+                        and side[i] != 0
+                        and math.sqrt(tx * tx + ty * ty + tz * tz) <= 1e-6 * msize[s]
+                    ):
                         sg = side[i]  # over the same shell segment: the side it came from
                         g = half - sd * sg
                         nx, ny, nz = sg * nx, sg * ny, sg * nz

@@ -77,9 +77,33 @@ def _general(xs, ys, ls, le, us, ue, yt, yc, delta, h):
 
 
 @njit(cache=True, parallel=True)
-def discrete_forces(x, v, n1, n2, kind, k, scale, offset, length0, direction, curve_start, curve_stop,
-                    curve_x, curve_y, ground, ctf, ucurve_start, ucurve_stop, yield_t, yield_c, plastic, hist,
-                    fe, force, elong):
+def discrete_forces(
+    x,
+    v,
+    n1,
+    n2,
+    kind,
+    k,
+    scale,
+    offset,
+    length0,
+    direction,
+    curve_start,
+    curve_stop,
+    curve_x,
+    curve_y,
+    ground,
+    ctf,
+    ucurve_start,
+    ucurve_stop,
+    yield_t,
+    yield_c,
+    plastic,
+    hist,
+    fe,
+    force,
+    elong,
+):
     """Axial force of each element (tension positive) and its force vector on n1.
 
     x, v (n_nodes, 3); n1, n2 (n,) node indices (n2 = -1: tied to ground at
@@ -122,8 +146,18 @@ def discrete_forces(x, v, n1, n2, kind, k, scale, offset, length0, direction, cu
         elif kind[e] == CURVE:
             f = curve_value(curve_x, curve_y, curve_start[e], curve_stop[e], delta)
         elif kind[e] == GENERAL:
-            f = _general(curve_x, curve_y, curve_start[e], curve_stop[e], ucurve_start[e], ucurve_stop[e],
-                         yield_t[e], yield_c[e], delta, hist[e])
+            f = _general(
+                curve_x,
+                curve_y,
+                curve_start[e],
+                curve_stop[e],
+                ucurve_start[e],
+                ucurve_stop[e],
+                yield_t[e],
+                yield_c[e],
+                delta,
+                hist[e],
+            )
         else:
             f = k[e] * (delta - plastic[e])
             env = curve_value(curve_x, curve_y, curve_start[e], curve_stop[e], delta)

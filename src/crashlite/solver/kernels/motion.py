@@ -28,8 +28,11 @@ def prescribe_nodes(v, f, x, x0, mass, inv_mass, nodes, direction, vad, ct, cy, 
         elif vad == 1:
             target = vn_old + value  # the prescribed acceleration replaces the forces'
         else:
-            u = ((x[i, 0] - x0[i, 0]) * direction[0] + (x[i, 1] - x0[i, 1]) * direction[1]
-                 + (x[i, 2] - x0[i, 2]) * direction[2])
+            u = (
+                (x[i, 0] - x0[i, 0]) * direction[0]
+                + (x[i, 1] - x0[i, 1]) * direction[1]
+                + (x[i, 2] - x0[i, 2]) * direction[2]
+            )
             target = (value - u) / dt
         for j in range(3):
             v[i, j] += (target - vn) * direction[j]

@@ -256,8 +256,9 @@ def update_point(mtype, props, m, mc, cs, ce, cx, cy, sig, back, e, k, ep, d0, d
 
 
 @njit(cache=True, parallel=True)
-def update_points(mtype, props, mcurve, curve_start, curve_stop, curve_x, curve_y, mat_of, sig, back, epsp,
-                  deps, dt, dez, failed):
+def update_points(
+    mtype, props, mcurve, curve_start, curve_stop, curve_x, curve_y, mat_of, sig, back, epsp, deps, dt, dez, failed
+):
     """Batch update of independent points (tests, material drivers).
 
     mat_of (n,) int64 material row; sig, back (n, 5) [stress] and epsp (n,)
@@ -269,9 +270,27 @@ def update_points(mtype, props, mcurve, curve_start, curve_stop, curve_x, curve_
     back3 = back.reshape((n, 1, 5))
     for i in prange(n):
         m = mat_of[i]
-        ep, dz, fl = update_point(mtype[m], props, m, mcurve, curve_start, curve_stop, curve_x, curve_y,
-                                  sig3, back3, i, 0, epsp[i], deps[i, 0], deps[i, 1], deps[i, 2], deps[i, 3],
-                                  deps[i, 4], dt)
+        ep, dz, fl = update_point(
+            mtype[m],
+            props,
+            m,
+            mcurve,
+            curve_start,
+            curve_stop,
+            curve_x,
+            curve_y,
+            sig3,
+            back3,
+            i,
+            0,
+            epsp[i],
+            deps[i, 0],
+            deps[i, 1],
+            deps[i, 2],
+            deps[i, 3],
+            deps[i, 4],
+            dt,
+        )
         epsp[i] = ep
         dez[i] = dz
         failed[i] = 1 if fl else 0
@@ -332,9 +351,23 @@ def _yield_rows(n, P, kind, props, m, mc, cs, ce, cx, cy, dt):
             P[R_TOP * W + p] = cx[i + 1] if i < stop - 2 else math.inf
     if mc[m, C_LCSR] >= 0 or (props[m, P_CS_C] > 0.0 and props[m, P_CS_P] > 0.0):
         for p in range(n):
-            rf = rate_factor(props, m, mc, cs, ce, cx, cy,
-                             effective_rate(P[R_D * W + p], P[(R_D + 1) * W + p], P[(R_D + 2) * W + p],
-                                            P[(R_D + 3) * W + p], P[(R_D + 4) * W + p], dt))
+            rf = rate_factor(
+                props,
+                m,
+                mc,
+                cs,
+                ce,
+                cx,
+                cy,
+                effective_rate(
+                    P[R_D * W + p],
+                    P[(R_D + 1) * W + p],
+                    P[(R_D + 2) * W + p],
+                    P[(R_D + 3) * W + p],
+                    P[(R_D + 4) * W + p],
+                    dt,
+                ),
+            )
             P[R_Y * W + p] *= rf
             P[R_H * W + p] *= rf
 
@@ -349,10 +382,20 @@ def work_density(o0, o1, o2, o3, o4, s0, s1, s2, s3, s4, d0, d1, d2, d3, d4, ks)
 @njit(cache=True, error_model="numpy", inline="always")
 def _trial(P, p, c1, nu, g):
     """Elastic trial stress of point p of P."""
-    d0, d1, d2, d3, d4 = P[R_D * W + p], P[(R_D + 1) * W + p], P[(R_D + 2) * W + p], P[(R_D + 3) * W + p], \
-        P[(R_D + 4) * W + p]
-    return (P[R_O * W + p] + c1 * (d0 + nu * d1), P[(R_O + 1) * W + p] + c1 * (d1 + nu * d0),
-            P[(R_O + 2) * W + p] + g * d2, P[(R_O + 3) * W + p] + g * d3, P[(R_O + 4) * W + p] + g * d4)
+    d0, d1, d2, d3, d4 = (
+        P[R_D * W + p],
+        P[(R_D + 1) * W + p],
+        P[(R_D + 2) * W + p],
+        P[(R_D + 3) * W + p],
+        P[(R_D + 4) * W + p],
+    )
+    return (
+        P[R_O * W + p] + c1 * (d0 + nu * d1),
+        P[(R_O + 1) * W + p] + c1 * (d1 + nu * d0),
+        P[(R_O + 2) * W + p] + g * d2,
+        P[(R_O + 3) * W + p] + g * d3,
+        P[(R_O + 4) * W + p] + g * d4,
+    )
 
 
 @njit(cache=True, error_model="numpy")
@@ -373,12 +416,27 @@ def _elastic_block(n, P, c1, nu, g, e_mod, ks):
     """Points 0 .. n-1 of P, none of which yields (update_block)."""
     for p in range(n):
         t0, t1, t2, t3, t4 = _trial(P, p, c1, nu, g)
-        o0, o1, o2, o3, o4 = P[R_O * W + p], P[(R_O + 1) * W + p], P[(R_O + 2) * W + p], P[(R_O + 3) * W + p], \
-            P[(R_O + 4) * W + p]
-        d0, d1, d2, d3, d4 = P[R_D * W + p], P[(R_D + 1) * W + p], P[(R_D + 2) * W + p], P[(R_D + 3) * W + p], \
-            P[(R_D + 4) * W + p]
-        P[R_S * W + p], P[(R_S + 1) * W + p], P[(R_S + 2) * W + p], P[(R_S + 3) * W + p], P[(R_S + 4) * W + p] = \
-            t0, t1, t2, t3, t4
+        o0, o1, o2, o3, o4 = (
+            P[R_O * W + p],
+            P[(R_O + 1) * W + p],
+            P[(R_O + 2) * W + p],
+            P[(R_O + 3) * W + p],
+            P[(R_O + 4) * W + p],
+        )
+        d0, d1, d2, d3, d4 = (
+            P[R_D * W + p],
+            P[(R_D + 1) * W + p],
+            P[(R_D + 2) * W + p],
+            P[(R_D + 3) * W + p],
+            P[(R_D + 4) * W + p],
+        )
+        P[R_S * W + p], P[(R_S + 1) * W + p], P[(R_S + 2) * W + p], P[(R_S + 3) * W + p], P[(R_S + 4) * W + p] = (
+            t0,
+            t1,
+            t2,
+            t3,
+            t4,
+        )
         P[R_EPN * W + p] = P[R_EP * W + p]
         P[R_DEZ * W + p] = -nu / e_mod * (t0 - o0 + t1 - o1)
         P[R_WK * W + p] = work_density(o0, o1, o2, o3, o4, t0, t1, t2, t3, t4, d0, d1, d2, d3, d4, ks)
@@ -392,12 +450,27 @@ def _plastic_block(n, P, c1, nu, g, e_mod, ks, hk, fail):
     k1 = e_mod / (3.0 * (1.0 - nu)) + 2.0 / 3.0 * hk
     k2 = 2.0 * g + 2.0 / 3.0 * hk
     for p in range(n):
-        d0, d1, d2, d3, d4 = P[R_D * W + p], P[(R_D + 1) * W + p], P[(R_D + 2) * W + p], P[(R_D + 3) * W + p], \
-            P[(R_D + 4) * W + p]
-        o0, o1, o2, o3, o4 = P[R_O * W + p], P[(R_O + 1) * W + p], P[(R_O + 2) * W + p], P[(R_O + 3) * W + p], \
-            P[(R_O + 4) * W + p]
-        b0, b1, b2, b3, b4 = P[R_B * W + p], P[(R_B + 1) * W + p], P[(R_B + 2) * W + p], P[(R_B + 3) * W + p], \
-            P[(R_B + 4) * W + p]
+        d0, d1, d2, d3, d4 = (
+            P[R_D * W + p],
+            P[(R_D + 1) * W + p],
+            P[(R_D + 2) * W + p],
+            P[(R_D + 3) * W + p],
+            P[(R_D + 4) * W + p],
+        )
+        o0, o1, o2, o3, o4 = (
+            P[R_O * W + p],
+            P[(R_O + 1) * W + p],
+            P[(R_O + 2) * W + p],
+            P[(R_O + 3) * W + p],
+            P[(R_O + 4) * W + p],
+        )
+        b0, b1, b2, b3, b4 = (
+            P[R_B * W + p],
+            P[(R_B + 1) * W + p],
+            P[(R_B + 2) * W + p],
+            P[(R_B + 3) * W + p],
+            P[(R_B + 4) * W + p],
+        )
         ep = P[R_EP * W + p]
         y_ep = P[R_Y * W + p]
         h = 2.0 / 3.0 * P[R_H * W + p]
@@ -454,10 +527,20 @@ def _plastic_block(n, P, c1, nu, g, e_mod, ks, hk, fail):
         P[R_WK * W + p] = work_density(o0, o1, o2, o3, o4, t0, t1, t2, t3, t4, d0, d1, d2, d3, d4, ks)
         P[R_OK * W + p] = 1.0 if ok else 0.0
         P[R_FAILED * W + p] = 1.0 if failed else 0.0
-        P[R_S * W + p], P[(R_S + 1) * W + p], P[(R_S + 2) * W + p], P[(R_S + 3) * W + p], P[(R_S + 4) * W + p] = \
-            t0, t1, t2, t3, t4
-        P[R_B * W + p], P[(R_B + 1) * W + p], P[(R_B + 2) * W + p], P[(R_B + 3) * W + p], P[(R_B + 4) * W + p] = \
-            b0, b1, b2, b3, b4
+        P[R_S * W + p], P[(R_S + 1) * W + p], P[(R_S + 2) * W + p], P[(R_S + 3) * W + p], P[(R_S + 4) * W + p] = (
+            t0,
+            t1,
+            t2,
+            t3,
+            t4,
+        )
+        P[R_B * W + p], P[(R_B + 1) * W + p], P[(R_B + 2) * W + p], P[(R_B + 3) * W + p], P[(R_B + 4) * W + p] = (
+            b0,
+            b1,
+            b2,
+            b3,
+            b4,
+        )
         P[R_EPN * W + p] = ep_new
 
 

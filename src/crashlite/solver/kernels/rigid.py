@@ -72,8 +72,7 @@ def plane_reach(x, nodes, cog, point, normal):
     arm2 = 0.0
     for k in range(nodes.shape[0]):
         i = nodes[k]
-        g = ((x[i, 0] - point[0]) * normal[0] + (x[i, 1] - point[1]) * normal[1]
-             + (x[i, 2] - point[2]) * normal[2])
+        g = (x[i, 0] - point[0]) * normal[0] + (x[i, 1] - point[1]) * normal[1] + (x[i, 2] - point[2]) * normal[2]
         gap = min(gap, g)
         a0, a1, a2 = x[i, 0] - cog[0], x[i, 1] - cog[1], x[i, 2] - cog[2]
         arm2 = max(arm2, a0 * a0 + a1 * a1 + a2 * a2)
@@ -108,9 +107,17 @@ def rotation_entries(p0, p1, p2):
     s = math.sin(angle)
     sh = math.sin(0.5 * angle)
     c = 2.0 * sh * sh
-    return (1.0 - c * (k1 * k1 + k2 * k2), -s * k2 + c * k0 * k1, s * k1 + c * k0 * k2,
-            s * k2 + c * k0 * k1, 1.0 - c * (k0 * k0 + k2 * k2), -s * k0 + c * k1 * k2,
-            -s * k1 + c * k0 * k2, s * k0 + c * k1 * k2, 1.0 - c * (k0 * k0 + k1 * k1))
+    return (
+        1.0 - c * (k1 * k1 + k2 * k2),
+        -s * k2 + c * k0 * k1,
+        s * k1 + c * k0 * k2,
+        s * k2 + c * k0 * k1,
+        1.0 - c * (k0 * k0 + k2 * k2),
+        -s * k0 + c * k1 * k2,
+        -s * k1 + c * k0 * k2,
+        s * k0 + c * k1 * k2,
+        1.0 - c * (k0 * k0 + k1 * k1),
+    )
 
 
 @njit(cache=True)

@@ -41,9 +41,11 @@ def _contact_velocity(v, v_before, i, n0, n1, n2, vn, vn_new, fric, m, dt, force
     force[0] -= j0 / dt
     force[1] -= j1 / dt
     force[2] -= j2 / dt
-    force[3] += (j0 * (wall_mid * n0 - 0.5 * (v_before[i, 0] + v[i, 0]))
-                 + j1 * (wall_mid * n1 - 0.5 * (v_before[i, 1] + v[i, 1]))
-                 + j2 * (wall_mid * n2 - 0.5 * (v_before[i, 2] + v[i, 2])))
+    force[3] += (
+        j0 * (wall_mid * n0 - 0.5 * (v_before[i, 0] + v[i, 0]))
+        + j1 * (wall_mid * n1 - 0.5 * (v_before[i, 1] + v[i, 1]))
+        + j2 * (wall_mid * n2 - 0.5 * (v_before[i, 2] + v[i, 2]))
+    )
 
 
 N_CHUNKS = 64  # fixed node chunks of the hit test: sums in the same order on any number of threads
@@ -86,8 +88,26 @@ def _planar_hits(x, v, mass, nodes, point, normal, wall_v, dt, hit, edge_l, edge
 
 
 @njit(cache=True)
-def planar_wall(x, v, v_before, mass, nodes, point, normal, wall_v, wall_mass, fric, dt, force, hit,
-                edge_l, edge_m, len_l, len_m, part):
+def planar_wall(
+    x,
+    v,
+    v_before,
+    mass,
+    nodes,
+    point,
+    normal,
+    wall_v,
+    wall_mass,
+    fric,
+    dt,
+    force,
+    hit,
+    edge_l,
+    edge_m,
+    len_l,
+    len_m,
+    part,
+):
     """Correct v of ``nodes`` against the plane through ``point`` (moving at
     ``wall_v`` along the unit ``normal``, which points to the allowed side).
 
@@ -122,8 +142,21 @@ def planar_wall(x, v, v_before, mass, nodes, point, normal, wall_v, wall_mass, f
             gap += (x[i, j] - point[j]) * normal[j]
             vn += v[i, j] * normal[j]
         target = v_new - gap / dt  # lands on the wall at the end of the step
-        _contact_velocity(v, v_before, i, normal[0], normal[1], normal[2], vn, target, fric, mass[i], dt, force,
-                          0.5 * (wall_v + v_new))
+        _contact_velocity(
+            v,
+            v_before,
+            i,
+            normal[0],
+            normal[1],
+            normal[2],
+            vn,
+            target,
+            fric,
+            mass[i],
+            dt,
+            force,
+            0.5 * (wall_v + v_new),
+        )
     return v_new
 
 
@@ -149,5 +182,6 @@ def cylinder_wall(x, v, v_before, mass, nodes, tail, axis, radius, length, fric,
         n = r / dist  # outward normal at the predicted point
         vn = v[i, 0] * n[0] + v[i, 1] * n[1] + v[i, 2] * n[2]
         # the outward velocity increment that lands it on the surface
-        _contact_velocity(v, v_before, i, n[0], n[1], n[2], vn, vn + (radius - dist) / dt, fric, mass[i], dt,
-                          force, 0.0)
+        _contact_velocity(
+            v, v_before, i, n[0], n[1], n[2], vn, vn + (radius - dist) / dt, fric, mass[i], dt, force, 0.0
+        )

@@ -142,8 +142,7 @@ def scratch(nip_max: int) -> tuple[np.ndarray, ...]:
     plane_stress.N_ROWS·W) float64, geometry (N_CHUNKS, shell_block.N_G·BW)
     float64; and the point number k of each block column (W,) int64 for
     elements of nip_max points."""
-    return (np.zeros((N_CHUNKS, N_ROWS * W)), np.zeros((N_CHUNKS, N_G * BW)),
-            np.arange(W, dtype=np.int64) % nip_max)
+    return (np.zeros((N_CHUNKS, N_ROWS * W)), np.zeros((N_CHUNKS, N_G * BW)), np.arange(W, dtype=np.int64) % nip_max)
 
 
 @njit(cache=True, inline="always")
@@ -171,8 +170,9 @@ def _point(e, k, p, dt, mat_of, mtype, props, mcurve, cs, ce, cx, cy, shrf, sig,
     d0, d1, d2 = P[R_D * W + p], P[(R_D + 1) * W + p], P[(R_D + 2) * W + p]
     d3, d4 = P[(R_D + 3) * W + p], P[(R_D + 4) * W + p]
     o0, o1, o2, o3, o4 = sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4]
-    ep, dez, failed = update_point(mtype[m], props, m, mcurve, cs, ce, cx, cy, sig, back, e, k, epsp[e, k],
-                                   d0, d1, d2, d3, d4, dt)
+    ep, dez, failed = update_point(
+        mtype[m], props, m, mcurve, cs, ce, cx, cy, sig, back, e, k, epsp[e, k], d0, d1, d2, d3, d4, dt
+    )
     epsp[e, k] = ep
     s0, s1, s2, s3, s4 = sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4]
     P[R_DEZ * W + p] = dez
@@ -182,9 +182,50 @@ def _point(e, k, p, dt, mat_of, mtype, props, mcurve, cs, ce, cx, cy, shrf, sig,
 
 
 @njit(cache=True, error_model="numpy")
-def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, cs, ce, cx, cy, nip, rule,
-              shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, isdo, sig, back, epsp, ipfail, thick, alive, hgq,
-              energy, hg_energy, P, kk, G, fe, me, step):
+def _elements(
+    e0,
+    e1,
+    x,
+    v,
+    w_ang,
+    dt,
+    conn,
+    tri,
+    mat_of,
+    mtype,
+    props,
+    mcurve,
+    cs,
+    ce,
+    cx,
+    cy,
+    nip,
+    rule,
+    shrf,
+    hg_kind,
+    hg_qm,
+    hg_qb,
+    hg_qw,
+    rho,
+    istupd,
+    bwc,
+    isdo,
+    sig,
+    back,
+    epsp,
+    ipfail,
+    thick,
+    alive,
+    hgq,
+    energy,
+    hg_energy,
+    P,
+    kk,
+    G,
+    fe,
+    me,
+    step,
+):
     """Elements e0 .. e1 - 1 (one chunk; scratch rows ``P``, ``G``, point
     numbers ``kk``) in blocks of BLOCK: the strain rates at the mid-step
     shape (kernels.shell_block, vectorised), the increments of the block's
@@ -237,16 +278,52 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
         for e in range(first + 1, last):
             one = one and mat_of[e] == m and nip[e] == nip[first] and shrf[e] == shrf[first]
         if one:
-            update_block((last - first) * nipm, P, kk, nip[first], sigf, backf, epf, ipf, first * nipm, mtype,
-                         props, m, mcurve, cs, ce, cx, cy, shrf[first], dt)
+            update_block(
+                (last - first) * nipm,
+                P,
+                kk,
+                nip[first],
+                sigf,
+                backf,
+                epf,
+                ipf,
+                first * nipm,
+                mtype,
+                props,
+                m,
+                mcurve,
+                cs,
+                ce,
+                cx,
+                cy,
+                shrf[first],
+                dt,
+            )
         else:
             for e in range(first, last):
                 l = e - first
                 if G[G_LIVE * BW + l] > 0.0:
                     for k in range(nip[e]):
                         if ipfail[e, k] == 0:
-                            _point(e, k, l * nipm + k, dt, mat_of, mtype, props, mcurve, cs, ce, cx, cy, shrf, sig,
-                                   back, epsp, P)
+                            _point(
+                                e,
+                                k,
+                                l * nipm + k,
+                                dt,
+                                mat_of,
+                                mtype,
+                                props,
+                                mcurve,
+                                cs,
+                                ce,
+                                cx,
+                                cy,
+                                shrf,
+                                sig,
+                                back,
+                                epsp,
+                                P,
+                            )
         for e in range(first, last):  # state, resultants, forces at x(n+1)
             l = e - first
             if G[G_LIVE * BW + l] <= 0.0:
@@ -306,8 +383,24 @@ def _elements(e0, e1, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, 
             # hourglass resistance at the mid-step geometry
             h0 = h1 = h2 = h3 = h4 = 0.0
             if quad and hg_kind[e] > 0:
-                h0, h1, h2, h3, h4 = _hourglass(e, l, G, area, t, dt, props[m, P_E], props[m, P_G], ks, rho[e],
-                                                hg_kind[e], hg_qm[e], hg_qb[e], hg_qw[e], hgq, hg_energy)
+                h0, h1, h2, h3, h4 = _hourglass(
+                    e,
+                    l,
+                    G,
+                    area,
+                    t,
+                    dt,
+                    props[m, P_E],
+                    props[m, P_G],
+                    ks,
+                    rho[e],
+                    hg_kind[e],
+                    hg_qm[e],
+                    hg_qb[e],
+                    hg_qw[e],
+                    hgq,
+                    hg_energy,
+                )
             for i, val in enumerate((n0, n1, n2, m0, m1, m2, qx, qy)):
                 G[(G_RES + i) * BW + l] = val
             for i, val in enumerate((h0, h1, h2, h3, h4)):
@@ -361,16 +454,64 @@ def _hourglass(e, l, G, area, t, dt, young, shear, ks, rho, kind, qm, qb, qw, hg
         c2 = 2.0 * qw * math.sqrt(kw * mass / gg)
         c3 = 2.0 * qb * math.sqrt(kb * mass * area / 8.0 / gg)
         n0, n1, n2, n3, n4 = c0 * r0, c0 * r1, c2 * r2, c3 * r3, c3 * r4
-    hg_energy[e] += 0.5 * dt * ((hgq[e, 0] + n0) * r0 + (hgq[e, 1] + n1) * r1 + (hgq[e, 2] + n2) * r2
-                                + (hgq[e, 3] + n3) * r3 + (hgq[e, 4] + n4) * r4)
+    hg_energy[e] += (
+        0.5
+        * dt
+        * (
+            (hgq[e, 0] + n0) * r0
+            + (hgq[e, 1] + n1) * r1
+            + (hgq[e, 2] + n2) * r2
+            + (hgq[e, 3] + n3) * r3
+            + (hgq[e, 4] + n4) * r4
+        )
+    )
     hgq[e, 0], hgq[e, 1], hgq[e, 2], hgq[e, 3], hgq[e, 4] = n0, n1, n2, n3, n4
     return n0, n1, n2, n3, n4
 
 
 @njit(cache=True, parallel=True)
-def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve_start, curve_stop, curve_x,
-                 curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho, istupd, bwc, isdo, sig, back, epsp, ipfail,
-                 thick, alive, hgq, energy, hg_energy, points, geometry, kk, fe, me, step):
+def shell_forces(
+    x,
+    v,
+    w_ang,
+    dt,
+    conn,
+    tri,
+    mat_of,
+    mtype,
+    props,
+    mcurve,
+    curve_start,
+    curve_stop,
+    curve_x,
+    curve_y,
+    nip,
+    rule,
+    shrf,
+    hg_kind,
+    hg_qm,
+    hg_qb,
+    hg_qw,
+    rho,
+    istupd,
+    bwc,
+    isdo,
+    sig,
+    back,
+    epsp,
+    ipfail,
+    thick,
+    alive,
+    hgq,
+    energy,
+    hg_energy,
+    points,
+    geometry,
+    kk,
+    fe,
+    me,
+    step,
+):
     """One step of the shells (see the module docstring for the arrays):
     stresses, thickness, energies and state to t(n+1); corner forces fe
     and moments me ON the nodes; the elements' critical steps at x(n+1)
@@ -380,10 +521,50 @@ def shell_forces(x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve, curve
     for ch in prange(nc):
         pts = points[ch]
         gc = geometry[ch]
-        _elements(ch * n // nc, (ch + 1) * n // nc, x, v, w_ang, dt, conn, tri, mat_of, mtype, props, mcurve,
-                  curve_start, curve_stop, curve_x, curve_y, nip, rule, shrf, hg_kind, hg_qm, hg_qb, hg_qw, rho,
-                  istupd, bwc, isdo, sig, back, epsp, ipfail, thick, alive, hgq, energy, hg_energy, pts, kk, gc, fe, me,
-                  step)
+        _elements(
+            ch * n // nc,
+            (ch + 1) * n // nc,
+            x,
+            v,
+            w_ang,
+            dt,
+            conn,
+            tri,
+            mat_of,
+            mtype,
+            props,
+            mcurve,
+            curve_start,
+            curve_stop,
+            curve_x,
+            curve_y,
+            nip,
+            rule,
+            shrf,
+            hg_kind,
+            hg_qm,
+            hg_qb,
+            hg_qw,
+            rho,
+            istupd,
+            bwc,
+            isdo,
+            sig,
+            back,
+            epsp,
+            ipfail,
+            thick,
+            alive,
+            hgq,
+            energy,
+            hg_energy,
+            pts,
+            kk,
+            gc,
+            fe,
+            me,
+            step,
+        )
 
 
 @njit(cache=True, inline="always")
@@ -423,8 +604,17 @@ def shell_timestep(x, conn, tri, alive, mat_of, props, isdo, dt_out):
         c1 = u2 * s0 - u0 * s2
         c2 = u0 * s1 - u1 * s0
         area = 0.5 * math.sqrt(c0 * c0 + c1 * c1 + c2 * c2)
-        length = char_length(isdo, 1.0 - tri[e], area, _d2(x, i0, i1), _d2(x, i1, i2), _d2(x, i2, i3),
-                             _d2(x, i3, i0), _d2(x, i0, i2), _d2(x, i1, i3))
+        length = char_length(
+            isdo,
+            1.0 - tri[e],
+            area,
+            _d2(x, i0, i1),
+            _d2(x, i1, i2),
+            _d2(x, i2, i3),
+            _d2(x, i3, i0),
+            _d2(x, i0, i2),
+            _d2(x, i1, i3),
+        )
         if not area > 0.0 or not length > 0.0:
             dt_out[e] = np.inf
             continue

@@ -115,8 +115,20 @@ def _gradient(X0, Y0, X1, Y1, X2, Y2, X3, Y3, area):
     c0, c1, c2, c3 = f * (X3 - X1), f * (X0 - X2), f * (X1 - X3), f * (X2 - X0)
     hx = X0 - X1 + X2 - X3
     hy = Y0 - Y1 + Y2 - Y3
-    return (a0, a1, a2, a3, c0, c1, c2, c3, 1.0 - hx * a0 - hy * c0, -1.0 - hx * a1 - hy * c1,
-            1.0 - hx * a2 - hy * c2, -1.0 - hx * a3 - hy * c3)
+    return (
+        a0,
+        a1,
+        a2,
+        a3,
+        c0,
+        c1,
+        c2,
+        c3,
+        1.0 - hx * a0 - hy * c0,
+        -1.0 - hx * a1 - hy * c1,
+        1.0 - hx * a2 - hy * c2,
+        -1.0 - hx * a3 - hy * c3,
+    )
 
 
 @njit(cache=True, inline="always")
@@ -124,8 +136,13 @@ def _local(G, a, l, tx, ty, tz, bx, by, bz, nx, ny, nz):
     """Node a's velocity (x̂, ŷ, ẑ) and angular velocity (x̂, ŷ) in the frame."""
     ux, uy, uz = G[(G_V + 3 * a) * BW + l], G[(G_V + 3 * a + 1) * BW + l], G[(G_V + 3 * a + 2) * BW + l]
     wx, wy, wz = G[(G_W + 3 * a) * BW + l], G[(G_W + 3 * a + 1) * BW + l], G[(G_W + 3 * a + 2) * BW + l]
-    return (tx * ux + ty * uy + tz * uz, bx * ux + by * uy + bz * uz, nx * ux + ny * uy + nz * uz,
-            tx * wx + ty * wy + tz * wz, bx * wx + by * wy + bz * wz)
+    return (
+        tx * ux + ty * uy + tz * uz,
+        bx * ux + by * uy + bz * uz,
+        nx * ux + ny * uy + nz * uz,
+        tx * wx + ty * wy + tz * wz,
+        bx * wx + by * wy + bz * wz,
+    )
 
 
 @njit(cache=True, error_model="numpy")
@@ -146,8 +163,7 @@ def block_rates(bwc, G):
         gxy = bvx + a0 * vy0 + a1 * vy1 + a2 * vy2 + a3 * vy3
         kx = a0 * oy0 + a1 * oy1 + a2 * oy2 + a3 * oy3
         ky = -(c0 * ox0 + c1 * ox1 + c2 * ox2 + c3 * ox3)
-        kxy = c0 * oy0 + c1 * oy1 + c2 * oy2 + c3 * oy3 \
-            - (a0 * ox0 + a1 * ox1 + a2 * ox2 + a3 * ox3)
+        kxy = c0 * oy0 + c1 * oy1 + c2 * oy2 + c3 * oy3 - (a0 * ox0 + a1 * ox1 + a2 * ox2 + a3 * ox3)
         wvx = a0 * vz0 + a1 * vz1 + a2 * vz2 + a3 * vz3
         wvy = c0 * vz0 + c1 * vz1 + c2 * vz2 + c3 * vz3
         sox = ox0 + ox1 + ox2 + quad * ox3  # Σ over the distinct nodes
@@ -193,8 +209,14 @@ def _corner(b1, b2, g, k1, k2, wq, fr, tx, ty, tz, bx, by, bz, nx, ny, nz):
     fz = area * (b1 * qx + b2 * qy) + g * h2
     mx = area * (-b2 * m1 - b1 * m2 - wq * qy) + g * h3 + zg4 * h1
     my = area * (b1 * m0 + b2 * m2 + wq * qx) + g * h4 - zg4 * h0
-    return (-(fx * tx + fy * bx + fz * nx), -(fx * ty + fy * by + fz * ny), -(fx * tz + fy * bz + fz * nz),
-            -(mx * tx + my * bx), -(mx * ty + my * by), -(mx * tz + my * bz))
+    return (
+        -(fx * tx + fy * bx + fz * nx),
+        -(fx * ty + fy * by + fz * ny),
+        -(fx * tz + fy * bz + fz * nz),
+        -(mx * tx + my * bx),
+        -(mx * ty + my * by),
+        -(mx * tz + my * bz),
+    )
 
 
 @njit(cache=True, inline="always")
@@ -236,8 +258,12 @@ def block_forces(bwc, isdo, G):
         cw = quad * 0.5 * zg / (area * area) if bwc == 1 else 0.0
         e0x, e0y = cw * (X0 - X2), cw * (Y0 - Y2)
         e1x, e1y = cw * (X3 - X1), cw * (Y3 - Y1)
-        sbwc = area * ((m0 * e0x + m2 * e0y) * (Y0 - Y2) - (m1 * e0y + m2 * e0x) * (X0 - X2)
-                       + (m0 * e1x + m2 * e1y) * (Y1 - Y3) - (m1 * e1y + m2 * e1x) * (X1 - X3))
+        sbwc = area * (
+            (m0 * e0x + m2 * e0y) * (Y0 - Y2)
+            - (m1 * e0y + m2 * e0x) * (X0 - X2)
+            + (m0 * e1x + m2 * e1y) * (Y1 - Y3)
+            - (m1 * e1y + m2 * e1x) * (X1 - X3)
+        )
         fr = (n0, n1, n2, m0, m1, m2, qx, qy, h0, h1, h2, h3, h4, zg4, sbwc, area)
         f0 = _corner(a0, c0, g0, e0x, e0y, inv, fr, tx, ty, tz, bx, by, bz, nx, ny, nz)
         f1 = _corner(a1, c1, g1, e1x, e1y, inv, fr, tx, ty, tz, bx, by, bz, nx, ny, nz)

@@ -54,8 +54,9 @@ from numba import njit, prange
 from .solid_materials import HONEYCOMB, N_SCRATCH, _to_global, _to_local, update_stress
 
 # natural coordinates of the nodes, LS-DYNA order (1-4 bottom, 5-8 top)
-XI = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
-               [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], np.float64)
+XI = np.array(
+    [[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1], [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], np.float64
+)
 # hourglass base vectors ηζ, ζξ, ξη, ξηζ at the nodes (4, 8)
 HG_BASE = np.stack([XI[:, 1] * XI[:, 2], XI[:, 2] * XI[:, 0], XI[:, 0] * XI[:, 1], XI.prod(axis=1)])
 
@@ -73,10 +74,19 @@ def _volume_terms():
             o1, o2 = [b for b in range(3) if b != a]
             dn[:, a] = XI[:, a] * (1 + XI[:, o1] * p[o1]) * (1 + XI[:, o2] * p[o2]) / 8.0
         d += np.einsum("abc,ia,jb,kc->ijk", eps, dn, dn, dn)
-    t = [(i, j, k, round(d[i, j, k] * 12.0) / 12.0) for i in range(8) for j in range(8)
-         for k in range(j + 1, 8) if abs(d[i, j, k]) > 1e-12]
-    return (np.array([a[0] for a in t], np.int64), np.array([a[1] for a in t], np.int64),
-            np.array([a[2] for a in t], np.int64), np.array([a[3] for a in t], np.float64))
+    t = [
+        (i, j, k, round(d[i, j, k] * 12.0) / 12.0)
+        for i in range(8)
+        for j in range(8)
+        for k in range(j + 1, 8)
+        if abs(d[i, j, k]) > 1e-12
+    ]
+    return (
+        np.array([a[0] for a in t], np.int64),
+        np.array([a[1] for a in t], np.int64),
+        np.array([a[2] for a in t], np.int64),
+        np.array([a[3] for a in t], np.float64),
+    )
 
 
 VT_I, VT_J, VT_K, VT_C = _volume_terms()
@@ -129,8 +139,9 @@ def _rotate6(w, s):
         acc = 0.0
         for k in range(3):
             rik = w[_R + 3 * i + k]
-            acc += rik * (m[3 * k] * w[_R + 3 * j] + m[3 * k + 1] * w[_R + 3 * j + 1]
-                          + m[3 * k + 2] * w[_R + 3 * j + 2])
+            acc += rik * (
+                m[3 * k] * w[_R + 3 * j] + m[3 * k + 1] * w[_R + 3 * j + 1] + m[3 * k + 2] * w[_R + 3 * j + 2]
+            )
         w[_M + t] = acc
     for t in range(6):
         s[t] = w[_M + t]
@@ -175,8 +186,41 @@ def _kill(e, fe, sig, sv):
 
 
 @njit(cache=True)
-def _element(e, x, v, dt, conn, mat_of, mtype, props, mcurve, cs, ce, cx, cy, rho0, vol0, hg_type, hg_qm,
-             q1, q2, sig, sv, epsp, hist, axes, hgq, alive, vol, rate, cmod, energy, hg_energy, w, fe):
+def _element(
+    e,
+    x,
+    v,
+    dt,
+    conn,
+    mat_of,
+    mtype,
+    props,
+    mcurve,
+    cs,
+    ce,
+    cx,
+    cy,
+    rho0,
+    vol0,
+    hg_type,
+    hg_qm,
+    q1,
+    q2,
+    sig,
+    sv,
+    epsp,
+    hist,
+    axes,
+    hgq,
+    alive,
+    vol,
+    rate,
+    cmod,
+    energy,
+    hg_energy,
+    w,
+    fe,
+):
     if alive[e] != 1:
         _kill(e, fe, sig, sv)
         rate[e] = 0.0
@@ -228,8 +272,18 @@ def _element(e, x, v, dt, conn, mat_of, mtype, props, mcurve, cs, ce, cx, cy, rh
     m = mat_of[e]
     if mtype[m] == HONEYCOMB:  # the stress keeps its components in the convected material axes
         _to_local(q, s, 0, w, _M)
-        _convect_axes(q, l00 * inv * dt, l01 * inv * dt, l02 * inv * dt, l10 * inv * dt, l11 * inv * dt,
-                      l12 * inv * dt, l20 * inv * dt, l21 * inv * dt, l22 * inv * dt)
+        _convect_axes(
+            q,
+            l00 * inv * dt,
+            l01 * inv * dt,
+            l02 * inv * dt,
+            l10 * inv * dt,
+            l11 * inv * dt,
+            l12 * inv * dt,
+            l20 * inv * dt,
+            l21 * inv * dt,
+            l22 * inv * dt,
+        )
         _to_global(q, w, _M, s)
     else:
         _rotate6(w, s)
@@ -255,8 +309,9 @@ def _element(e, x, v, dt, conn, mat_of, mtype, props, mcurve, cs, ce, cx, cy, rh
         _kill(e, fe, sig, sv)
         return
     p = props[m]
-    wave, failed = update_stress(mtype[m], p, mcurve[m], cs, ce, cx, cy, s, w, _DE, _M, epsp, e, hist[e], q,
-                                 vn / vol0[e], dt)
+    wave, failed = update_stress(
+        mtype[m], p, mcurve[m], cs, ce, cx, cy, s, w, _DE, _M, epsp, e, hist[e], q, vn / vol0[e], dt
+    )
     if failed:
         alive[e] = 0
         _kill(e, fe, sig, sv)
@@ -280,8 +335,17 @@ def _element(e, x, v, dt, conn, mat_of, mtype, props, mcurve, cs, ce, cx, cy, rh
     t0, t1, t2 = s[0] + sv[e, 0], s[1] + sv[e, 1], s[2] + sv[e, 2]
     t3, t4, t5 = s[3] + sv[e, 3], s[4] + sv[e, 4], s[5] + sv[e, 5]
     # trapezoid work of the total stress over the step, at the mid-step volume
-    energy[e] += 0.5 * vm * dt * ((old0 + t0) * d00 + (old1 + t1) * d11 + (old2 + t2) * d22
-                                  + 2.0 * ((old3 + t3) * d01 + (old4 + t4) * d12 + (old5 + t5) * d20))
+    energy[e] += (
+        0.5
+        * vm
+        * dt
+        * (
+            (old0 + t0) * d00
+            + (old1 + t1) * d11
+            + (old2 + t2) * d22
+            + 2.0 * ((old3 + t3) * d01 + (old4 + t4) * d12 + (old5 + t5) * d20)
+        )
+    )
     for a in range(8):
         b0, b1, b2 = w[_B + 3 * a], w[_B + 3 * a + 1], w[_B + 3 * a + 2]
         fe[e, a, 0] = -(t0 * b0 + t3 * b1 + t5 * b2)
@@ -338,9 +402,40 @@ def _hourglass(e, w, vn, rho, c, wave, dt, ihq, qm, hgq, hg_energy, fe):
 
 
 @njit(cache=True, parallel=True)
-def solid_forces(x, v, dt, conn, mat_of, mtype, props, mcurve, curve_start, curve_stop, curve_x, curve_y,
-                 rho0, vol0, hg_type, hg_qm, q1, q2, sig, sv, epsp, hist, axes, hgq, alive, vol, rate, cmod,
-                 energy, hg_energy, work, fe):
+def solid_forces(
+    x,
+    v,
+    dt,
+    conn,
+    mat_of,
+    mtype,
+    props,
+    mcurve,
+    curve_start,
+    curve_stop,
+    curve_x,
+    curve_y,
+    rho0,
+    vol0,
+    hg_type,
+    hg_qm,
+    q1,
+    q2,
+    sig,
+    sv,
+    epsp,
+    hist,
+    axes,
+    hgq,
+    alive,
+    vol,
+    rate,
+    cmod,
+    energy,
+    hg_energy,
+    work,
+    fe,
+):
     """One step of the solid elements (see the module docstring for the
     arrays): stresses, energies and state to t(n+1), corner forces ``fe``."""
     n = conn.shape[0]
@@ -348,9 +443,41 @@ def solid_forces(x, v, dt, conn, mat_of, mtype, props, mcurve, curve_start, curv
     for ch in prange(nc):
         w = work[ch]
         for e in range(ch * n // nc, (ch + 1) * n // nc):
-            _element(e, x, v, dt, conn, mat_of, mtype, props, mcurve, curve_start, curve_stop, curve_x, curve_y,
-                     rho0, vol0, hg_type, hg_qm, q1, q2, sig, sv, epsp, hist, axes, hgq, alive, vol, rate, cmod,
-                     energy, hg_energy, w, fe)
+            _element(
+                e,
+                x,
+                v,
+                dt,
+                conn,
+                mat_of,
+                mtype,
+                props,
+                mcurve,
+                curve_start,
+                curve_stop,
+                curve_x,
+                curve_y,
+                rho0,
+                vol0,
+                hg_type,
+                hg_qm,
+                q1,
+                q2,
+                sig,
+                sv,
+                epsp,
+                hist,
+                axes,
+                hgq,
+                alive,
+                vol,
+                rate,
+                cmod,
+                energy,
+                hg_energy,
+                w,
+                fe,
+            )
 
 
 @njit(cache=True, parallel=True)

@@ -93,8 +93,7 @@ def update_elastic(p, s, w, do):
 def _yield(p, curve, cs, ce, cx, cy, ep):
     """Yield stress and hardening slope at plastic strain ep."""
     if curve >= 0:
-        return (curve_value(cx, cy, cs[curve], ce[curve], ep),
-                curve_slope(cx, cy, cs[curve], ce[curve], ep))
+        return (curve_value(cx, cy, cs[curve], ce[curve], ep), curve_slope(cx, cy, cs[curve], ce[curve], ep))
     return p[P_SIGY] + p[P_HARD] * ep, p[P_HARD]
 
 
@@ -156,8 +155,11 @@ def _to_local(q, src, so, w, o):
         b = idx_j[t]
         a0, a1, a2 = q[0, a], q[1, a], q[2, a]
         b0, b1, b2 = q[0, b], q[1, b], q[2, b]
-        w[o + t] = (a0 * (m00 * b0 + m01 * b1 + m20 * b2) + a1 * (m01 * b0 + m11 * b1 + m12 * b2)
-                    + a2 * (m20 * b0 + m12 * b1 + m22 * b2))
+        w[o + t] = (
+            a0 * (m00 * b0 + m01 * b1 + m20 * b2)
+            + a1 * (m01 * b0 + m11 * b1 + m12 * b2)
+            + a2 * (m20 * b0 + m12 * b1 + m22 * b2)
+        )
 
 
 @njit(cache=True)
@@ -171,8 +173,11 @@ def _to_global(q, w, o, s):
         j = idx_j[t]
         a0, a1, a2 = q[i, 0], q[i, 1], q[i, 2]
         b0, b1, b2 = q[j, 0], q[j, 1], q[j, 2]
-        s[t] = (a0 * (l00 * b0 + l01 * b1 + l20 * b2) + a1 * (l01 * b0 + l11 * b1 + l12 * b2)
-                + a2 * (l20 * b0 + l12 * b1 + l22 * b2))
+        s[t] = (
+            a0 * (l00 * b0 + l01 * b1 + l20 * b2)
+            + a1 * (l01 * b0 + l11 * b1 + l12 * b2)
+            + a2 * (l20 * b0 + l12 * b1 + l22 * b2)
+        )
 
 
 @njit(cache=True)
@@ -309,8 +314,11 @@ def update_foam(p, mc, cs, ce, cx, cy, s, w, do, wo, relvol):
         for t in range(6):
             i = idx_i[t]
             j = idx_j[t]
-            s[t] = (w[v + 3 * i] * l0 * w[v + 3 * j] + w[v + 3 * i + 1] * l1 * w[v + 3 * j + 1]
-                    + w[v + 3 * i + 2] * l2 * w[v + 3 * j + 2])
+            s[t] = (
+                w[v + 3 * i] * l0 * w[v + 3 * j]
+                + w[v + 3 * i + 1] * l1 * w[v + 3 * j + 1]
+                + w[v + 3 * i + 2] * l2 * w[v + 3 * j + 2]
+            )
     return k + 4.0 * g / 3.0
 
 

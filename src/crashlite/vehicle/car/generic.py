@@ -64,9 +64,17 @@ class GenericVehicle:
         return write_deck(self.model, path, fmt=fmt)[0]
 
 
-def generic_vehicle(mesh_size: float = 25.0, mass: float = 1263.0, cog_x: float = -1100.0, cog_z: float = 500.0,
-                    interface_x: float = -600.0, engine_mass: float = 170.0, axle_mass: float = 73.0,
-                    trigger: float = 1.0, friction: float = 0.2) -> GenericVehicle:
+def generic_vehicle(
+    mesh_size: float = 25.0,
+    mass: float = 1263.0,
+    cog_x: float = -1100.0,
+    cog_z: float = 500.0,
+    interface_x: float = -600.0,
+    engine_mass: float = 170.0,
+    axle_mass: float = 73.0,
+    trigger: float = 1.0,
+    friction: float = 0.2,
+) -> GenericVehicle:
     """The generic compact car with elements of about ``mesh_size`` mm,
     total ``mass`` [kg] with its CoG at (``cog_x``, 0, ``cog_z``) [mm]
     (front axle at x = 0, ground at z = 0), cross sections at
@@ -80,8 +88,9 @@ def generic_vehicle(mesh_size: float = 25.0, mass: float = 1263.0, cog_x: float 
     interface_x = _between_rows(xyz[:, 0], float(interface_x))
     m = Model()
     n_nodes, n_el = len(xyz), len(mesh.quads)
-    m.nodes = Nodes(np.arange(1, n_nodes + 1, dtype=np.int64), xyz, np.zeros(n_nodes, np.int8),
-                    np.zeros(n_nodes, np.int8))
+    m.nodes = Nodes(
+        np.arange(1, n_nodes + 1, dtype=np.int64), xyz, np.zeros(n_nodes, np.int8), np.zeros(n_nodes, np.int8)
+    )
     sh = Shells.zeros(n_el)
     sh.ids = np.arange(1, n_el + 1, dtype=np.int64)
     sh.pid = mesh.part + 1
@@ -119,15 +128,34 @@ def _materials_parts(m: Model, parts, mesh) -> None:
     for g, i in mid.items():
         gr = GRADES[g]
         if gr.kind == "glass":
-            m.materials[i] = record("MAT_PLASTIC_KINEMATIC_TITLE", card_title=g, mid=i, ro=gr.density, e=gr.e, pr=gr.pr,
-                                    sigy=gr.sigy, etan=0.0, beta=0.0)
+            m.materials[i] = record(
+                "MAT_PLASTIC_KINEMATIC_TITLE",
+                card_title=g,
+                mid=i,
+                ro=gr.density,
+                e=gr.e,
+                pr=gr.pr,
+                sigy=gr.sigy,
+                etan=0.0,
+                beta=0.0,
+            )
             continue
         eps, sig = gr.curve()
-        m.materials[i] = record("MAT_PIECEWISE_LINEAR_PLASTICITY_TITLE", card_title=g, mid=i, ro=gr.density, e=gr.e,
-                                pr=gr.pr, sigy=gr.sigy, etan=0.0, c=gr.c, p=gr.p, lcss=i)
+        m.materials[i] = record(
+            "MAT_PIECEWISE_LINEAR_PLASTICITY_TITLE",
+            card_title=g,
+            mid=i,
+            ro=gr.density,
+            e=gr.e,
+            pr=gr.pr,
+            sigy=gr.sigy,
+            etan=0.0,
+            c=gr.c,
+            p=gr.p,
+            lcss=i,
+        )
         m.curves[i] = record("DEFINE_CURVE_TITLE", card_title=f"{g} hardening", rows={"a1": eps, "o1": sig}, lcid=i)
-    m.hourglasses[1] = record("HOURGLASS_TITLE", card_title="stiffness form", hgid=1, ihq=4, qm=0.05, qb=0.05,
-                              qw=0.05)
+    m.hourglasses[1] = record("HOURGLASS_TITLE", card_title="stiffness form", hgid=1, ihq=4, qm=0.05, qb=0.05, qw=0.05)
     area = np.bincount(mesh.part, weights=mesh.areas(), minlength=len(parts))
     next_mid = len(mid) + 1
     for k, p in enumerate(parts):
@@ -135,14 +163,25 @@ def _materials_parts(m: Model, parts, mesh) -> None:
         gr = GRADES[p.grade]
         if gr.kind == "rigid":
             ro = p.mass * KG / (p.thickness * area[k])
-            m.materials[next_mid] = record("MAT_RIGID_TITLE", card_title=f"{p.name} rigid", mid=next_mid, ro=ro,
-                                           e=gr.e, pr=gr.pr)
+            m.materials[next_mid] = record(
+                "MAT_RIGID_TITLE", card_title=f"{p.name} rigid", mid=next_mid, ro=ro, e=gr.e, pr=gr.pr
+            )
             mat, hg = next_mid, 0
             next_mid += 1
         else:
             mat, hg = mid[p.grade], 1
-        m.sections[pid] = record("SECTION_SHELL_TITLE", card_title=p.name, secid=pid, elform=2, shrf=0.833, nip=3,
-                                 t1=p.thickness, t2=p.thickness, t3=p.thickness, t4=p.thickness)
+        m.sections[pid] = record(
+            "SECTION_SHELL_TITLE",
+            card_title=p.name,
+            secid=pid,
+            elform=2,
+            shrf=0.833,
+            nip=3,
+            t1=p.thickness,
+            t2=p.thickness,
+            t3=p.thickness,
+            t4=p.thickness,
+        )
         m.parts[pid] = record("PART", heading=p.name, pid=pid, secid=pid, mid=mat, hgid=hg)
 
 
@@ -221,8 +260,17 @@ def _outputs(v: GenericVehicle, mesh, xyz, parts, cog_x, cog_z, friction) -> Non
     m = v.model
     ids = m.nodes.ids
     vehicle = v.set_ids["vehicle"][1]
-    m.keywords.append(record("CONTACT_AUTOMATIC_SINGLE_SURFACE_ID", cid=1, heading="vehicle self contact",
-                             ssid=vehicle, sstyp=2, fs=friction, fd=friction))
+    m.keywords.append(
+        record(
+            "CONTACT_AUTOMATIC_SINGLE_SURFACE_ID",
+            cid=1,
+            heading="vehicle self contact",
+            ssid=vehicle,
+            sstyp=2,
+            fs=friction,
+            fd=friction,
+        )
+    )
     welds = []
     for j in body.door_joints():
         # a hinge or latch is a patch: every door node within HINGE_REACH of it welded to the body
@@ -246,8 +294,12 @@ def _outputs(v: GenericVehicle, mesh, xyz, parts, cog_x, cog_z, friction) -> Non
         nid = int(ids[_nearest(xyz, nodes, s.at)])
         v.history[s.name] = nid
         hist.append((nid, s.name))
-    m.keywords.append(record("DATABASE_HISTORY_NODE_ID", rows={
-        "id": np.array([h[0] for h in hist], np.int64), "heading": np.array([h[1] for h in hist], object)}))
+    m.keywords.append(
+        record(
+            "DATABASE_HISTORY_NODE_ID",
+            rows={"id": np.array([h[0] for h in hist], np.int64), "heading": np.array([h[1] for h in hist], object)},
+        )
+    )
     x = v.interface_x
     csid = 0
     for name, pids in v.assemblies.items():
@@ -257,6 +309,17 @@ def _outputs(v: GenericVehicle, mesh, xyz, parts, cog_x, cog_z, friction) -> Non
             continue
         csid += 1
         v.sections[name] = csid
-        m.keywords.append(record("DATABASE_CROSS_SECTION_PLANE_ID", csid=csid, title=name,
-                                 psid=v.set_ids[f"assembly {name}"][1], xct=x, yct=0.0, zct=0.0,
-                                 xch=x + 1.0, ych=0.0, zch=0.0))
+        m.keywords.append(
+            record(
+                "DATABASE_CROSS_SECTION_PLANE_ID",
+                csid=csid,
+                title=name,
+                psid=v.set_ids[f"assembly {name}"][1],
+                xct=x,
+                yct=0.0,
+                zct=0.0,
+                xch=x + 1.0,
+                ych=0.0,
+                zch=0.0,
+            )
+        )

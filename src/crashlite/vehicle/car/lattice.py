@@ -58,7 +58,7 @@ class Grid:
     def span(self, axis: int, a: float, b: float) -> np.ndarray:
         """Grid coordinates from a to b (both keypoints), in that order."""
         i, j = self.index(axis, a), self.index(axis, b)
-        return self.coords[axis][i:j + 1] if i <= j else self.coords[axis][j:i + 1][::-1]
+        return self.coords[axis][i : j + 1] if i <= j else self.coords[axis][j : i + 1][::-1]
 
     def smallest_gap(self) -> tuple[float, str]:
         """Smallest distance between neighbouring keypoints, and its axis."""
@@ -108,8 +108,11 @@ class Tube:
 
     def keypoints(self):
         u, v = _others(self.axis)
-        return [(self.axis, self.s0), (self.axis, self.s1)] + [(u, p[0]) for p in self.profile] + \
-            [(v, p[1]) for p in self.profile]
+        return (
+            [(self.axis, self.s0), (self.axis, self.s1)]
+            + [(u, p[0]) for p in self.profile]
+            + [(v, p[1]) for p in self.profile]
+        )
 
     def ring(self, g: Grid) -> np.ndarray:
         """(m, 2) in-plane coordinates of the profile's grid points."""
@@ -182,8 +185,10 @@ class Ruled:
         if self.closed:
             ra, rb = ra[:-1], rb[:-1]
         if ra.shape != rb.shape:
-            raise ValueError(f"ruled piece between lines of {len(ra)} and {len(rb)} grid points: the "
-                             "lattice intervals on both ends must match")
+            raise ValueError(
+                f"ruled piece between lines of {len(ra)} and {len(rb)} grid points: the "
+                "lattice intervals on both ends must match"
+            )
         n = max(1, int(round(self.length / g.size)))
         t = np.linspace(0.0, 1.0, n + 1)
         xyz = ra[None, :, :] + (rb - ra)[None, :, :] * t[:, None, None]

@@ -77,8 +77,14 @@ def vehicle_info(path, units: str | None = None) -> VehicleInfo:
                 biggest.append(v)
     offset = 10 ** max(1, math.ceil(math.log10(max(biggest) + 1)))
     u = system(units) if units else _guess(m)
-    return VehicleInfo(np.unique(m.nodes.ids), np.array(sorted(m.parts), np.int64), m.nodes.xyz.min(axis=0),
-                       m.nodes.xyz.max(axis=0), offset, u)
+    return VehicleInfo(
+        np.unique(m.nodes.ids),
+        np.array(sorted(m.parts), np.int64),
+        m.nodes.xyz.min(axis=0),
+        m.nodes.xyz.max(axis=0),
+        offset,
+        u,
+    )
 
 
 def _guess(m) -> UnitSystem:
@@ -100,7 +106,7 @@ def _node_generate(sid: int, ids: np.ndarray, title: str):
     r = _ranges(ids)
     n = -(-len(r) // 4)
     pad = np.zeros((n * 4, 2), np.int64)
-    pad[:len(r)] = r
+    pad[: len(r)] = r
     rows = {}
     for i in range(4):
         rows[f"b{i + 1}beg"] = pad[i::4, 0]
@@ -118,8 +124,9 @@ def _include_name(car: Path, out: Path) -> str:
     return os.path.relpath(Path(car).resolve(), Path(out).resolve().parent)
 
 
-def _common(v: VehicleInfo, speed_kmh: float, end_time: float, output_dt: float, ground: float,
-            erode_dtmin: float = 0.0) -> tuple:
+def _common(
+    v: VehicleInfo, speed_kmh: float, end_time: float, output_dt: float, ground: float, erode_dtmin: float = 0.0
+) -> tuple:
     """Vehicle node and part sets, initial velocity, ground wall, controls,
     outputs (records), and the node-set ID. ``erode_dtmin`` > 0: ERODE = 1
     with that DTMIN (solids whose step falls below DTMIN x their first step
@@ -127,17 +134,34 @@ def _common(v: VehicleInfo, speed_kmh: float, end_time: float, output_dt: float,
     DTMIN x its first step)."""
     o, u = v.id_offset, v.units
     nodes, parts = o + 1, o + 2
-    recs = [_node_generate(nodes, v.node_ids, "vehicle nodes (load case)"),
-            _part_list(parts, v.part_ids, "vehicle parts (load case)"),
-            record("INITIAL_VELOCITY", nsid=nodes, vx=kmh(speed_kmh) * u.velocity)]
+    recs = [
+        _node_generate(nodes, v.node_ids, "vehicle nodes (load case)"),
+        _part_list(parts, v.part_ids, "vehicle parts (load case)"),
+        record("INITIAL_VELOCITY", nsid=nodes, vx=kmh(speed_kmh) * u.velocity),
+    ]
     z = ground * u.length
     cx, cy = float(0.5 * (v.lo[0] + v.hi[0])), v.y_centre
-    recs.append(record("RIGIDWALL_PLANAR_ID", rwid=o + 2, heading="ground", nsid=nodes, xt=cx, yt=cy, zt=z,
-                       xh=cx, yh=cy, zh=z + 1.0, fric=0.3))
+    recs.append(
+        record(
+            "RIGIDWALL_PLANAR_ID",
+            rwid=o + 2,
+            heading="ground",
+            nsid=nodes,
+            xt=cx,
+            yt=cy,
+            zt=z,
+            xh=cx,
+            yh=cy,
+            zh=z + 1.0,
+            fric=0.3,
+        )
+    )
     t, dt = end_time * u.time, output_dt * u.time
-    recs += [record("CONTROL_TERMINATION", endtim=t, dtmin=erode_dtmin),
-             record("CONTROL_TIMESTEP", tssfac=0.9, erode=1 if erode_dtmin > 0 else 0),
-             record("CONTROL_ENERGY", hgen=2, rwen=2, slnten=2, rylen=2)]
+    recs += [
+        record("CONTROL_TERMINATION", endtim=t, dtmin=erode_dtmin),
+        record("CONTROL_TIMESTEP", tssfac=0.9, erode=1 if erode_dtmin > 0 else 0),
+        record("CONTROL_ENERGY", hgen=2, rwen=2, slnten=2, rylen=2),
+    ]
     recs += [record(f"DATABASE_{d}", dt=dt) for d in ("GLSTAT", "MATSUM", "RWFORC", "SECFORC", "NODOUT", "RCFORC")]
     recs.append(record("DATABASE_BINARY_D3PLOT", dt=5e-3 * u.time))
     return recs, nodes, parts
@@ -153,8 +177,16 @@ def _deck(title: str, includes: list[str], recs: list) -> str:
     return "\n".join(lines) + "\n"
 
 
-def usncap_deck(car, out, speed_kmh: float = 56.0, end_time: float = 0.1, gap: float = 1.0,
-                ground: float = 0.0, output_dt: float = 1e-4, units: str | None = None) -> Path:
+def usncap_deck(
+    car,
+    out,
+    speed_kmh: float = 56.0,
+    end_time: float = 0.1,
+    gap: float = 1.0,
+    ground: float = 0.0,
+    output_dt: float = 1e-4,
+    units: str | None = None,
+) -> Path:
     """Write the US NCAP load case for vehicle deck ``car`` to ``out``:
     rigid wall ``gap`` mm ahead of the vehicle's front, ``speed_kmh``,
     ``end_time`` and ``output_dt`` in seconds, ground height [mm]."""
@@ -163,8 +195,21 @@ def usncap_deck(car, out, speed_kmh: float = 56.0, end_time: float = 0.1, gap: f
     recs, nodes, _ = _common(v, speed_kmh, end_time, output_dt, ground)
     x = float(v.hi[0]) + gap * v.units.length
     cy, cz = v.y_centre, float(0.5 * (v.lo[2] + v.hi[2]))
-    recs.insert(3, record("RIGIDWALL_PLANAR_ID", rwid=v.id_offset + 1, heading="US NCAP rigid wall", nsid=nodes,
-                          xt=x, yt=cy, zt=cz, xh=x - 1.0, yh=cy, zh=cz))
+    recs.insert(
+        3,
+        record(
+            "RIGIDWALL_PLANAR_ID",
+            rwid=v.id_offset + 1,
+            heading="US NCAP rigid wall",
+            nsid=nodes,
+            xt=x,
+            yt=cy,
+            zt=cz,
+            xh=x - 1.0,
+            yh=cy,
+            zh=cz,
+        ),
+    )
     text = _deck(f"US NCAP 100 % rigid wall {speed_kmh:g} km/h", [_include_name(car, out)], recs)
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(text)
@@ -185,15 +230,40 @@ def _rig_wall(v: VehicleInfo, pl, nodes: int):
     xb = (pl.x_face + pl.direction * spec.depth) * L
     y0, z0 = pl.y_min * L, (pl.z_ground + spec.main.z_low) * L
     # edge l up (+z), m = n x l across (+y) for the normal -x: the rectangle covers the block's face
-    return record("RIGIDWALL_PLANAR_FINITE_ID", rwid=v.id_offset + 1, heading="ODB test rig: rigid block",
-                  nsid=nodes, xt=xb, yt=y0, zt=z0, xh=xb - pl.direction * L, yh=y0, zh=z0,
-                  xhev=xb, yhev=y0, zhev=z0 + L, lenl=spec.main.height * L, lenm=spec.main.width * L)
+    return record(
+        "RIGIDWALL_PLANAR_FINITE_ID",
+        rwid=v.id_offset + 1,
+        heading="ODB test rig: rigid block",
+        nsid=nodes,
+        xt=xb,
+        yt=y0,
+        zt=z0,
+        xh=xb - pl.direction * L,
+        yh=y0,
+        zh=z0,
+        xhev=xb,
+        yhev=y0,
+        zhev=z0 + L,
+        lenl=spec.main.height * L,
+        lenm=spec.main.width * L,
+    )
 
 
-def odb_deck(car, out, barrier: str = "simplified", speed_kmh: float = 64.0, overlap: float = 0.4,
-             side: str = "left", end_time: float = 0.12, gap: float = 1.0, ground: float = 0.0,
-             output_dt: float = 1e-4, units: str | None = None, element_size: float = 20.0,
-             erode_dtmin: float = 0.1) -> Path:
+def odb_deck(
+    car,
+    out,
+    barrier: str = "simplified",
+    speed_kmh: float = 64.0,
+    overlap: float = 0.4,
+    side: str = "left",
+    end_time: float = 0.12,
+    gap: float = 1.0,
+    ground: float = 0.0,
+    output_dt: float = 1e-4,
+    units: str | None = None,
+    element_size: float = 20.0,
+    erode_dtmin: float = 0.1,
+) -> Path:
     """Write the Euro NCAP ODB load case for vehicle deck ``car`` to ``out``
     and the barrier to ``<out stem>_barrier<suffix>`` beside it:
     ``barrier`` "simplified" (discrete beams) or "detailed" (honeycomb
@@ -223,11 +293,24 @@ def odb_deck(car, out, barrier: str = "simplified", speed_kmh: float = 64.0, ove
     bpath = out.with_name(f"{out.stem}_barrier{out.suffix or '.k'}")
     out.parent.mkdir(parents=True, exist_ok=True)
     b.write(bpath)
-    recs, nodes, parts = _common(v, speed_kmh, end_time, output_dt, ground,
-                                 erode_dtmin if barrier == "detailed" else 0.0)
-    recs.insert(3, record("CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID", cid=v.id_offset + 1,
-                          heading="vehicle to barrier", ssid=parts, sstyp=2, msid=b.set_ids["parts"], mstyp=2,
-                          fs=0.3, fd=0.3, soft=1))  # soft constraint: the barrier's faces are far softer than steel
+    recs, nodes, parts = _common(
+        v, speed_kmh, end_time, output_dt, ground, erode_dtmin if barrier == "detailed" else 0.0
+    )
+    recs.insert(
+        3,
+        record(
+            "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_ID",
+            cid=v.id_offset + 1,
+            heading="vehicle to barrier",
+            ssid=parts,
+            sstyp=2,
+            msid=b.set_ids["parts"],
+            mstyp=2,
+            fs=0.3,
+            fd=0.3,
+            soft=1,
+        ),
+    )  # soft constraint: the barrier's faces are far softer than steel
     recs.insert(4, _rig_wall(v, pl, nodes))
     title = f"Euro NCAP ODB {overlap * 100:g} % {side} {speed_kmh:g} km/h ({barrier} barrier)"
     text = _deck(title, [_include_name(car, out), bpath.name], recs)

@@ -41,14 +41,17 @@ class Grade:
         return eps, np.round(sig, 3)
 
 
-GRADES = {g.name: g for g in (
-    Grade("DC04", 180.0, 380.0, c=40.0, p=5.0),  # mild deep-drawing steel: skins, floor, firewall
-    Grade("HX340LAD", 340.0, 520.0, c=300.0, p=4.0),  # micro-alloyed HSLA: cowl, headers, tunnel
-    Grade("DP600", 380.0, 720.0, eps0=0.08),  # dual phase: crash boxes, cross members, rear rails
-    Grade("DP800", 500.0, 930.0, eps0=0.07),  # dual phase: front rails, sills, hinge pillars
-    Grade("MS1200", 1000.0, 1300.0, eps0=0.03, tail=100.0),  # martensitic: bumper beam
-    Grade("PHS1500", 1100.0, 1550.0, eps0=0.03, tail=100.0),  # press-hardened boron: pillars, roof rails
-    Grade("X2CrTi12", 280.0, 480.0, c=100.0, p=5.0),  # ferritic stainless: exhaust
-    Grade("glass", 60.0, 60.0, density=2.5e-9, e=70000.0, pr=0.22, kind="glass"),  # laminated glass
-    Grade("rigid", 0.0, 0.0, kind="rigid"),  # engine and gearbox, rear axle (density from the mass)
-)}
+GRADES = {
+    g.name: g
+    for g in (
+        Grade("DC04", 180.0, 380.0, c=40.0, p=5.0),  # mild deep-drawing steel: skins, floor, firewall
+        Grade("HX340LAD", 340.0, 520.0, c=300.0, p=4.0),  # micro-alloyed HSLA: cowl, headers, tunnel
+        Grade("DP600", 380.0, 720.0, eps0=0.08),  # dual phase: crash boxes, cross members, rear rails
+        Grade("DP800", 500.0, 930.0, eps0=0.07),  # dual phase: front rails, sills, hinge pillars
+        Grade("MS1200", 1000.0, 1300.0, eps0=0.03, tail=100.0),  # martensitic: bumper beam
+        Grade("PHS1500", 1100.0, 1550.0, eps0=0.03, tail=100.0),  # press-hardened boron: pillars, roof rails
+        Grade("X2CrTi12", 280.0, 480.0, c=100.0, p=5.0),  # ferritic stainless: exhaust
+        Grade("glass", 60.0, 60.0, density=2.5e-9, e=70000.0, pr=0.22, kind="glass"),  # laminated glass
+        Grade("rigid", 0.0, 0.0, kind="rigid"),  # engine and gearbox, rear axle (density from the mass)
+    )
+}

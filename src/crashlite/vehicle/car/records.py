@@ -64,6 +64,6 @@ def id_list(name: str, sid: int, members, title: str | None = None, **values) ->
     m = np.asarray(members, np.int64).ravel()
     n = -(-len(m) // 8)
     pad = np.zeros(n * 8, np.int64)
-    pad[:len(m)] = m
+    pad[: len(m)] = m
     cols = pad.reshape(n, 8)
     return record(name, card_title=title, rows={f"k{i + 1}": cols[:, i] for i in range(8)}, sid=sid, **values)

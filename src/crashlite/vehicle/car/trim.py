@@ -45,6 +45,8 @@ def solve(base_mass: float, base_cog, centres, nominal, mass: float, cog, tol: f
             break
         free &= m > 0
     if np.any(m < 0) or np.abs(a @ m - b).max() > tol * max(1.0, np.abs(b).max()):
-        raise ValueError("the target mass and centre of gravity cannot be reached with non-negative "
-                         "lumped masses at the mass groups' positions")
+        raise ValueError(
+            "the target mass and centre of gravity cannot be reached with non-negative "
+            "lumped masses at the mass groups' positions"
+        )
     return m

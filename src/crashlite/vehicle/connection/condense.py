@@ -85,10 +85,17 @@ class Condensation:
 
     def summary(self) -> dict:
         lam = np.linalg.eigvalsh(self.stiffness)
-        return {"nodes": int(len(self.nodes)), "dofs": int(3 * len(self.nodes)), "left_out": int(len(self.left_out)),
-                "stiffness_eigenvalues": [float(lam[0]), float(lam[-1])], "mass": self.mass,
-                "cog": self.cog.tolist(), "modes": int(len(self.frequencies)),
-                "mode_frequencies": self.frequencies.tolist(), "notes": list(self.notes)}
+        return {
+            "nodes": int(len(self.nodes)),
+            "dofs": int(3 * len(self.nodes)),
+            "left_out": int(len(self.left_out)),
+            "stiffness_eigenvalues": [float(lam[0]), float(lam[-1])],
+            "mass": self.mass,
+            "cog": self.cog.tolist(),
+            "modes": int(len(self.frequencies)),
+            "mode_frequencies": self.frequencies.tolist(),
+            "notes": list(self.notes),
+        }
 
 
 def relieved_condensation(cut: Cut, nodes=None, modes: int = 0, drill: float = 1e-3) -> Condensation:
@@ -142,8 +149,10 @@ def relieved_condensation(cut: Cut, nodes=None, modes: int = 0, drill: float = 1
     g = 0.5 * (g + g.T)
     lam = np.linalg.eigvalsh(g)
     if not lam[0] > 1e-12 * lam[-1]:
-        raise ValueError(f"the condensed flexibility is singular (eigenvalues {lam[0]:.3g} to {lam[-1]:.3g}): "
-                         "cut nodes that move together (tied) or a cut node joined to nothing with mass")
+        raise ValueError(
+            f"the condensed flexibility is singular (eigenvalues {lam[0]:.3g} to {lam[-1]:.3g}): "
+            "cut nodes that move together (tied) or a cut node joined to nothing with mass"
+        )
     ks = np.linalg.inv(g)
     ks = 0.5 * (ks + ks.T)
     out = Condensation(b, g, ks, big_m, c, m, left, list(cut.notes) + notes + mnotes + rnotes, xyz[b].copy())
@@ -158,8 +167,10 @@ def relieved_condensation(cut: Cut, nodes=None, modes: int = 0, drill: float = 1
         g_res = 0.5 * (g_res + g_res.T)
         low = np.linalg.eigvalsh(g_res)[0]
         if not low > 0:
-            raise ValueError(f"the residual flexibility is not positive ({low:.3g}): the modes are not accurate "
-                             "enough; ask for fewer")
+            raise ValueError(
+                f"the residual flexibility is not positive ({low:.3g}): the modes are not accurate "
+                "enough; ask for fewer"
+            )
         res = np.linalg.inv(g_res)
         out.modal, out.omega2, out.residual = phi, w2, 0.5 * (res + res.T)
     return out

@@ -84,8 +84,9 @@ class CondensedSurrogate(Surrogate):
         return super().write(path, fmt)
 
 
-def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, keep_nodes=None,
-                              dashpots: bool = True) -> Surrogate:
+def build_condensed_surrogate(
+    cut: Cut, cond: Condensation, mass: ReplacedMass, keep_nodes=None, dashpots: bool = True
+) -> Surrogate:
     """The surrogate deck joined at the cut by the condensed structure
     (module docstring); ``dashpots``: the cut's wave impedance along the
     axis (``impedance``) between each cut node and the rear body."""
@@ -137,11 +138,11 @@ def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, 
     comps = np.concatenate([np.tile([1, 2, 3], len(cond.nodes) + len(a_ids)), np.full(n_modes, 2)])
     k = superelement_matrix(cond, anchors)
     eid = ids.take("element")
-    m.keywords.append(record("ELEMENT_DIRECT_MATRIX_INPUT", eid=eid, ifrmt=1, filename="simplified.dmig",
-                             stif="KCUT"))
+    m.keywords.append(record("ELEMENT_DIRECT_MATRIX_INPUT", eid=eid, ifrmt=1, filename="simplified.dmig", stif="KCUT"))
     sid = ids.take("set")  # the cut nodes, for the verification's split (no rigid body on them)
-    m.sets[("NODE", sid)] = id_list("SET_NODE_LIST_TITLE", sid, full.nodes.ids[cond.nodes],
-                                    title="surrogate interface (condensed)")
+    m.sets[("NODE", sid)] = id_list(
+        "SET_NODE_LIST_TITLE", sid, full.nodes.ids[cond.nodes], title="surrogate interface (condensed)"
+    )
     if len(damped):  # one damper material of unit constant, each element's S its node's ρ·c·A
         sec, mid, pid = ids.take("section"), ids.take("material"), ids.take("part")
         m.sections[sec] = record("SECTION_DISCRETE_TITLE", card_title="surrogate cut dashpots", secid=sec)
@@ -151,34 +152,70 @@ def build_condensed_surrogate(cut: Cut, cond: Condensation, mass: ReplacedMass, 
         d.ids = np.arange(ids.element, ids.element + len(damped), dtype=np.int64)
         ids.element += len(damped)
         d.pid[:] = pid
-        d.nodes = np.stack([m.node_index(full.nodes.ids[cond.nodes[damped]]), m.node_index(end_ids)],
-                           axis=1).astype(np.int32)
+        d.nodes = np.stack([m.node_index(full.nodes.ids[cond.nodes[damped]]), m.node_index(end_ids)], axis=1).astype(
+            np.int32
+        )
         d.scale = dc[damped]
         m.discretes = Discretes.concat([m.discretes, d])
-        notes.append(f"{len(damped)} dashpots along the axis between the cut nodes and the rear body, "
-                     f"{dc.sum():.4g} in all: the replaced structure's wave impedance at the cut")
+        notes.append(
+            f"{len(damped)} dashpots along the axis between the cut nodes and the rear body, "
+            f"{dc.sum():.4g} in all: the replaced structure's wave impedance at the cut"
+        )
     # the rear body
     pid = ids.take("part")
     sid = ids.take("set")
     members = np.unique(np.concatenate([[g_id], a_ids, end_ids, full.nodes.ids[ride]]))
     m.sets[("NODE", sid)] = id_list("SET_NODE_LIST_TITLE", sid, members, title="surrogate rear body")
-    m.keywords.append(record("CONSTRAINED_NODAL_RIGID_BODY_INERTIA", pid=pid, nsid=sid, xc=float(c[0]),
-                             yc=float(c[1]), zc=float(c[2]), tm=rest, nodeid=g_id,
-                             ixx=float(inertia[0, 0]), ixy=float(inertia[0, 1]), ixz=float(inertia[0, 2]),
-                             iyy=float(inertia[1, 1]), iyz=float(inertia[1, 2]), izz=float(inertia[2, 2])))
+    m.keywords.append(
+        record(
+            "CONSTRAINED_NODAL_RIGID_BODY_INERTIA",
+            pid=pid,
+            nsid=sid,
+            xc=float(c[0]),
+            yc=float(c[1]),
+            zc=float(c[2]),
+            tm=rest,
+            nodeid=g_id,
+            ixx=float(inertia[0, 0]),
+            ixy=float(inertia[0, 1]),
+            ixz=float(inertia[0, 2]),
+            iyy=float(inertia[1, 1]),
+            iyz=float(inertia[1, 2]),
+            izz=float(inertia[2, 2]),
+        )
+    )
     title = next((r for r in m.keywords if getattr(r, "keyword", "") == "TITLE"), None)
     if title is not None:
         title["title"] = (str(title.get("title", "")) + " - simplified (condensed)").strip(" -")[:80]
-    notes.append(f"the replaced structure condensed on {len(cond.nodes)} cut nodes ({3 * len(cond.nodes)} DOFs), "
-                 f"{1e3 * mb.sum():.1f} kg of it on them, the rest on the rear body"
-                 + (f"; its {n_modes} lowest free modes ({cond.frequencies[0]:.3g} to {cond.frequencies[-1]:.3g} per "
-                    "time unit) move on their own, the rest as residual stiffness" if n_modes else ""))
+    notes.append(
+        f"the replaced structure condensed on {len(cond.nodes)} cut nodes ({3 * len(cond.nodes)} DOFs), "
+        f"{1e3 * mb.sum():.1f} kg of it on them, the rest on the rear body"
+        + (
+            f"; its {n_modes} lowest free modes ({cond.frequencies[0]:.3g} to {cond.frequencies[-1]:.3g} per "
+            "time unit) move on their own, the rest as residual stiffness"
+            if n_modes
+            else ""
+        )
+    )
     if len(cond.left_out):
         notes.append(f"{len(cond.left_out)} cut node(s) left free (not condensed)")
     # along the axis, the cut held rigid and free to turn (as step 3 loads its interface)
     flex = np.linalg.inv(cond.rigid_stiffness(cond.xyz_nodes.mean(axis=0)))[:3, :3]
-    return CondensedSurrogate(m, [], float(1.0 / (cut.axis @ flex @ cut.axis)), mass, tr,
-                              {"cog": g_id, **{f"anchor {i + 1}": int(a) for i, a in enumerate(a_ids)},
-                               **({"modes": [int(i) for i in modal_ids]} if n_modes else {})},
-                              {"rear body": pid}, {}, "condensed", notes,
-                              {"rear body": mk.MassProperties(rest, c, inertia)}, (np.stack([dofs, comps], axis=1), k))
+    return CondensedSurrogate(
+        m,
+        [],
+        float(1.0 / (cut.axis @ flex @ cut.axis)),
+        mass,
+        tr,
+        {
+            "cog": g_id,
+            **{f"anchor {i + 1}": int(a) for i, a in enumerate(a_ids)},
+            **({"modes": [int(i) for i in modal_ids]} if n_modes else {}),
+        },
+        {"rear body": pid},
+        {},
+        "condensed",
+        notes,
+        {"rear body": mk.MassProperties(rest, c, inertia)},
+        (np.stack([dofs, comps], axis=1), k),
+    )

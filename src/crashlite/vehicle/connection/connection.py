@@ -106,9 +106,14 @@ def compare_connection(k_surrogate: np.ndarray, flexibility: np.ndarray, axis) -
     k_str = np.linalg.inv(c_str)
     out = {}
     for j, name in enumerate(DIRECTIONS):
-        out[name] = {"structure_compliance": float(c_str[j, j]), "surrogate_compliance": float(c_sur[j, j]),
-                     "compliance_ratio": float(c_sur[j, j] / c_str[j, j]),
-                     "stiffness_ratio_held": float(k_sur[j, j] / k_str[j, j])}
+        out[name] = {
+            "structure_compliance": float(c_str[j, j]),
+            "surrogate_compliance": float(c_sur[j, j]),
+            "compliance_ratio": float(c_sur[j, j] / c_str[j, j]),
+            "stiffness_ratio_held": float(k_sur[j, j] / k_str[j, j]),
+        }
     worst = max(out, key=lambda n: abs(np.log(out[n]["compliance_ratio"])))
-    return {"directions": out, "largest_compliance_misfit": {"direction": worst,
-                                                             "ratio": out[worst]["compliance_ratio"]}}
+    return {
+        "directions": out,
+        "largest_compliance_misfit": {"direction": worst, "ratio": out[worst]["compliance_ratio"]},
+    }

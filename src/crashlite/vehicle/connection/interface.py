@@ -63,12 +63,18 @@ class InterfaceProposal:
     notes: list = field(default_factory=list)
 
     def summary(self) -> dict:
-        return {"proposed_x": self.x,
-                "criteria": {"plastic_strain": self.strain, "strained_area_allowed_percent": 100.0 * self.allowed,
-                             "energy_allowed_percent": 100.0 * self.energy},
-                "measures": dict(self.measured), "candidates": list(self.candidates),
-                "shells_beyond_strain": int((self.plastic_strain >= self.strain).sum()),
-                "notes": list(self.notes)}
+        return {
+            "proposed_x": self.x,
+            "criteria": {
+                "plastic_strain": self.strain,
+                "strained_area_allowed_percent": 100.0 * self.allowed,
+                "energy_allowed_percent": 100.0 * self.energy,
+            },
+            "measures": dict(self.measured),
+            "candidates": list(self.candidates),
+            "shells_beyond_strain": int((self.plastic_strain >= self.strain).sum()),
+            "notes": list(self.notes),
+        }
 
 
 def shell_strain(x0: np.ndarray, states: np.ndarray, quads: np.ndarray) -> np.ndarray:
@@ -111,8 +117,10 @@ def _aligned_states(model: Model, results) -> np.ndarray | None:
     idx = {int(n): k for k, n in enumerate(st.ids)}
     missing = [int(n) for n in model.nodes.ids if int(n) not in idx]
     if missing:
-        raise ValueError(f"{results}: {len(missing)} node(s) of the deck are not in the field states "
-                         f"(e.g. {missing[:5]}): not a run of this deck")
+        raise ValueError(
+            f"{results}: {len(missing)} node(s) of the deck are not in the field states "
+            f"(e.g. {missing[:5]}): not a run of this deck"
+        )
     return st.x[:, np.array([idx[int(n)] for n in model.nodes.ids])]
 
 
@@ -121,8 +129,9 @@ def _membrane_strain(model: Model, results, xs=None) -> np.ndarray:
     ``results`` (nodes matched by ID; ``xs``: those already aligned)."""
     xs = _aligned_states(model, results) if xs is None else xs
     if xs is None:
-        raise ValueError(f"{results}: neither plastic strains nor field states (*DATABASE_BINARY_D3PLOT) "
-                         "to rate the shells by")
+        raise ValueError(
+            f"{results}: neither plastic strains nor field states (*DATABASE_BINARY_D3PLOT) to rate the shells by"
+        )
     return shell_strain(xs[0], xs[1:], model.shells.nodes.astype(np.int64))
 
 
@@ -182,8 +191,17 @@ def shell_measures(model: Model, results, states=None) -> tuple[np.ndarray, np.n
     return eps, energy, how
 
 
-def propose_interface(model: Model, results, strain: float = 0.01, allowed: float = 0.01, energy: float = 0.03,
-                      axis=(1.0, 0.0, 0.0), step: float | None = None, also=(), measures=None) -> InterfaceProposal:
+def propose_interface(
+    model: Model,
+    results,
+    strain: float = 0.01,
+    allowed: float = 0.01,
+    energy: float = 0.03,
+    axis=(1.0, 0.0, 0.0),
+    step: float | None = None,
+    also=(),
+    measures=None,
+) -> InterfaceProposal:
     """Candidate planes at the multiples of ``step`` (default: four element
     sizes) along ``axis`` over the model's length, and at the positions
     ``also`` (e.g. the interface in use); the proposal (module docstring).
@@ -211,8 +229,9 @@ def propose_interface(model: Model, results, strain: float = 0.01, allowed: floa
     full_mass = model.mass_properties().mass
     n_el = sum(len(getattr(model, t)) for t in ("shells", "solids", "beams", "discretes"))
     total = float(absorbed.sum())
-    titles = np.array([str(model.parts.get(int(p), {}).get("heading", "") or f"part {int(p)}")
-                       for p in model.shells.pid])
+    titles = np.array(
+        [str(model.parts.get(int(p), {}).get("heading", "") or f"part {int(p)}") for p in model.shells.pid]
+    )
     moments = element_moments(model)  # once: every candidate sums its own share of them
     out, proposed = [], None
     first = np.ceil(hi / step) * step - step  # candidates on multiples of the step
@@ -227,13 +246,18 @@ def propose_interface(model: Model, results, strain: float = 0.01, allowed: floa
         for t in np.unique(titles[behind]):
             parts[str(t)] = float(absorbed[behind & (titles == t)].sum())
         top = sorted(parts.items(), key=lambda kv: -kv[1])[:3]
-        out.append({"x": float(x), "energy_behind_percent": 100.0 * e_share,
-                    "strained_area_percent_behind": 100.0 * a_share,
-                    "max_plastic_strain_behind": float(eps[behind].max()) if behind.any() else 0.0,
-                    "p99_plastic_strain_behind": float(np.percentile(eps[behind], 99)) if behind.any() else 0.0,
-                    "most_energy_behind": {t: 100.0 * v / total for t, v in top if total > 0},
-                    "replaced_mass_percent": 100.0 * replaced_mass(cut, moments=moments).structure.mass / full_mass,
-                    "replaced_elements_percent": 100.0 * n_rep / max(n_el, 1)})
+        out.append(
+            {
+                "x": float(x),
+                "energy_behind_percent": 100.0 * e_share,
+                "strained_area_percent_behind": 100.0 * a_share,
+                "max_plastic_strain_behind": float(eps[behind].max()) if behind.any() else 0.0,
+                "p99_plastic_strain_behind": float(np.percentile(eps[behind], 99)) if behind.any() else 0.0,
+                "most_energy_behind": {t: 100.0 * v / total for t, v in top if total > 0},
+                "replaced_mass_percent": 100.0 * replaced_mass(cut, moments=moments).structure.mass / full_mass,
+                "replaced_elements_percent": 100.0 * n_rep / max(n_el, 1),
+            }
+        )
         if xs is not None:  # how far the cut bends out of a rigid motion: what a rigid interface cannot follow
             wh = warping_history(xs[1:], xs[0], cut.interface_nodes, a)
             out[-1].update(interface_warping_max=wh["max"], interface_warping_rms=wh["rms"])
@@ -241,9 +265,11 @@ def propose_interface(model: Model, results, strain: float = 0.01, allowed: floa
             proposed = float(x)
     notes = [f"{k.replace('_', ' ')}: {v}" for k, v in how.items() if v != "recorded"]
     if proposed is None:
-        notes.append(f"behind every candidate plane the shells hold more than {100 * energy:g} % of the absorbed "
-                     f"energy or more than {100 * allowed:g} % of their area reaches {100 * strain:g} % plastic "
-                     "strain: the structure does not stay elastic anywhere")
+        notes.append(
+            f"behind every candidate plane the shells hold more than {100 * energy:g} % of the absorbed "
+            f"energy or more than {100 * allowed:g} % of their area reaches {100 * strain:g} % plastic "
+            "strain: the structure does not stay elastic anywhere"
+        )
     return InterfaceProposal(proposed, float(strain), float(allowed), float(energy), out, eps, absorbed, how, notes)
 
 
@@ -274,9 +300,14 @@ def part_plastic_strain(model: Model, results, yield_strain: float = 0.002, _ea=
         m = pid_of == pid
         e, a = eps[m], area[m]
         title = str(model.parts.get(int(pid), {}).get("heading", "") or f"part {int(pid)}")
-        out[title] = {"part": int(pid), "max": float(e.max()), "p95": float(np.percentile(e, 95)),
-                      "mean": float((e * a).sum() / a.sum()) if a.sum() > 0 else 0.0,
-                      "yielded_area_percent": _yielded_percent(e, a, yield_strain), "shells": int(m.sum())}
+        out[title] = {
+            "part": int(pid),
+            "max": float(e.max()),
+            "p95": float(np.percentile(e, 95)),
+            "mean": float((e * a).sum() / a.sum()) if a.sum() > 0 else 0.0,
+            "yielded_area_percent": _yielded_percent(e, a, yield_strain),
+            "shells": int(m.sum()),
+        }
     return out
 
 
@@ -289,7 +320,7 @@ def assembly_parts(model: Model, names=PASSENGER_CELL) -> np.ndarray:
         title = str(rec.title or "").strip().lower()
         if kind != "PART" or not title.startswith("assembly "):
             continue
-        name = title[len("assembly "):]
+        name = title[len("assembly ") :]
         for side in (" left", " right"):
             if name.endswith(side):
                 name = name[: -len(side)]
@@ -311,7 +342,12 @@ def cell_plastic_strain(model: Model, results, names=PASSENGER_CELL, yield_strai
     e = eps[m]
     parts = part_plastic_strain(model, results, yield_strain, _ea=(eps, area))
     cell = {k: v for k, v in parts.items() if v["part"] in set(pids.tolist())}
-    return {"shells": int(m.sum()), "max": float(e.max()), "p95": float(np.percentile(e, 95)),
-            "p99": float(np.percentile(e, 99)), "yield_strain": yield_strain,
-            "yielded_area_percent": _yielded_percent(e, area[m], yield_strain),
-            "parts": dict(sorted(cell.items(), key=lambda kv: -kv[1]["max"]))}
+    return {
+        "shells": int(m.sum()),
+        "max": float(e.max()),
+        "p95": float(np.percentile(e, 95)),
+        "p99": float(np.percentile(e, 99)),
+        "yield_strain": yield_strain,
+        "yielded_area_percent": _yielded_percent(e, area[m], yield_strain),
+        "parts": dict(sorted(cell.items(), key=lambda kv: -kv[1]["max"])),
+    }

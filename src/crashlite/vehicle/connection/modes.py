@@ -21,6 +21,7 @@ that rigid modes stay regular:
   bending mode carries 4·105/(4.730⁴) = 84 % of its end's lateral
   compliance (test).
 """
+
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -54,12 +55,16 @@ class FreeModes:
         return {name: phi[:, j] ** 2 / lam / c[j] for j, name in enumerate(DIRECTIONS)}
 
     def summary(self, flexibility=None, axis=(1.0, 0.0, 0.0)) -> dict:
-        out = {"frequencies": self.frequencies.tolist(), "rigid_modes": self.rigid_modes,
-               "kinetic_energy_share_percent": [{k: 100.0 * v for k, v in w.items()} for w in self.where],
-               "notes": list(self.notes)}
+        out = {
+            "frequencies": self.frequencies.tolist(),
+            "rigid_modes": self.rigid_modes,
+            "kinetic_energy_share_percent": [{k: 100.0 * v for k, v in w.items()} for w in self.where],
+            "notes": list(self.notes),
+        }
         if flexibility is not None:
-            out["compliance_share_percent"] = {k: (100.0 * v).tolist()
-                                               for k, v in self.shares(flexibility, axis).items()}
+            out["compliance_share_percent"] = {
+                k: (100.0 * v).tolist() for k, v in self.shares(flexibility, axis).items()
+            }
         return out
 
 
@@ -71,7 +76,7 @@ def free_modes(cut: Cut, count: int = 8, interface_nodes=None, drill: float = 1e
         notes.append(f"{rigid} modes at zero frequency (six for one free rigid structure; more: a mechanism)")
     el = slice(rigid, rigid + count)
     freq = np.sqrt(np.maximum(lam[el], 0.0)) / (2.0 * np.pi)
-    where = _where(cut, m, u[:ls.n, :3, el])
+    where = _where(cut, m, u[: ls.n, :3, el])
     return FreeModes(freq, u[master, :, el].T.copy(), rigid, ls.position(master), where, notes)
 
 
@@ -91,10 +96,12 @@ class HeldModes:
 
     def summary(self) -> dict:
         pct = 100.0 * self.effective / self.totals
-        return {"frequencies": self.frequencies.tolist(),
-                "effective_mass_percent": {d: pct[:, j].tolist() for j, d in enumerate(DIRECTIONS)},
-                "kinetic_energy_share_percent": [{k: 100.0 * v for k, v in w.items()} for w in self.where],
-                "notes": list(self.notes)}
+        return {
+            "frequencies": self.frequencies.tolist(),
+            "effective_mass_percent": {d: pct[:, j].tolist() for j, d in enumerate(DIRECTIONS)},
+            "kinetic_energy_share_percent": [{k: 100.0 * v for k, v in w.items()} for w in self.where],
+            "notes": list(self.notes),
+        }
 
 
 def held_modes(cut: Cut, count: int = 8, interface_nodes=None, drill: float = 1e-3) -> HeldModes:
@@ -113,7 +120,7 @@ def held_modes(cut: Cut, count: int = 8, interface_nodes=None, drill: float = 1e
     p = xyz[nodes].mean(axis=0)
     f = vehicle_frame(cut.axis)[:3, :3]
     r = (xyz - p) @ f.T  # node positions in the vehicle frame about the interface centre
-    phi = np.einsum("ab,nbk->nak", f, u[:ls.n, :3, el])  # translations in the vehicle frame
+    phi = np.einsum("ab,nbk->nak", f, u[: ls.n, :3, el])  # translations in the vehicle frame
     lt = np.einsum("n,nak->ka", m, phi)  # Ψ_translationᵀ M φ
     lr = np.einsum("n,nak->ka", m, np.cross(r[:, :, None], phi, axis=1))  # rotation e about p: (e × r)·φ = e·(r × φ)
     eff = np.hstack([lt**2, lr**2])
@@ -122,7 +129,7 @@ def held_modes(cut: Cut, count: int = 8, interface_nodes=None, drill: float = 1e
     freq = np.sqrt(np.maximum(lam[el], 0.0)) / (2.0 * np.pi)
     if rigid:
         notes.append(f"{rigid} modes at zero frequency with the interface held: a part not joined to it")
-    return HeldModes(freq, eff, totals, np.hstack([lt, lr]), p, _where(cut, m, u[:ls.n, :3, el]), notes)
+    return HeldModes(freq, eff, totals, np.hstack([lt, lr]), p, _where(cut, m, u[: ls.n, :3, el]), notes)
 
 
 def _eigen(cut: Cut, count: int, interface: str, interface_nodes, drill: float):
@@ -178,8 +185,10 @@ def _where(cut: Cut, m: np.ndarray, u: np.ndarray, top: int = 3) -> list:
         pid = np.broadcast_to(np.asarray(tab.pid)[sel][:, None], conn.shape)
         ok = conn >= 0
         part_of[conn[ok]] = pid[ok]
-    title = {int(p): str(model.parts.get(int(p), {}).get("heading", "") or f"part {int(p)}")
-             for p in np.unique(part_of[part_of >= 0])}
+    title = {
+        int(p): str(model.parts.get(int(p), {}).get("heading", "") or f"part {int(p)}")
+        for p in np.unique(part_of[part_of >= 0])
+    }
     title[-1] = "point masses"
     out = []
     for j in range(u.shape[2]):

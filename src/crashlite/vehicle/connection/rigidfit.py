@@ -50,5 +50,9 @@ def warping_history(xs: np.ndarray, x0: np.ndarray, nodes: np.ndarray, axis) -> 
     w = np.array([warping(x, x0, nodes, axis) for x in xs])
     peak = np.abs(w).max(axis=1)
     rms = np.sqrt((w * w).mean(axis=1))
-    return {"max": float(peak.max()), "rms": float(rms.max()), "state_of_max": int(peak.argmax()),
-            "state_of_rms": int(rms.argmax())}
+    return {
+        "max": float(peak.max()),
+        "rms": float(rms.max()),
+        "state_of_max": int(peak.argmax()),
+        "state_of_rms": int(rms.argmax()),
+    }

@@ -54,8 +54,13 @@ class ElasticTwin:
 
     def summary(self) -> dict:
         split = {p: q for p, q in self.elastic_parts.items() if p != q}
-        return {"elements_made_elastic": self.elements, "parts_made_elastic": len(self.elastic_parts),
-                "parts_split": len(split), "elastic_materials": len(self.materials), "notes": list(self.notes)}
+        return {
+            "elements_made_elastic": self.elements,
+            "parts_made_elastic": len(self.elastic_parts),
+            "parts_split": len(split),
+            "elastic_materials": len(self.materials),
+            "notes": list(self.notes),
+        }
 
 
 def elastic_twin(cut: Cut) -> ElasticTwin:
@@ -86,8 +91,14 @@ def elastic_twin(cut: Cut) -> ElasticTwin:
             mid = int(mat["mid"])
             if mid not in twin.materials:
                 twin.materials[mid] = next_mid
-                m.materials[next_mid] = record("MAT_ELASTIC_TITLE", card_title=f"elastic {mat.title or mid}",
-                                               mid=next_mid, ro=mat["ro"], e=mat["e"], pr=mat["pr"])
+                m.materials[next_mid] = record(
+                    "MAT_ELASTIC_TITLE",
+                    card_title=f"elastic {mat.title or mid}",
+                    mid=next_mid,
+                    ro=mat["ro"],
+                    e=mat["e"],
+                    pr=mat["pr"],
+                )
                 next_mid += 1
             mine = tab.pid == pid
             behind = mine & replaced
@@ -108,8 +119,10 @@ def elastic_twin(cut: Cut) -> ElasticTwin:
         _share_part_masses(m, full, split)
         _note_direct_references(m, split, twin.notes)
     for kind, pids in sorted(untouched.items()):
-        twin.notes.append(f"{len(pids)} replaced part(s) of *{kind} left as they are: "
-                          f"{', '.join(str(p) for p in sorted(pids)[:10])}{' ...' if len(pids) > 10 else ''}")
+        twin.notes.append(
+            f"{len(pids)} replaced part(s) of *{kind} left as they are: "
+            f"{', '.join(str(p) for p in sorted(pids)[:10])}{' ...' if len(pids) > 10 else ''}"
+        )
     return twin
 
 
@@ -124,8 +137,13 @@ def _extend_part_sets(m: Model, full: Model, split: dict) -> None:
         if not extra:
             continue
         head = {k: v for k, v in rec.values.items() if k != "sid"}
-        new = id_list("SET_PART_LIST" + ("_TITLE" if rec.title is not None else ""), sid,
-                      np.concatenate([members, extra]), title=rec.title, **head)
+        new = id_list(
+            "SET_PART_LIST" + ("_TITLE" if rec.title is not None else ""),
+            sid,
+            np.concatenate([members, extra]),
+            title=rec.title,
+            **head,
+        )
         m.sets[(kind, sid)] = new
 
 
@@ -134,8 +152,14 @@ def _share_part_masses(m: Model, full: Model, split: dict) -> None:
     shared between the part and its twin part by their element mass."""
     from ..steps.massprops import element_moments
 
-    recs = [r for r in full.keywords if isinstance(r, Record) and r.keyword == "ELEMENT_MASS_PART"
-            and "SET" not in r.options and np.isin(r.rows["pid"], list(split)).any()]
+    recs = [
+        r
+        for r in full.keywords
+        if isinstance(r, Record)
+        and r.keyword == "ELEMENT_MASS_PART"
+        and "SET" not in r.options
+        and np.isin(r.rows["pid"], list(split)).any()
+    ]
     if not recs:
         return
     mo = element_moments(full)
@@ -156,9 +180,13 @@ def _share_part_masses(m: Model, full: Model, split: dict) -> None:
             for p, f in shares:
                 for k, col in rec.rows.items():
                     rows[k].append(p if k == "pid" else col[i] * f if k in ("addmass", "finmass") else col[i])
-        swap[id(rec)] = Record(rec.keyword, rec.options, dict(rec.values),
-                               {k: np.asarray(v, dtype=np.asarray(rec.rows[k]).dtype) for k, v in rows.items()},
-                               rec.title)
+        swap[id(rec)] = Record(
+            rec.keyword,
+            rec.options,
+            dict(rec.values),
+            {k: np.asarray(v, dtype=np.asarray(rec.rows[k]).dtype) for k, v in rows.items()},
+            rec.title,
+        )
     m.keywords = [swap.get(id(r), r) for r in m.keywords]
 
 
@@ -179,5 +207,7 @@ def _note_direct_references(m: Model, split: dict, notes: list) -> None:
                 if int(rec.get(typ, 0) or 0) == 3 and int(rec.get(side, 0) or 0) in split:
                     named.append(int(rec[side]))
         for p in named:
-            notes.append(f"*{rec.name} names part {p} directly: it keeps the part's kept elements only, not its "
-                         f"elastic twin part {split[p]}")
+            notes.append(
+                f"*{rec.name} names part {p} directly: it keeps the part's kept elements only, not its "
+                f"elastic twin part {split[p]}"
+            )

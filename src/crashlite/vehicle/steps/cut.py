@@ -122,8 +122,9 @@ def rigid_groups(model: Model) -> list[RigidGroup]:
     """The nodal rigid bodies, spot welds and rigid parts of a Model."""
     out = []
     for rec in model.find("CONSTRAINED_NODAL_RIGID_BODY"):
-        out.append(RigidGroup("nodal rigid body", f"nodal rigid body {rec.get('pid')}",
-                              _node_set(model, int(rec["nsid"]))))
+        out.append(
+            RigidGroup("nodal rigid body", f"nodal rigid body {rec.get('pid')}", _node_set(model, int(rec["nsid"])))
+        )
     for rec in model.find("CONSTRAINED_SPOTWELD"):
         ids = model.node_index(np.stack([rec.rows["n1"], rec.rows["n2"]], axis=1)).astype(np.int64)
         wid = rec.rows.get("wid", np.arange(1, len(ids) + 1))
@@ -131,8 +132,11 @@ def rigid_groups(model: Model) -> list[RigidGroup]:
             if np.all(pair >= 0):
                 out.append(RigidGroup("spot weld", f"spot weld {int(w)}", pair))
     for rec in model.find("CONSTRAINED_GENERALIZED_WELD_SPOT"):
-        out.append(RigidGroup("spot weld", f"generalized weld {rec.get('wid', '')}".strip(),
-                              _node_set(model, int(rec["nsid"]))))
+        out.append(
+            RigidGroup(
+                "spot weld", f"generalized weld {rec.get('wid', '')}".strip(), _node_set(model, int(rec["nsid"]))
+            )
+        )
     rigid = rigid_part_ids(model)
     lead = {p: p for p in rigid}
     for rec in model.find("CONSTRAINED_RIGID_BODIES"):
@@ -149,8 +153,11 @@ def rigid_groups(model: Model) -> list[RigidGroup]:
     for rec in model.find("CONSTRAINED_EXTRA_NODES"):
         for i in range(len(rec.rows["pid"])):
             p = int(rec.rows["pid"][i])
-            extra = (_node_set(model, int(rec.rows["nsid"][i])) if "SET" in rec.options
-                     else model.node_index([rec.rows["nid"][i]]).astype(np.int64))
+            extra = (
+                _node_set(model, int(rec.rows["nsid"][i]))
+                if "SET" in rec.options
+                else model.node_index([rec.rows["nid"][i]]).astype(np.int64)
+            )
             if p in lead:
                 nodes.setdefault(lead[p], []).append(extra[extra >= 0])
     for p, lists in nodes.items():
@@ -193,8 +200,9 @@ def cut_behind(model: Model, point=None, x: float | None = None, axis=(1.0, 0.0,
             tab = getattr(model, t)
             sel = tab.pid == pid
             if sel.any() and (replaced[t][sel].any() != whole or replaced[t][sel].all() != whole):
-                notes.append(f"rigid part {pid} lies across the interface: taken whole as "
-                             f"{'replaced' if whole else 'kept'}")
+                notes.append(
+                    f"rigid part {pid} lies across the interface: taken whole as {'replaced' if whole else 'kept'}"
+                )
             replaced[t][sel] = whole
     n = len(model.nodes)
     on_rep, on_kept = np.zeros(n, bool), np.zeros(n, bool)

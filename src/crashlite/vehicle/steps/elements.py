@@ -220,15 +220,33 @@ def beam_stiffness(x1, x2, frames, ea, gj, ei2, ei3):
         put(i, j, s * t)
     # deflection v along e2 with rotation rz (EI about e3)
     c = ei3
-    for i, j, v in ((1, 1, 12 * c / L**3), (7, 7, 12 * c / L**3), (1, 7, -12 * c / L**3),
-                    (1, 5, 6 * c / L**2), (1, 11, 6 * c / L**2), (7, 5, -6 * c / L**2), (7, 11, -6 * c / L**2),
-                    (5, 5, 4 * c / L), (11, 11, 4 * c / L), (5, 11, 2 * c / L)):
+    for i, j, v in (
+        (1, 1, 12 * c / L**3),
+        (7, 7, 12 * c / L**3),
+        (1, 7, -12 * c / L**3),
+        (1, 5, 6 * c / L**2),
+        (1, 11, 6 * c / L**2),
+        (7, 5, -6 * c / L**2),
+        (7, 11, -6 * c / L**2),
+        (5, 5, 4 * c / L),
+        (11, 11, 4 * c / L),
+        (5, 11, 2 * c / L),
+    ):
         put(i, j, v)
     # deflection w along e3 with rotation ry (EI about e2)
     c = ei2
-    for i, j, v in ((2, 2, 12 * c / L**3), (8, 8, 12 * c / L**3), (2, 8, -12 * c / L**3),
-                    (2, 4, -6 * c / L**2), (2, 10, -6 * c / L**2), (8, 4, 6 * c / L**2), (8, 10, 6 * c / L**2),
-                    (4, 4, 4 * c / L), (10, 10, 4 * c / L), (4, 10, 2 * c / L)):
+    for i, j, v in (
+        (2, 2, 12 * c / L**3),
+        (8, 8, 12 * c / L**3),
+        (2, 8, -12 * c / L**3),
+        (2, 4, -6 * c / L**2),
+        (2, 10, -6 * c / L**2),
+        (8, 4, 6 * c / L**2),
+        (8, 10, 6 * c / L**2),
+        (4, 4, 4 * c / L),
+        (10, 10, 4 * c / L),
+        (4, 10, 2 * c / L),
+    ):
         put(i, j, v)
     rot = np.asarray(frames, float).transpose(0, 2, 1)  # rows e1, e2, e3
     return _to_global(k, rot, 2)
@@ -255,8 +273,9 @@ def hex_stiffness(x, young, poisson):
     D[:, :3, :3] = lam[:, None, None]
     D[:, [0, 1, 2], [0, 1, 2]] += 2 * mu[:, None]
     D[:, [3, 4, 5], [3, 4, 5]] = mu[:, None]
-    corners = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
-                        [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], float)
+    corners = np.array(
+        [[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1], [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], float
+    )
     k = np.zeros((n, 24, 24))
     for g in np.array(np.meshgrid([-_GP, _GP], [-_GP, _GP], [-_GP, _GP], indexing="ij")).reshape(3, -1).T:
         f = 1 + g[None, :] * corners  # (8, 3)

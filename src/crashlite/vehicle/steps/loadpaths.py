@@ -78,9 +78,16 @@ class LoadPaths:
     def table(self) -> list[dict]:
         """One row per assembly: name, section, peak force, max impulse, share [%]."""
         s = self.share
-        return [{"assembly": n, "section": int(c), "max_force": float(f), "max_impulse": float(i),
-                 "share_percent": float(100.0 * p)}
-                for n, c, f, i, p in zip(self.names, self.section_ids, self.max_force, self.max_impulse, s)]
+        return [
+            {
+                "assembly": n,
+                "section": int(c),
+                "max_force": float(f),
+                "max_impulse": float(i),
+                "share_percent": float(100.0 * p),
+            }
+            for n, c, f, i, p in zip(self.names, self.section_ids, self.max_force, self.max_impulse, s)
+        ]
 
     def to_dict(self) -> dict:
         return {"load_case": self.load_case, "assemblies": self.table(), "notes": list(self.notes)}
@@ -141,8 +148,7 @@ def deck_sections(model) -> dict:
         title = str(rec.get("title", "") or "").strip() or f"section {csid}"
         normal = None
         if rec.keyword == "DATABASE_CROSS_SECTION_PLANE":
-            d = np.array([float(rec.get(f"{a}ch", 0.0) or 0.0) - float(rec.get(f"{a}ct", 0.0) or 0.0)
-                          for a in "xyz"])
+            d = np.array([float(rec.get(f"{a}ch", 0.0) or 0.0) - float(rec.get(f"{a}ct", 0.0) or 0.0) for a in "xyz"])
             normal = d / np.linalg.norm(d) if np.linalg.norm(d) > 0 else None
         if title in out:
             raise ValueError(f"two cross sections titled {title!r} (IDs {out[title][0]} and {csid})")
@@ -150,8 +156,9 @@ def deck_sections(model) -> dict:
     return out
 
 
-def from_history(history, sections=None, axis=(1.0, 0.0, 0.0), normals=None, load_case: str = "",
-                 t_end: float | None = None) -> LoadPaths:
+def from_history(
+    history, sections=None, axis=(1.0, 0.0, 0.0), normals=None, load_case: str = "", t_end: float | None = None
+) -> LoadPaths:
     """LoadPaths from the secforc of a run.
 
     history   a ``crashlite.results.History``, or a path for ``crashlite.results.load``
@@ -168,22 +175,30 @@ def from_history(history, sections=None, axis=(1.0, 0.0, 0.0), normals=None, loa
         history = load(history)
     t = np.asarray(history.read("secforc", "time"), float)
     ids = np.asarray(history.read("secforc", "ids")).astype(np.int64).ravel()
-    f = np.stack([np.asarray(history.read("secforc", f"{c}_force"), float).reshape(len(t), len(ids))
-                  for c in "xyz"], axis=2)
+    f = np.stack(
+        [np.asarray(history.read("secforc", f"{c}_force"), float).reshape(len(t), len(ids)) for c in "xyz"], axis=2
+    )
     if sections is None:
         sections = {f"section {int(i)}": int(i) for i in ids}
     names = list(sections)
     where = {int(i): k for k, i in enumerate(ids)}
     missing = [f"{n} ({int(sections[n])})" for n in names if int(sections[n]) not in where]
     if missing:
-        raise KeyError(f"{getattr(history, 'source', 'run')}: no section force for {', '.join(missing)} "
-                       f"(sections in the run: {sorted(where)})")
+        raise KeyError(
+            f"{getattr(history, 'source', 'run')}: no section force for {', '.join(missing)} "
+            f"(sections in the run: {sorted(where)})"
+        )
     cols = [where[int(sections[n])] for n in names]
     notes = []
     nrm = None
     if normals is not None:
-        nrm = np.array([normals.get(int(sections[n])) if normals.get(int(sections[n])) is not None
-                        else _unit(axis, "axis") for n in names], float)
+        nrm = np.array(
+            [
+                normals.get(int(sections[n])) if normals.get(int(sections[n])) is not None else _unit(axis, "axis")
+                for n in names
+            ],
+            float,
+        )
     else:
         notes.append("section normals not given: taken along the vehicle axis")
     keep = np.ones(len(t), bool) if t_end is None else t <= t_end
@@ -191,8 +206,9 @@ def from_history(history, sections=None, axis=(1.0, 0.0, 0.0), normals=None, loa
     return load_paths(t[keep], fa, names, [int(sections[n]) for n in names], load_case, notes)
 
 
-def from_run(results, deck=None, sections=None, axis=(1.0, 0.0, 0.0), load_case: str = "",
-             t_end: float | None = None) -> LoadPaths:
+def from_run(
+    results, deck=None, sections=None, axis=(1.0, 0.0, 0.0), load_case: str = "", t_end: float | None = None
+) -> LoadPaths:
     """LoadPaths of a run with the section titles and normals of its deck.
 
     results   results folder or file (``crashlite.results.load``) or a History
@@ -246,8 +262,9 @@ def _unit(v, name: str) -> np.ndarray:
 # --- figures (the paper's figures 10–12) -----------------------------------------------------------
 
 
-def _curves(lp: LoadPaths, data: np.ndarray, ylabel: str, title: str, time_scale: float, time_unit: str,
-            scale: float) -> bytes:
+def _curves(
+    lp: LoadPaths, data: np.ndarray, ylabel: str, title: str, time_scale: float, time_unit: str, scale: float
+) -> bytes:
     from ...report.plots import _pyplot, png
 
     plt = _pyplot()
@@ -265,19 +282,29 @@ def _curves(lp: LoadPaths, data: np.ndarray, ylabel: str, title: str, time_scale
     return png(fig)
 
 
-def plot_forces(lp: LoadPaths, time_scale: float = 1e3, time_unit: str = "ms", force_scale: float = 1e-3,
-                force_unit: str = "kN") -> bytes:
+def plot_forces(
+    lp: LoadPaths, time_scale: float = 1e3, time_unit: str = "ms", force_scale: float = 1e-3, force_unit: str = "kN"
+) -> bytes:
     """Figure 10: axial force (compression positive) of every assembly
     against time, PNG bytes. Defaults convert mm–t–s (s, N) to ms and kN."""
-    return _curves(lp, lp.force, f"axial force [{force_unit}]", "force through the interface",
-                   time_scale, time_unit, force_scale)
+    return _curves(
+        lp, lp.force, f"axial force [{force_unit}]", "force through the interface", time_scale, time_unit, force_scale
+    )
 
 
-def plot_impulses(lp: LoadPaths, time_scale: float = 1e3, time_unit: str = "ms", impulse_scale: float = 1.0,
-                  impulse_unit: str = "N·s") -> bytes:
+def plot_impulses(
+    lp: LoadPaths, time_scale: float = 1e3, time_unit: str = "ms", impulse_scale: float = 1.0, impulse_unit: str = "N·s"
+) -> bytes:
     """Figure 11: impulse ∫F dt of every assembly against time, PNG bytes."""
-    return _curves(lp, lp.impulse, f"impulse [{impulse_unit}]", "impulse through the interface",
-                   time_scale, time_unit, impulse_scale)
+    return _curves(
+        lp,
+        lp.impulse,
+        f"impulse [{impulse_unit}]",
+        "impulse through the interface",
+        time_scale,
+        time_unit,
+        impulse_scale,
+    )
 
 
 def plot_shares(paths) -> bytes:

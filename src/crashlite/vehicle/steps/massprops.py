@@ -43,13 +43,21 @@ class ReplacedMass:
         """The paper's table 2: CoG x, y, z and mass of the replaced
         structure and of the rear axle (attachment-point centre), masses
         times ``mass_scale`` (t -> kg by default)."""
-        out = {"replaced structure": {"x": float(self.structure.cog[0]), "y": float(self.structure.cog[1]),
-                                      "z": float(self.structure.cog[2]),
-                                      "mass": float(self.structure.mass * mass_scale)}}
+        out = {
+            "replaced structure": {
+                "x": float(self.structure.cog[0]),
+                "y": float(self.structure.cog[1]),
+                "z": float(self.structure.cog[2]),
+                "mass": float(self.structure.mass * mass_scale),
+            }
+        }
         if self.axle_points is not None:
-            out["rear axle"] = {"x": float(self.axle_points[0]), "y": float(self.axle_points[1]),
-                                "z": float(self.axle_points[2]),
-                                "mass": float(self.axle.mass * mass_scale) if self.axle is not None else None}
+            out["rear axle"] = {
+                "x": float(self.axle_points[0]),
+                "y": float(self.axle_points[1]),
+                "z": float(self.axle_points[2]),
+                "mass": float(self.axle.mass * mass_scale) if self.axle is not None else None,
+            }
         out["units"] = {"length": length_unit, "mass": mass_unit}
         return out
 
@@ -100,8 +108,12 @@ def element_moments(model) -> dict:
         out["solids"] = mk.solid_moments(xyz, so.nodes, _per_element(model, so.pid, lambda p: _density(model, p)))
     b = model.beams
     if len(b):
-        out["beams"] = mk.beam_moments(xyz, b.nodes[:, :2], _per_element(model, b.pid, lambda p: _area(model, p)),
-                                       _per_element(model, b.pid, lambda p: _density(model, p)))
+        out["beams"] = mk.beam_moments(
+            xyz,
+            b.nodes[:, :2],
+            _per_element(model, b.pid, lambda p: _area(model, p)),
+            _per_element(model, b.pid, lambda p: _density(model, p)),
+        )
     _scale_parts(model, out)
     return out
 
@@ -189,8 +201,9 @@ def replaced_rows(cut: Cut, moments: dict | None = None) -> tuple[list, list, li
     return elems, masks, lumped_m, notes, tables
 
 
-def split_replaced(cut: Cut, far_point, only=None, without=None,
-                   moments: dict | None = None) -> tuple[MassProperties, MassProperties]:
+def split_replaced(
+    cut: Cut, far_point, only=None, without=None, moments: dict | None = None
+) -> tuple[MassProperties, MassProperties]:
     """The replaced mass shared between the interface and a point behind it
     (the rear-axle point) as a two-node bar lumps its mass: each element
     and point mass goes to the far share by ξ, its distance behind the

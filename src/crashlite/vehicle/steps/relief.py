@@ -68,7 +68,7 @@ def replaced_node_masses(cut: Cut) -> tuple[np.ndarray, list]:
         conn = np.asarray(_NODES[t](getattr(model, t)), np.int64)[sel]
         valid = conn >= 0
         for j in range(1, conn.shape[1]):  # a repeated node (degenerate element) counts once
-            valid[:, j] &= np.all(conn[:, :j] != conn[:, j:j + 1], axis=1)
+            valid[:, j] &= np.all(conn[:, :j] != conn[:, j : j + 1], axis=1)
         w = mom.mass[sel] / valid.sum(axis=1)
         np.add.at(m, conn[valid], np.broadcast_to(w[:, None], conn.shape)[valid])
     for tab in (model.masses, model.inertias):
@@ -138,8 +138,14 @@ def _rigid_fit(r: np.ndarray, u: np.ndarray, w: np.ndarray, c: np.ndarray) -> tu
     return sol[:3], sol[3:]
 
 
-def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interface_nodes=None,
-                       drill: float = 1e-3, transverse: tuple | None = None) -> StiffnessResult:
+def relieved_stiffness(
+    cut: Cut,
+    force: float = 1000.0,
+    direction=None,
+    interface_nodes=None,
+    drill: float = 1e-3,
+    transverse: tuple | None = None,
+) -> StiffnessResult:
     """K of the replaced structure of ``cut`` under inertia relief (module
     docstring): the rigid interface (default: all cut nodes) pushed with
     ``force`` along ``direction`` (default −axis), the structure's mass
@@ -181,14 +187,14 @@ def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interfac
     sol, *others = solve_named(ls, model, cases)
 
     def relative(s):  # the interface's motion less the structure's best-fit rigid motion: (3,), (3,)
-        t, th = _rigid_fit(xyz[carry], s.u[:ls.n, :3][carry], m[carry], c)
+        t, th = _rigid_fit(xyz[carry], s.u[: ls.n, :3][carry], m[carry], c)
         return s.u[master, :3] - (t + np.cross(th, p - c)), s.u[master, 3:] - th
 
     u_def = float(relative(sol)[0] @ d)
     if not u_def > 0:
         raise ValueError(f"the interface moves {u_def:.3g} along the load relative to the structure: not stable")
     motions = [relative(o) for o in others]
-    trans = transverse_stiffnesses(across, motions[:len(across)]) if across else None
+    trans = transverse_stiffnesses(across, motions[: len(across)]) if across else None
     flex = None
     if across:  # response = C · load over the six independent load cases: C = R G⁻¹
         g = np.array([np.concatenate(fm) for fm in pushes]).T
@@ -197,11 +203,23 @@ def relieved_stiffness(cut: Cut, force: float = 1000.0, direction=None, interfac
         flex = 0.5 * (flex + flex.T)  # symmetric to round-off (Maxwell–Betti)
     for s in [sol] + others:
         if np.linalg.norm(s.reaction_force) > 1e-6 * force:
-            notes.append(f"the 3-2-1 support reacts {np.linalg.norm(s.reaction_force):.3g} (loads not in "
-                         "equilibrium)")
-    return StiffnessResult(force / u_def, float(force), u_def, d, p, sol.u[master].copy(), sol.reaction_force,
-                           counts, sol.n_dofs, list(cut.notes) + notes + mnotes + sol.notes, sol,
-                           np.flatnonzero(ls.in_structure), trans, flex)
+            notes.append(f"the 3-2-1 support reacts {np.linalg.norm(s.reaction_force):.3g} (loads not in equilibrium)")
+    return StiffnessResult(
+        force / u_def,
+        float(force),
+        u_def,
+        d,
+        p,
+        sol.u[master].copy(),
+        sol.reaction_force,
+        counts,
+        sol.n_dofs,
+        list(cut.notes) + notes + mnotes + sol.notes,
+        sol,
+        np.flatnonzero(ls.in_structure),
+        trans,
+        flex,
+    )
 
 
 def _turns(axis: np.ndarray, moment: float) -> dict:

@@ -55,8 +55,10 @@ def factor(k, dof_node, permc_spec: str = "MMD_AT_PLUS_A"):
         try:
             lu = splu(k, permc_spec=permc_spec, diag_pivot_thresh=0.0, options={"SymmetricMode": True})
         except (MatrixRankWarning, RuntimeError) as e:
-            raise MechanismError(f"the structure is a mechanism (singular stiffness: {e}); check that it is "
-                                 "supported and that every part is connected") from None
+            raise MechanismError(
+                f"the structure is a mechanism (singular stiffness: {e}); check that it is "
+                "supported and that every part is connected"
+            ) from None
     n = k.shape[0]
     col = np.empty(n, np.int64)
     col[lu.perm_c] = np.arange(n)  # column j of the factor is column col[j] of k
@@ -64,9 +66,12 @@ def factor(k, dof_node, permc_spec: str = "MMD_AT_PLUS_A"):
     bad = np.flatnonzero(~(ratio > PIVOT_RATIO))
     if len(bad):
         nodes = np.unique(dof_node[col[bad]])
-        raise MechanismError(f"the structure is a mechanism: {len(bad)} free motion(s) (singular stiffness) "
-                             f"at {len(nodes)} node(s), node indices {nodes[:10].tolist()}; check that it is "
-                             "supported and that every part is connected", nodes)
+        raise MechanismError(
+            f"the structure is a mechanism: {len(bad)} free motion(s) (singular stiffness) "
+            f"at {len(nodes)} node(s), node indices {nodes[:10].tolist()}; check that it is "
+            "supported and that every part is connected",
+            nodes,
+        )
     return lu
 
 
@@ -86,8 +91,10 @@ def _factor_solve(k, f, dof_node):
     scale = absk @ np.abs(q) + np.abs(f)
     residual = float(np.max(np.abs(r) / np.where(scale > 0, scale, 1.0)))
     if not np.all(np.isfinite(q)) or residual > 1e-9:
-        raise MechanismError(f"the stiffness is ill-conditioned (backward error {residual:.2e}): a near "
-                             "mechanism or very thin or soft parts")
+        raise MechanismError(
+            f"the stiffness is ill-conditioned (backward error {residual:.2e}): a near "
+            "mechanism or very thin or soft parts"
+        )
     return np.atleast_1d(q), residual
 
 
@@ -184,10 +191,10 @@ class LinearStatic:
             m, s = dofs.shape
             step = max(1, 4_000_000 // (s * s))
             for lo in range(0, m, step):
-                d = dofs[lo:lo + step]
+                d = dofs[lo : lo + step]
                 rows = np.broadcast_to(d[:, :, None], (len(d), s, s)).ravel()
                 cols = np.broadcast_to(d[:, None, :], (len(d), s, s)).ravel()
-                k = k + sp.coo_matrix((kmat[lo:lo + step].ravel(), (rows, cols)), shape=(size, size)).tocsr()
+                k = k + sp.coo_matrix((kmat[lo : lo + step].ravel(), (rows, cols)), shape=(size, size)).tocsr()
         return k
 
     def _merged_groups(self):
@@ -229,7 +236,7 @@ class LinearStatic:
         size = 6 * n_all
         xyz = np.vstack([self.xyz] + ([np.array(self._master_xyz)] if self._master_xyz else []))
         fixed = np.zeros((n_all, 6), bool)
-        fixed[:self.n] = self.fixed
+        fixed[: self.n] = self.fixed
         slave_of = np.full(n_all, -1)
         for master, nodes, follow in self._merged_groups():
             members = np.concatenate([nodes, follow])
@@ -287,7 +294,7 @@ class LinearStatic:
         f_full = np.zeros((size, len(cases)))
         for c, loads in enumerate(cases):
             for node, v in loads.items():
-                f_full[6 * node:6 * node + 6, c] += v
+                f_full[6 * node : 6 * node + 6, c] += v
         kr = (t.T @ k_full @ t).tocsr()
         fr = t.T @ f_full
         diag = kr.diagonal()
@@ -299,7 +306,7 @@ class LinearStatic:
             used = np.zeros(n_all, bool)  # nodes of elements and rigid groups
             for dofs, _ in self._blocks:
                 used[np.unique(dofs // 6)] = True
-            used[self.n:] = True
+            used[self.n :] = True
             used |= slave_of >= 0
             dof_node = np.repeat(np.arange(n_all), 6)[indep.ravel()]
             n_dead = int(used[dof_node[dead]].sum())

@@ -97,8 +97,11 @@ def _spring_k(model: Model, mat) -> float | None:
         return float(mat["k"])
     if kw.startswith("MAT_DAMPER"):
         return 0.0
-    lc = {"MAT_SPRING_NONLINEAR_ELASTIC": "lcd", "MAT_SPRING_INELASTIC": "lcfd",
-          "MAT_SPRING_GENERAL_NONLINEAR": "lcdl"}.get(kw)
+    lc = {
+        "MAT_SPRING_NONLINEAR_ELASTIC": "lcd",
+        "MAT_SPRING_INELASTIC": "lcfd",
+        "MAT_SPRING_GENERAL_NONLINEAR": "lcdl",
+    }.get(kw)
     if lc is None or int(mat.get(lc, 0) or 0) not in model.curves:
         return None
     rec = model.curves[int(mat[lc])]
@@ -181,8 +184,12 @@ def build_static(model: Model, select: dict | None = None, drill: float = 1e-3) 
         frames = _frames(xyz, conn[:, 0], conn[:, 1], conn[:, 2])
         e, nu = props[:, 0], props[:, 1]
         g = e / (2 * (1 + nu))
-        ls.add_elements(conn[:, :2], el.beam_stiffness(xyz[conn[:, 0]], xyz[conn[:, 1]], frames, e * sec[:, 0],
-                                                       g * sec[:, 3], e * sec[:, 1], e * sec[:, 2]))
+        ls.add_elements(
+            conn[:, :2],
+            el.beam_stiffness(
+                xyz[conn[:, 0]], xyz[conn[:, 1]], frames, e * sec[:, 0], g * sec[:, 3], e * sec[:, 1], e * sec[:, 2]
+            ),
+        )
         in_structure[conn[:, :2].ravel()] = True
         counts["beam"] = len(idx)
     d = model.discretes
@@ -228,8 +235,15 @@ def build_static(model: Model, select: dict | None = None, drill: float = 1e-3) 
     return ls, counts, notes
 
 
-def borne_structure(model: Model, support, load_nodes, select: dict | None = None,
-                    support_dofs=(0, 1, 2, 3, 4, 5), load_point=None, drill: float = 1e-3):
+def borne_structure(
+    model: Model,
+    support,
+    load_nodes,
+    select: dict | None = None,
+    support_dofs=(0, 1, 2, 3, 4, 5),
+    load_point=None,
+    drill: float = 1e-3,
+):
     """The static model of the selected elements held at ``support`` with a
     rigid body (its master returned) over ``load_nodes``:
     (LinearStatic, master, element counts, notes)."""
@@ -272,8 +286,11 @@ def vehicle_axes(axis) -> np.ndarray:
 def transverse_loads(axis: np.ndarray, force: float, moment: float) -> dict:
     """The rigid interface's transverse load cases: name -> (force (3,), moment (3,))."""
     a, e_lat, e_ver = vehicle_axes(axis)
-    return {"lateral": (e_lat * force, np.zeros(3)), "vertical": (e_ver * force, np.zeros(3)),
-            "roll": (np.zeros(3), a * moment)}
+    return {
+        "lateral": (e_lat * force, np.zeros(3)),
+        "vertical": (e_ver * force, np.zeros(3)),
+        "roll": (np.zeros(3), a * moment),
+    }
 
 
 def transverse_stiffnesses(across: dict, motions) -> dict:
@@ -287,9 +304,18 @@ def transverse_stiffnesses(across: dict, motions) -> dict:
     return out
 
 
-def structure_stiffness(model: Model, support, load_nodes, force: float = 1000.0, direction=(-1.0, 0.0, 0.0),
-                        select: dict | None = None, support_dofs=(0, 1, 2, 3, 4, 5), load_point=None,
-                        drill: float = 1e-3, transverse: tuple | None = None) -> StiffnessResult:
+def structure_stiffness(
+    model: Model,
+    support,
+    load_nodes,
+    force: float = 1000.0,
+    direction=(-1.0, 0.0, 0.0),
+    select: dict | None = None,
+    support_dofs=(0, 1, 2, 3, 4, 5),
+    load_point=None,
+    drill: float = 1e-3,
+    transverse: tuple | None = None,
+) -> StiffnessResult:
     """Stiffness of the selected elements of ``model`` borne at ``support``
     (node indices, ("set", SID) or a *SET_NODE title; ``support_dofs`` held)
     and loaded by a rigid body tying ``load_nodes`` to a master at their
@@ -301,21 +327,41 @@ def structure_stiffness(model: Model, support, load_nodes, force: float = 1000.0
     dvec = np.asarray(direction, float).reshape(3)
     dvec = dvec / np.linalg.norm(dvec)
     across = {} if transverse is None else transverse_loads(dvec, *transverse)
-    cases = [{master: np.concatenate([force * dvec, np.zeros(3)])}] + \
-        [{master: np.concatenate(fm)} for fm in across.values()]
+    cases = [{master: np.concatenate([force * dvec, np.zeros(3)])}] + [
+        {master: np.concatenate(fm)} for fm in across.values()
+    ]
     sol, *others = solve_named(ls, model, cases)
     u = float(sol.u[master, :3] @ dvec)
     if not u > 0:
         raise ValueError(f"the load point moves {u:.3g} along the load: the structure is not stable under it")
     trans = transverse_stiffnesses(across, [(o.u[master, :3], o.u[master, 3:]) for o in others]) if across else None
-    return StiffnessResult(force / u, float(force), u, dvec, ls.position(master), sol.u[master].copy(),
-                           sol.reaction_force, counts, sol.n_dofs, notes + sol.notes, sol,
-                           np.flatnonzero(ls.in_structure), trans)
+    return StiffnessResult(
+        force / u,
+        float(force),
+        u,
+        dvec,
+        ls.position(master),
+        sol.u[master].copy(),
+        sol.reaction_force,
+        counts,
+        sol.n_dofs,
+        notes + sol.notes,
+        sol,
+        np.flatnonzero(ls.in_structure),
+        trans,
+    )
 
 
-def longitudinal_stiffness(cut: Cut, support, force: float = 1000.0, direction=None,
-                           support_dofs=(0, 1, 2, 3, 4, 5), interface_nodes=None,
-                           drill: float = 1e-3, transverse: tuple | None = None) -> StiffnessResult:
+def longitudinal_stiffness(
+    cut: Cut,
+    support,
+    force: float = 1000.0,
+    direction=None,
+    support_dofs=(0, 1, 2, 3, 4, 5),
+    interface_nodes=None,
+    drill: float = 1e-3,
+    transverse: tuple | None = None,
+) -> StiffnessResult:
     """Step 3: K of the structure ``cut`` replaces, borne at ``support``
     (the rear-axle attachment points: indices, ("set", SID) or a *SET_NODE
     title), loaded through its interface nodes (default: all of the cut)
@@ -324,17 +370,26 @@ def longitudinal_stiffness(cut: Cut, support, force: float = 1000.0, direction=N
     on the same factorisation."""
     d = -cut.axis if direction is None else direction
     nodes = cut.interface_nodes if interface_nodes is None else node_indices(cut.model, interface_nodes)
-    res = structure_stiffness(cut.model, support, nodes, force, d, select=cut.replaced, support_dofs=support_dofs,
-                              drill=drill, transverse=transverse)
+    res = structure_stiffness(
+        cut.model,
+        support,
+        nodes,
+        force,
+        d,
+        select=cut.replaced,
+        support_dofs=support_dofs,
+        drill=drill,
+        transverse=transverse,
+    )
     res.notes = list(cut.notes) + res.notes
     return res
 
 
-def transverse_stiffness(cut: Cut, support, interface_nodes=None, force: float = 1000.0,
-                         moment: float = 1.0e6) -> dict:
+def transverse_stiffness(cut: Cut, support, interface_nodes=None, force: float = 1000.0, moment: float = 1.0e6) -> dict:
     """Shear and roll stiffness of the replaced structure at the interface,
     borne at ``support`` like step 3: the rigid interface loaded across the
     axis (both transverse directions, the softer taken) and about it.
     Returns {"shear": k_t [force/length], "roll": k_r [force·length/rad], "lateral", "vertical"}."""
-    return longitudinal_stiffness(cut, support, force=force, interface_nodes=interface_nodes,
-                                  transverse=(force, moment)).transverse
+    return longitudinal_stiffness(
+        cut, support, force=force, interface_nodes=interface_nodes, transverse=(force, moment)
+    ).transverse

@@ -99,18 +99,35 @@ class Surrogate:
         return {
             "interface": self.interface,
             "longitudinal_stiffness": self.stiffness,
-            "springs": [{"assembly": s.assembly, "share_percent": 100.0 * s.share, "stiffness": s.k,
-                         "damping": s.damping, "direction": s.direction.tolist(), "front": s.front.tolist(),
-                         "rear": s.rear.tolist(), "interface_nodes": s.interface_nodes} for s in self.springs],
-            "mass_shares": {k: {"mass": v.mass, "cog": v.cog.tolist(), "inertia": v.inertia.tolist()}
-                            for k, v in self.mass_shares.items()},
+            "springs": [
+                {
+                    "assembly": s.assembly,
+                    "share_percent": 100.0 * s.share,
+                    "stiffness": s.k,
+                    "damping": s.damping,
+                    "direction": s.direction.tolist(),
+                    "front": s.front.tolist(),
+                    "rear": s.rear.tolist(),
+                    "interface_nodes": s.interface_nodes,
+                }
+                for s in self.springs
+            ],
+            "mass_shares": {
+                k: {"mass": v.mass, "cog": v.cog.tolist(), "inertia": v.inertia.tolist()}
+                for k, v in self.mass_shares.items()
+            },
             "rear_axle_point": None if self.mass.axle_points is None else self.mass.axle_points.tolist(),
             "beam": dict(self.beam),
-            "kept": {"nodes": len(self.model.nodes), "shells": len(self.model.shells),
-                     "solids": len(self.model.solids), "parts": len(full.kept_parts)},
-            "deleted": {"parts": len(full.dropped_parts),
-                        "nodes": int((full.node_map < 0).sum())},
-            "node_ids": dict(self.node_ids), "part_ids": dict(self.part_ids), "notes": list(self.notes),
+            "kept": {
+                "nodes": len(self.model.nodes),
+                "shells": len(self.model.shells),
+                "solids": len(self.model.solids),
+                "parts": len(full.kept_parts),
+            },
+            "deleted": {"parts": len(full.dropped_parts), "nodes": int((full.node_map < 0).sum())},
+            "node_ids": dict(self.node_ids),
+            "part_ids": dict(self.part_ids),
+            "notes": list(self.notes),
         }
 
 
@@ -204,16 +221,33 @@ def _whole_vehicle_sets(full: Model, cut: Cut, m: Model, new_ids: np.ndarray, no
         if np.isin(removed, members).all():
             now = m.set_members("NODE", sid)
             head = {k: v for k, v in rec.values.items() if k != "sid"}
-            m.sets[("NODE", sid)] = id_list("SET_NODE_LIST" + ("_TITLE" if rec.title is not None else ""), sid,
-                                            np.union1d(now, new_ids), title=rec.title, **head)
-            notes.append(f"*SET_NODE {sid}{' (' + rec.title + ')' if rec.title else ''} held the whole replaced "
-                         "structure: it holds the surrogate's nodes too")
+            m.sets[("NODE", sid)] = id_list(
+                "SET_NODE_LIST" + ("_TITLE" if rec.title is not None else ""),
+                sid,
+                np.union1d(now, new_ids),
+                title=rec.title,
+                **head,
+            )
+            notes.append(
+                f"*SET_NODE {sid}{' (' + rec.title + ')' if rec.title else ''} held the whole replaced "
+                "structure: it holds the surrogate's nodes too"
+            )
 
 
-def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, mass: ReplacedMass,
-                    transverse: dict | None = None, interface: str = "rigid", spring_length: float = 100.0,
-                    damping_ratio: float = 0.0, beam_axial: float = 1e-3, keep_nodes=None,
-                    mass_split: str = "axle") -> Surrogate:
+def build_surrogate(
+    cut: Cut,
+    assemblies: dict,
+    shares: dict,
+    stiffness: float,
+    mass: ReplacedMass,
+    transverse: dict | None = None,
+    interface: str = "rigid",
+    spring_length: float = 100.0,
+    damping_ratio: float = 0.0,
+    beam_axial: float = 1e-3,
+    keep_nodes=None,
+    mass_split: str = "axle",
+) -> Surrogate:
     """The surrogate deck (module docstring).
 
     assemblies     name -> part IDs of the full model (the interface groups)
@@ -267,8 +301,10 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
             bound[g.nodes] = True
     cut_nodes = cut.interface_nodes[~bound[cut.interface_nodes]]
     if len(cut_nodes) < len(cut.interface_nodes):
-        notes.append(f"{len(cut.interface_nodes) - len(cut_nodes)} interface node(s) of spot welds, nodal rigid "
-                     "bodies or rigid parts left out of the interface rigid body")
+        notes.append(
+            f"{len(cut.interface_nodes) - len(cut_nodes)} interface node(s) of spot welds, nodal rigid "
+            "bodies or rigid parts left out of the interface rigid body"
+        )
     xyz = full.nodes.xyz
     centre = xyz[cut_nodes].mean(axis=0)
     axle = mass.axle_points
@@ -297,8 +333,9 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
         c = s * 2.0 * damping_ratio * np.sqrt(stiffness * total_m)
         springs.append(Spring(name, s, s * k_springs, c, front, front + spring_length * d, d, len(nodes_i)))
         if along < 0.9:
-            notes.append(f"assembly {name!r}: profile {np.degrees(np.arccos(min(along, 1.0))):.0f}° off the "
-                         "vehicle axis")
+            notes.append(
+                f"assembly {name!r}: profile {np.degrees(np.arccos(min(along, 1.0))):.0f}° off the vehicle axis"
+            )
     # the interface share of the replaced mass: per assembly body its own parts' share (a body of a
     # few cut nodes alone would be light), the rest on the body nearest the interface centre
     own_near = {}
@@ -320,12 +357,13 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
     nodes.ids = np.array(new_ids, np.int64)
     nodes.xyz = np.array(new_xyz)
     m.nodes = Nodes.concat([m.nodes, nodes])
-    index = {int(n): k for k, n in enumerate(m.nodes.ids[-len(new_ids):], start=len(m.nodes) - len(new_ids))}
+    index = {int(n): k for k, n in enumerate(m.nodes.ids[-len(new_ids) :], start=len(m.nodes) - len(new_ids))}
 
     def node_set(title, deck_ids) -> int:
         sid = ids.take("set")
-        m.sets[("NODE", sid)] = id_list("SET_NODE_LIST_TITLE", sid, np.unique(np.asarray(deck_ids, np.int64)),
-                                        title=title)
+        m.sets[("NODE", sid)] = id_list(
+            "SET_NODE_LIST_TITLE", sid, np.unique(np.asarray(deck_ids, np.int64)), title=title
+        )
         return sid
 
     _whole_vehicle_sets(full, cut, m, np.array(new_ids, np.int64), notes)
@@ -349,8 +387,10 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
             sid = node_set(f"surrogate interface {s.assembly}", np.concatenate([kept_ids(own), extra]))
             m.keywords.append(record("CONSTRAINED_NODAL_RIGID_BODY", pid=pid, nsid=sid))
             part_ids[f"interface {s.assembly}"] = pid
-        notes.append(f"interface per assembly: the anti-rotation beam ends on the rigid body of "
-                     f"{springs[nearest].assembly!r}, the one nearest the interface centre")
+        notes.append(
+            f"interface per assembly: the anti-rotation beam ends on the rigid body of "
+            f"{springs[nearest].assembly!r}, the one nearest the interface centre"
+        )
     # --- springs and dampers ------------------------------------------------------------------------
     sec = ids.take("section")
     m.sections[sec] = record("SECTION_DISCRETE_TITLE", card_title="surrogate springs", secid=sec)
@@ -362,12 +402,14 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
                 continue
             mid, pid, eid = ids.take("material"), ids.take("part"), ids.take("element")
             if kind == "spring":
-                m.materials[mid] = record("MAT_SPRING_ELASTIC_TITLE", card_title=f"spring {s.assembly}", mid=mid,
-                                          k=value)
+                m.materials[mid] = record(
+                    "MAT_SPRING_ELASTIC_TITLE", card_title=f"spring {s.assembly}", mid=mid, k=value
+                )
                 s.element_id, s.part_id = eid, pid
             else:
-                m.materials[mid] = record("MAT_DAMPER_VISCOUS_TITLE", card_title=f"damper {s.assembly}", mid=mid,
-                                          dc=value)
+                m.materials[mid] = record(
+                    "MAT_DAMPER_VISCOUS_TITLE", card_title=f"damper {s.assembly}", mid=mid, dc=value
+                )
             m.parts[pid] = record("PART", heading=f"surrogate {kind} {s.assembly}", pid=pid, secid=sec, mid=mid)
             part_ids[f"{kind} {s.assembly}"] = pid
             rows.append((eid, pid, index[f], index[r]))
@@ -393,10 +435,19 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
     iss = itt = ei / STEEL_E
     irr = gj * 2 * (1 + STEEL_NU) / STEEL_E
     sec_b, mid_b, pid_b, eid_b = ids.take("section"), ids.take("material"), ids.take("part"), ids.take("element")
-    m.sections[sec_b] = record("SECTION_BEAM_TITLE", card_title="surrogate anti-rotation beam", secid=sec_b, elform=2,
-                               a=area, iss=iss, itt=itt, irr=irr)
-    m.materials[mid_b] = record("MAT_ELASTIC_TITLE", card_title="surrogate anti-rotation beam", mid=mid_b,
-                                ro=STEEL_RHO, e=STEEL_E, pr=STEEL_NU)
+    m.sections[sec_b] = record(
+        "SECTION_BEAM_TITLE",
+        card_title="surrogate anti-rotation beam",
+        secid=sec_b,
+        elform=2,
+        a=area,
+        iss=iss,
+        itt=itt,
+        irr=irr,
+    )
+    m.materials[mid_b] = record(
+        "MAT_ELASTIC_TITLE", card_title="surrogate anti-rotation beam", mid=mid_b, ro=STEEL_RHO, e=STEEL_E, pr=STEEL_NU
+    )
     m.parts[pid_b] = record("PART", heading="surrogate anti-rotation beam", pid=pid_b, secid=sec_b, mid=mid_b)
     part_ids["beam"] = pid_b
     bm = Beams.zeros(1)
@@ -421,13 +472,29 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
             it.tensor[r] = share.inertia[[0, 0, 0, 1, 1, 2], [0, 1, 2, 1, 2, 2]]
         m.inertias = Inertias.concat([m.inertias, it])
         shared = sum(share.mass for _, share in lumps)
-        notes.append(f"{100 * shared / mass.structure.mass:.1f} % of the replaced mass on the interface "
-                     f"bod{'ies' if len(own_near) else 'y'} (shared along the axis to the rear axle"
-                     f"{', per assembly' if own_near else ''}), the rest on the rear body")
-    m.keywords.append(record("CONSTRAINED_NODAL_RIGID_BODY_INERTIA", pid=pid, nsid=sid, xc=float(c[0]),
-                             yc=float(c[1]), zc=float(c[2]), tm=total_m - beam_mass, nodeid=g_id,
-                             ixx=float(t[0, 0]), ixy=float(t[0, 1]), ixz=float(t[0, 2]), iyy=float(t[1, 1]),
-                             iyz=float(t[1, 2]), izz=float(t[2, 2])))
+        notes.append(
+            f"{100 * shared / mass.structure.mass:.1f} % of the replaced mass on the interface "
+            f"bod{'ies' if len(own_near) else 'y'} (shared along the axis to the rear axle"
+            f"{', per assembly' if own_near else ''}), the rest on the rear body"
+        )
+    m.keywords.append(
+        record(
+            "CONSTRAINED_NODAL_RIGID_BODY_INERTIA",
+            pid=pid,
+            nsid=sid,
+            xc=float(c[0]),
+            yc=float(c[1]),
+            zc=float(c[2]),
+            tm=total_m - beam_mass,
+            nodeid=g_id,
+            ixx=float(t[0, 0]),
+            ixy=float(t[0, 1]),
+            ixz=float(t[0, 2]),
+            iyy=float(t[1, 1]),
+            iyz=float(t[1, 2]),
+            izz=float(t[2, 2]),
+        )
+    )
     part_ids["rear body"] = pid
     title = next((r for r in m.keywords if getattr(r, "keyword", "") == "TITLE"), None)
     if title is not None:
@@ -438,6 +505,16 @@ def build_surrogate(cut: Cut, assemblies: dict, shares: dict, stiffness: float, 
     node_ids = {"cog": g_id, "axle": a_id, "interface centre": i_id}
     if f_id is not None:
         node_ids["interface mass"] = f_id
-    return Surrogate(m, springs, float(stiffness), mass, tr, node_ids,
-                     part_ids, beam, interface, notes,
-                     {"rear body": far, **({"interface": near_total} if near_total is not None else {})})
+    return Surrogate(
+        m,
+        springs,
+        float(stiffness),
+        mass,
+        tr,
+        node_ids,
+        part_ids,
+        beam,
+        interface,
+        notes,
+        {"rear body": far, **({"interface": near_total} if near_total is not None else {})},
+    )

@@ -34,8 +34,14 @@ from ...model.model import Model
 from ..car.records import id_list
 from .cut import ELEMENT_TABLES, Cut
 
-_MEMBER_REF = {"NODE": "node", "PART": "part", "SHELL": "shell", "SOLID": "solid", "BEAM": "beam",
-               "DISCRETE": "discrete"}
+_MEMBER_REF = {
+    "NODE": "node",
+    "PART": "part",
+    "SHELL": "shell",
+    "SOLID": "solid",
+    "BEAM": "beam",
+    "DISCRETE": "discrete",
+}
 _TABLE_OF = {"SHELL": "shells", "SOLID": "solids", "BEAM": "beams", "DISCRETE": "discretes"}
 # contact side types (LS-DYNA SSTYP/MSTYP) -> what the ID names
 _CONTACT_SIDE = {0: "set_segment", 1: "set_shell", 2: "set_part", 3: "part", 4: "set_node", 6: "set_part"}
@@ -91,11 +97,11 @@ def truncate(cut: Cut, keep=None) -> Truncated:
     kept_parts = np.array(sorted(p for p in full.parts if p in used), np.int64)
     dropped = np.array(sorted(p for p in full.parts if p not in used), np.int64)
     m.parts = {int(p): full.parts[int(p)] for p in kept_parts}
-    for g in ("sections", "materials", "hourglasses", "curves", "vectors", "coordinate_systems",
-              "transformations"):
+    for g in ("sections", "materials", "hourglasses", "curves", "vectors", "coordinate_systems", "transformations"):
         setattr(m, g, dict(getattr(full, g)))
     alive_ids = {
-        "node": m.nodes.ids, "part": kept_parts,
+        "node": m.nodes.ids,
+        "part": kept_parts,
         **{_MEMBER_REF[k]: getattr(m, t).ids for k, t in _TABLE_OF.items()},
     }
     m.sets, gone_sets = _prune_sets(full, alive_ids, notes)
@@ -139,8 +145,9 @@ def _prune_sets(full: Model, alive: dict, notes: list) -> tuple[dict, dict]:
             out[(kind, sid)] = rec
         elif len(left):
             head = {k: v for k, v in rec.values.items() if k != "sid"}
-            out[(kind, sid)] = id_list(f"SET_{kind}_LIST" + ("_TITLE" if rec.title is not None else ""), sid, left,
-                                       title=rec.title, **head)
+            out[(kind, sid)] = id_list(
+                f"SET_{kind}_LIST" + ("_TITLE" if rec.title is not None else ""), sid, left, title=rec.title, **head
+            )
         else:
             gone.setdefault(f"set_{kind.lower()}", []).append(sid)
             notes.append(f"*SET_{kind} {sid}{_title(rec)} is empty without the replaced structure: deleted")
@@ -160,8 +167,9 @@ def _prune_record(rec, gone: dict, m: Model, notes: list):
     lay = rec.spec.layout(rec.options)
     for f, v in head_references(rec):
         if f.ref in gone and np.isin(v, gone[f.ref]):
-            notes.append(f"*{rec.name}{_title(rec)} names deleted {f.ref.replace('_', ' ')} {v} ({f.name.upper()}): "
-                         "deleted")
+            notes.append(
+                f"*{rec.name}{_title(rec)} names deleted {f.ref.replace('_', ' ')} {v} ({f.name.upper()}): deleted"
+            )
             return None
     if rec.keyword.startswith("CONTACT_"):
         for side, typ in (("ssid", "sstyp"), ("msid", "mstyp")):

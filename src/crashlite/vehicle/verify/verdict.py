@@ -39,22 +39,40 @@ def verdict(figures: dict) -> list[Verdict]:
     bound and whether it holds."""
 
     def row(name, value, bound_text, ok):
-        return Verdict(name, None if value is None else float(value), bound_text,
-                       None if value is None else bool(ok(float(value))))
+        return Verdict(
+            name, None if value is None else float(value), bound_text, None if value is None else bool(ok(float(value)))
+        )
 
     limit = intrusion_bound(figures)
     twin = figures.get("elastic_twin") is not None
     return [
-        row("energy ratings, lowest", figures.get("energy_rating_min"), f">= {RATING_MIN:g}",
-            lambda v: v >= RATING_MIN),
-        row("crash-box internal energy deviation [%]", figures.get("crash_box_internal_energy_deviation_percent"),
-            f"within {CRASH_BOX_PERCENT:g} %", lambda v: abs(v) <= CRASH_BOX_PERCENT),
-        row("firewall intrusion, mean deviation [%]", figures.get("firewall_intrusion_mean_deviation_percent"),
-            f"<= {INTRUSION_MEAN_PERCENT:g} %", lambda v: v <= INTRUSION_MEAN_PERCENT),
-        row("firewall intrusion, largest deviation [%]", figures.get("firewall_intrusion_max_deviation_percent"),
-            f"<= {limit:.1f} %" + (" (elastic twin's + 5)" if twin else ""), lambda v: v <= limit),
-        row("vehicle time reduction [%]", figures.get("time_reduction_percent"), f">= {TIME_PERCENT:g} %",
-            lambda v: v >= TIME_PERCENT),
+        row(
+            "energy ratings, lowest", figures.get("energy_rating_min"), f">= {RATING_MIN:g}", lambda v: v >= RATING_MIN
+        ),
+        row(
+            "crash-box internal energy deviation [%]",
+            figures.get("crash_box_internal_energy_deviation_percent"),
+            f"within {CRASH_BOX_PERCENT:g} %",
+            lambda v: abs(v) <= CRASH_BOX_PERCENT,
+        ),
+        row(
+            "firewall intrusion, mean deviation [%]",
+            figures.get("firewall_intrusion_mean_deviation_percent"),
+            f"<= {INTRUSION_MEAN_PERCENT:g} %",
+            lambda v: v <= INTRUSION_MEAN_PERCENT,
+        ),
+        row(
+            "firewall intrusion, largest deviation [%]",
+            figures.get("firewall_intrusion_max_deviation_percent"),
+            f"<= {limit:.1f} %" + (" (elastic twin's + 5)" if twin else ""),
+            lambda v: v <= limit,
+        ),
+        row(
+            "vehicle time reduction [%]",
+            figures.get("time_reduction_percent"),
+            f">= {TIME_PERCENT:g} %",
+            lambda v: v >= TIME_PERCENT,
+        ),
     ]
 
 

@@ -68,8 +68,9 @@ class VehicleVerification:
 
         out = Path(directory)
         out.mkdir(parents=True, exist_ok=True)
-        (out / "summary.json").write_text(json.dumps(jsonable({**self.figures, "notes": self.notes}), indent=1,
-                                                     allow_nan=False) + "\n")
+        (out / "summary.json").write_text(
+            json.dumps(jsonable({**self.figures, "notes": self.notes}), indent=1, allow_nan=False) + "\n"
+        )
         (out / "index.html").write_text(verification_page(self))
         return {"summary": out / "summary.json", "html": out / "index.html"}
 
@@ -139,8 +140,10 @@ def _part_sum(h, model: Model, titles) -> tuple[np.ndarray, np.ndarray]:
     ie = np.asarray(h.read("matsum", "internal_energy"))
     cols = [int(np.flatnonzero(ids == p)[0]) for p in pids if np.any(ids == p)]
     if len(cols) != len(pids):
-        raise CompareError(f"{getattr(h, 'source', 'run')}: no internal energy of part(s) "
-                           f"{sorted(set(pids.tolist()) - set(ids.tolist()))}")
+        raise CompareError(
+            f"{getattr(h, 'source', 'run')}: no internal energy of part(s) "
+            f"{sorted(set(pids.tolist()) - set(ids.tolist()))}"
+        )
     return t, ie[:, cols].sum(axis=1)
 
 
@@ -153,8 +156,9 @@ def _acceleration(h, node: int, axis: int, cfc: float | None):
     return filter_signal(t, a, cfc) if cfc else (t, a)
 
 
-def intrusion_split(x: np.ndarray, x0: np.ndarray, nodes: np.ndarray, frame: np.ndarray, interface: np.ndarray,
-                    axis: int) -> tuple[np.ndarray, np.ndarray]:
+def intrusion_split(
+    x: np.ndarray, x0: np.ndarray, nodes: np.ndarray, frame: np.ndarray, interface: np.ndarray, axis: int
+) -> tuple[np.ndarray, np.ndarray]:
     """The rearward displacement of ``nodes`` in the cell frame split in two:
     (carried, own). ``own`` is the displacement in the frame of the
     ``interface`` nodes (their best-fitting rigid motion): the kept
@@ -169,9 +173,14 @@ def intrusion_split(x: np.ndarray, x0: np.ndarray, nodes: np.ndarray, frame: np.
 
 def _deviation(full: np.ndarray, cmp: np.ndarray, scale: float) -> dict:
     d = np.abs(cmp - full)
-    return {"max_full": float(full.max()), "max_simplified": float(cmp.max()), "mean_full": float(full.mean()),
-            "mean_simplified": float(cmp.mean()), "max_deviation_percent": 100.0 * float(d.max()) / scale,
-            "mean_deviation_percent": 100.0 * float(d.mean()) / scale}
+    return {
+        "max_full": float(full.max()),
+        "max_simplified": float(cmp.max()),
+        "mean_full": float(full.mean()),
+        "mean_simplified": float(cmp.mean()),
+        "max_deviation_percent": 100.0 * float(d.max()) / scale,
+        "mean_deviation_percent": 100.0 * float(d.mean()) / scale,
+    }
 
 
 def _warping(x_r, x0_r, ir, x_c, x0_c, ic, axis: int, scale: float) -> dict:
@@ -189,8 +198,19 @@ def _warping(x_r, x0_r, ir, x_c, x0_c, ic, axis: int, scale: float) -> dict:
     return out
 
 
-def _intrusion(ref_path, cmp_path, decks, firewall: np.ndarray, frame_ids: np.ndarray, axis: int, t_end: float,
-               interface_ids=None, at: float | None = None, scale: float | None = None, loaded: dict | None = None):
+def _intrusion(
+    ref_path,
+    cmp_path,
+    decks,
+    firewall: np.ndarray,
+    frame_ids: np.ndarray,
+    axis: int,
+    t_end: float,
+    interface_ids=None,
+    at: float | None = None,
+    scale: float | None = None,
+    loaded: dict | None = None,
+):
     """Firewall intrusion (rearwards, in the cell frame of the ``frame_ids``
     nodes) of both runs at the reference run's field state of largest
     intrusion up to t_end (its state nearest ``at`` where given), deviations
@@ -229,25 +249,45 @@ def _intrusion(ref_path, cmp_path, decks, firewall: np.ndarray, frame_ids: np.nd
         raise CompareError("the firewall of the full model does not intrude: no relative deviation")
     diff = np.abs(i_c - full)
     y, z = s_r.x[0, fw_r, 1], s_r.x[0, fw_r, 2]
-    figs = {"time": t, "max_intrusion_full": scale, "max_intrusion_simplified": float(i_c.max()),
-            "max_intrusion_deviation_percent": relative_percent(scale, float(i_c.max())),
-            "max_deviation_percent": 100.0 * float(diff.max()) / scale,
-            "mean_deviation_percent": 100.0 * float(diff.mean()) / scale,
-            "nodes": int(len(firewall)), "cell_frame_nodes": [int(n) for n in frame_ids]}
+    figs = {
+        "time": t,
+        "max_intrusion_full": scale,
+        "max_intrusion_simplified": float(i_c.max()),
+        "max_intrusion_deviation_percent": relative_percent(scale, float(i_c.max())),
+        "max_deviation_percent": 100.0 * float(diff.max()) / scale,
+        "mean_deviation_percent": 100.0 * float(diff.mean()) / scale,
+        "nodes": int(len(firewall)),
+        "cell_frame_nodes": [int(n) for n in frame_ids],
+    }
     if interface_ids is not None:
         both = [int(n) for n in interface_ids if int(n) in idx_r and int(n) in idx_c]
         if len(both) >= 3:
             ir, ic = np.array([idx_r[n] for n in both]), np.array([idx_c[n] for n in both])
             car_r, own_r = intrusion_split(s_r.x[k], s_r.x[0], fw_r, fr_r, ir, axis)
             car_c, own_c = intrusion_split(x_c, s_c.x[0], fw_c, fr_c, ic, axis)
-            figs["split"] = {"interface_nodes": len(both), "carried_by_interface": _deviation(car_r, car_c, scale),
-                             "own_deformation": _deviation(own_r, own_c, scale),
-                             "interface_warping": _warping(s_r.x[k], s_r.x[0], ir, x_c, s_c.x[0], ic, axis, scale)}
+            figs["split"] = {
+                "interface_nodes": len(both),
+                "carried_by_interface": _deviation(car_r, car_c, scale),
+                "own_deformation": _deviation(own_r, own_c, scale),
+                "interface_warping": _warping(s_r.x[k], s_r.x[0], ir, x_c, s_c.x[0], ic, axis, scale),
+            }
     return figs, {"ids": np.asarray(firewall), "y": y, "z": z, "full": full, "simplified": i_c, "difference": diff}
 
 
-def _twin_split(full, simplified, twin, decks, twin_deck, figures: dict, crash_boxes, fw, frame, axis: int,
-                t_stop: float, loaded: dict) -> dict:
+def _twin_split(
+    full,
+    simplified,
+    twin,
+    decks,
+    twin_deck,
+    figures: dict,
+    crash_boxes,
+    fw,
+    frame,
+    axis: int,
+    t_stop: float,
+    loaded: dict,
+) -> dict:
     """Crash-box energy and firewall intrusion deviations split by the
     elastic twin's run: full vs twin (what the elastic premise costs at this
     interface; no elastic surrogate comes closer) and twin vs simplified
@@ -258,17 +298,22 @@ def _twin_split(full, simplified, twin, decks, twin_deck, figures: dict, crash_b
         raise CompareError("the elastic twin's deck is needed with its results")
     cb = _part_sum(load(twin), twin_deck, crash_boxes)
     if cb[0][-1] < t_stop * (1 - 1e-6):
-        raise CompareError(f"the elastic twin's run ends at {cb[0][-1]:.4g}, before the deceleration phase "
-                           f"(to {t_stop:.4g})")
+        raise CompareError(
+            f"the elastic twin's run ends at {cb[0][-1]:.4g}, before the deceleration phase (to {t_stop:.4g})"
+        )
     e_twin = float(np.interp(t_stop, *cb))
     box = figures["crash_box_internal_energy"]
-    out = {"premise": {"crash_box_internal_energy_deviation_percent": relative_percent(box["full"], e_twin)},
-           "surrogate": {"crash_box_internal_energy_deviation_percent": relative_percent(e_twin, box["simplified"])}}
+    out = {
+        "premise": {"crash_box_internal_energy_deviation_percent": relative_percent(box["full"], e_twin)},
+        "surrogate": {"crash_box_internal_energy_deviation_percent": relative_percent(e_twin, box["simplified"])},
+    }
     fi = figures.get("firewall_intrusion")
     if fi is not None:
         at, scale = fi["time"], fi["max_intrusion_full"]
-        for key, ref, cmp, dd in (("premise", full, twin, (decks[0], twin_deck)),
-                                  ("surrogate", twin, simplified, (twin_deck, decks[1]))):
+        for key, ref, cmp, dd in (
+            ("premise", full, twin, (decks[0], twin_deck)),
+            ("surrogate", twin, simplified, (twin_deck, decks[1])),
+        ):
             f, _ = _intrusion(ref, cmp, dd, fw, frame, axis, t_stop, at=at, scale=scale, loaded=loaded)
             out[key]["firewall_intrusion_max_deviation_percent"] = f["max_deviation_percent"]
             out[key]["firewall_intrusion_mean_deviation_percent"] = f["mean_deviation_percent"]
@@ -277,33 +322,54 @@ def _twin_split(full, simplified, twin, decks, twin_deck, figures: dict, crash_b
 
 
 def split_text(intrusion: dict) -> str:
-    """" (of it: own deformation max a % mean b %, carried by the interface
+    """ " (of it: own deformation max a % mean b %, carried by the interface
     max c % mean d %)" for a firewall-intrusion figure with its split, else ""."""
     sp = (intrusion or {}).get("split")
     if not sp:
         return ""
     own, car = sp["own_deformation"], sp["carried_by_interface"]
     warp = sp.get("interface_warping")
-    bent = (f"; the full model's interface bends {warp['max_full_percent']:.1f} % out of a rigid motion, rms "
-            f"{warp['rms_full_percent']:.1f} %" if warp else "")
-    return (f" (of it: own deformation max {own['max_deviation_percent']:.1f} % mean "
-            f"{own['mean_deviation_percent']:.1f} %, carried by the interface max {car['max_deviation_percent']:.1f} "
-            f"% mean {car['mean_deviation_percent']:.1f} %{bent})")
+    bent = (
+        f"; the full model's interface bends {warp['max_full_percent']:.1f} % out of a rigid motion, rms "
+        f"{warp['rms_full_percent']:.1f} %"
+        if warp
+        else ""
+    )
+    return (
+        f" (of it: own deformation max {own['max_deviation_percent']:.1f} % mean "
+        f"{own['mean_deviation_percent']:.1f} %, carried by the interface max {car['max_deviation_percent']:.1f} "
+        f"% mean {car['mean_deviation_percent']:.1f} %{bent})"
+    )
 
 
 def interface_nodes(model: Model, prefix: str = "surrogate interface") -> np.ndarray | None:
     """Deck IDs of the nodes in every *SET_NODE whose title starts with
     ``prefix`` (the interface bodies a reduction writes), or None."""
-    ids = [model.set_members("NODE", sid) for (kind, sid), rec in model.sets.items()
-           if kind == "NODE" and str(rec.title or "").strip().lower().startswith(prefix)]
+    ids = [
+        model.set_members("NODE", sid)
+        for (kind, sid), rec in model.sets.items()
+        if kind == "NODE" and str(rec.title or "").strip().lower().startswith(prefix)
+    ]
     return np.unique(np.concatenate(ids)).astype(np.int64) if ids else None
 
 
-def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str = "US NCAP",
-                   crash_boxes=("crash box left", "crash box right"), firewall: str = "firewall nodes",
-                   reference: str = "rear seat left", engine: str = "engine top", cfc: float = 60.0,
-                   axis: int = 0, names=("full", "simplified"), cell_frame=CELL_FRAME, twin=None,
-                   twin_deck=None) -> VehicleVerification:
+def verify_vehicle(
+    full,
+    simplified,
+    full_deck,
+    simplified_deck,
+    load_case: str = "US NCAP",
+    crash_boxes=("crash box left", "crash box right"),
+    firewall: str = "firewall nodes",
+    reference: str = "rear seat left",
+    engine: str = "engine top",
+    cfc: float = 60.0,
+    axis: int = 0,
+    names=("full", "simplified"),
+    cell_frame=CELL_FRAME,
+    twin=None,
+    twin_deck=None,
+) -> VehicleVerification:
     """Compare the simplified run with the full one (module docstring).
     ``full``, ``simplified``: results folders; the decks name the parts,
     the firewall node set and the history nodes (by their titles):
@@ -322,8 +388,12 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
     notes = []
     ref_node = history_node(decks[0], reference)
     t_stop = _deceleration_end(hist[0], ref_node, axis)
-    figures: dict = {"load_case": load_case, "names": list(names),
-                     "deceleration_phase_end": t_stop, "reference_node": ref_node}
+    figures: dict = {
+        "load_case": load_case,
+        "names": list(names),
+        "deceleration_phase_end": t_stop,
+        "reference_node": ref_node,
+    }
     pairs = []
     energies = {}
     figures["hourglass_share_percent"] = {n: _hourglass_share(h) for n, h in zip(names, hist)}
@@ -338,11 +408,12 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
         if flat:
             p.note = f"not rated: varies by less than {100 * FLAT:g} % (conserved); see its deviation"
         pairs.append(p)
-        energies[label] = {"rating": None if p.rating is None else p.rating.overall,
-                           "deviation_at_end_percent": p.deviation.get("value_deviation_percent"),
-                           "max_difference_percent":
-                               100.0 * p.deviation["max_abs_difference"] / float(np.abs(yr).max()),
-                           "note": p.note}
+        energies[label] = {
+            "rating": None if p.rating is None else p.rating.overall,
+            "deviation_at_end_percent": p.deviation.get("value_deviation_percent"),
+            "max_difference_percent": 100.0 * p.deviation["max_abs_difference"] / float(np.abs(yr).max()),
+            "note": p.note,
+        }
     figures["energy_ratings_deceleration_phase"] = {k: v["rating"] for k, v in energies.items()}
     figures["energies"] = energies
     rated = [v for v in figures["energy_ratings_deceleration_phase"].values() if v is not None]
@@ -353,22 +424,35 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
     e_full = float(np.interp(t_stop, *cb[0]))
     e_sim = float(np.interp(t_stop, *cb[1]))
     figures["crash_box_internal_energy"] = {
-        "parts": list(crash_boxes), "full": e_full, "simplified": e_sim,
+        "parts": list(crash_boxes),
+        "full": e_full,
+        "simplified": e_sim,
         "deviation_percent": relative_percent(e_full, e_sim),
-        "max_full": float(cb[0][1].max()), "max_simplified": float(cb[1][1].max()),
+        "max_full": float(cb[0][1].max()),
+        "max_simplified": float(cb[1][1].max()),
         "max_deviation_percent": relative_percent(float(cb[0][1].max()), float(cb[1][1].max())),
-        "rating": None if p.rating is None else p.rating.overall}
+        "rating": None if p.rating is None else p.rating.overall,
+    }
     figures["crash_box_internal_energy_deviation_percent"] = figures["crash_box_internal_energy"]["deviation_percent"]
     try:
         eng = history_node(decks[0], engine)
         acc = [_acceleration(h, eng, axis, cfc) for h in hist]
-        p = make_pair("node_acceleration", f"{engine} acceleration (CFC {cfc:g})", "acceleration",
-                      *_window(*acc[0], t_stop), *_window(*acc[1], t_stop))
+        p = make_pair(
+            "node_acceleration",
+            f"{engine} acceleration (CFC {cfc:g})",
+            "acceleration",
+            *_window(*acc[0], t_stop),
+            *_window(*acc[1], t_stop),
+        )
         pairs.append(p)
-        figures["engine_top_acceleration"] = {"node": eng, "cfc": cfc, "peak_full": p.deviation.get("peak_ref"),
-                                              "peak_simplified": p.deviation.get("peak_cmp"),
-                                              "peak_deviation_percent": p.deviation.get("peak_deviation_percent"),
-                                              "rating": None if p.rating is None else p.rating.overall}
+        figures["engine_top_acceleration"] = {
+            "node": eng,
+            "cfc": cfc,
+            "peak_full": p.deviation.get("peak_ref"),
+            "peak_simplified": p.deviation.get("peak_cmp"),
+            "peak_deviation_percent": p.deviation.get("peak_deviation_percent"),
+            "rating": None if p.rating is None else p.rating.overall,
+        }
     except (KeyError, ValueError, CompareError) as e:
         notes.append(f"engine acceleration not compared: {e}")
     intrusion = None
@@ -379,10 +463,13 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
             frame = np.array([history_node(decks[0], name) for name in cell_frame], np.int64)
         except KeyError as e:
             frame = np.array([ref_node], np.int64)
-            notes.append(f"intrusion relative to the {reference} node alone (no cell frame: {e}): the cell's "
-                         "rotation counts as intrusion")
-        figs, intrusion = _intrusion(full, simplified, decks, fw, frame, axis, t_stop, interface_nodes(decks[1]),
-                                     loaded=loaded)
+            notes.append(
+                f"intrusion relative to the {reference} node alone (no cell frame: {e}): the cell's "
+                "rotation counts as intrusion"
+            )
+        figs, intrusion = _intrusion(
+            full, simplified, decks, fw, frame, axis, t_stop, interface_nodes(decks[1]), loaded=loaded
+        )
         figures["firewall_intrusion"] = figs
         figures["firewall_intrusion_max_deviation_percent"] = figs["max_deviation_percent"]
         figures["firewall_intrusion_mean_deviation_percent"] = figs["mean_deviation_percent"]
@@ -391,15 +478,30 @@ def verify_vehicle(full, simplified, full_deck, simplified_deck, load_case: str 
         notes.append(f"firewall intrusion not compared: {e}")
     if twin is not None:
         try:
-            figures["elastic_twin"] = _twin_split(full, simplified, twin, decks, _model(twin_deck), figures,
-                                                  crash_boxes, fw, frame if fw is not None else None, axis, t_stop,
-                                                  loaded)
+            figures["elastic_twin"] = _twin_split(
+                full,
+                simplified,
+                twin,
+                decks,
+                _model(twin_deck),
+                figures,
+                crash_boxes,
+                fw,
+                frame if fw is not None else None,
+                axis,
+                t_stop,
+                loaded,
+            )
         except (KeyError, CompareError) as e:
             notes.append(f"elastic twin not compared: {e}")
     info = [run_info(p, n, d) for p, n, d in zip((full, simplified), names, decks)]
-    figures["time"] = {"full": info[0].as_dict(), "simplified": info[1].as_dict(),
-                       "reduction_percent": reduction(info[0].wall_time, info[1].wall_time),
-                       "elements_full": info[0].n_elements, "elements_simplified": info[1].n_elements}
+    figures["time"] = {
+        "full": info[0].as_dict(),
+        "simplified": info[1].as_dict(),
+        "reduction_percent": reduction(info[0].wall_time, info[1].wall_time),
+        "elements_full": info[0].n_elements,
+        "elements_simplified": info[1].n_elements,
+    }
     figures["time_reduction_percent"] = figures["time"]["reduction_percent"]
     figures["firewall_intrusion_bound_percent"] = intrusion_bound(figures)
     figures["verdict"] = [v.as_dict() for v in verdict(figures)]
