@@ -843,21 +843,9 @@ def build_contacts(model: Model, groups, problems: list) -> list[ContactGroup]:
     """One ContactGroup per *CONTACT_AUTOMATIC_{SINGLE_SURFACE,
     NODES_TO_SURFACE, SURFACE_TO_SURFACE} card, in deck order; ``groups``:
     the element groups (their initial step sizes SOFT = 1). Cards with
-    options the solver does not run are Problems."""
+    options the reader does not type are refused with every unread card
+    (support.unsupported_cards)."""
     out: list[ContactGroup] = []
-    for raw in model.unknown:
-        name = raw.keyword_line.split()[0].lstrip("*").upper() if hasattr(raw, "keyword_line") else ""
-        if name.startswith(KINDS):  # e.g. _MPP, _TIEBREAK: the prefix is run, the option is not
-            src = getattr(raw, "source", None) or (model.source or "", 0)
-            problems.append(
-                Problem(
-                    str(src[0]),
-                    int(src[1]),
-                    name,
-                    None,
-                    f"*{name} is not supported (supported: {', '.join(KINDS)} with _ID)",
-                )
-            )
     recs = [r for r in model.keywords if getattr(r, "keyword", "") in KINDS and hasattr(r, "get")]
     if not recs:
         return out

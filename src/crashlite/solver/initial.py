@@ -31,10 +31,8 @@ def _initial_velocity(model: Model, v: np.ndarray, problems: list) -> None:
     would turn the elements inside out)."""
     n = len(v)
     c_max = _fastest_wave(model)
-    for rec in model.keywords:
-        name = getattr(rec, "keyword", "")
-        if not name.startswith("INITIAL_VELOCITY"):
-            continue
+    for rec in model.find("INITIAL_VELOCITY"):  # typed cards only: unread variants are refused
+        name = rec.keyword
         before = v.copy() if c_max > 0 else None
         _one_initial_velocity(model, rec, name, v, n)
         if before is not None:

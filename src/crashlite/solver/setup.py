@@ -293,6 +293,8 @@ def _constraints(model: Model, problems: list) -> tuple[np.ndarray, np.ndarray, 
         if name not in ("BOUNDARY_SPC_NODE", "BOUNDARY_SPC_SET"):
             continue
         rows = rec.rows
+        if "birth" in rows and not _spc_whole_run(model, rec, problems):
+            continue
         for i in range(len(rows["cid"])):
             nodes = (
                 model.node_index([rows["nid"][i]]) if name.endswith("NODE") else _node_set(model, int(rows["nsid"][i]))
@@ -312,6 +314,28 @@ def _constraints(model: Model, problems: list) -> tuple[np.ndarray, np.ndarray, 
             fixed[nodes] |= held
             fixed_rot[nodes] |= held_rot
     return fixed, fixed_rot, skew
+
+
+def _spc_whole_run(model: Model, rec, problems: list) -> bool:
+    """Whether every constraint of a *BOUNDARY_SPC_..._BIRTH_DEATH card holds
+    from the start to the end time (then it is a plain SPC); constraints
+    that start or end inside the run are refused, not held throughout."""
+    term = model.find("CONTROL_TERMINATION")
+    end = float(term[0].get("endtim", 0.0) or 0.0) if term else 0.0
+    rows = rec.rows
+    for fld, inside in (("birth", rows["birth"] > 0.0), ("death", rows["death"] < end)):
+        if inside.any():
+            when = float(rows[fld][np.flatnonzero(inside)[0]])
+            problems.append(
+                _problem(
+                    rec,
+                    fld,
+                    f"{fld.upper()} = {when:g} lies inside the run (end time {end:g}): constraints that "
+                    "start or end during the run are not supported yet",
+                )
+            )
+            return False
+    return True
 
 
 def _walls(model: Model, problems: list) -> list[Wall]:
@@ -384,10 +408,8 @@ def _walls(model: Model, problems: list) -> list[Wall]:
 
 def _motions(model: Model, problems: list) -> list[Motion]:
     out = []
-    for rec in model.keywords:
-        name = getattr(rec, "keyword", "")
-        if not name.startswith("BOUNDARY_PRESCRIBED_MOTION"):
-            continue
+    for rec in model.find("BOUNDARY_PRESCRIBED_MOTION"):  # typed cards only: unread variants are refused
+        name = rec.keyword
         rows = rec.rows
         for i in range(len(rows["dof"])):
             dof, vad = int(rows["dof"][i]), int(rows["vad"][i])
@@ -909,21 +931,18 @@ def _build(model: Model) -> Setup:
         else:
             problems.append(_problem(ts[0], "lctm", f"curve {ts[0]['lctm']} is not defined"))
     loads = []
-    for rec in model.keywords:
-        name = getattr(rec, "keyword", "")
-        if name.startswith("LOAD_BODY_"):
-            if int(rec.get("lcid", 0)) not in model.curves:
-                problems.append(_problem(rec, "lcid", f"curve {rec.get('lcid')} is not defined"))
-                continue
-            if int(rec.get("cid", 0) or 0) or int(rec.get("lciddr", 0) or 0):
-                problems.append(
-                    _problem(
-                        rec, "cid", "body loads in a local system or with dynamic relaxation are not supported yet"
-                    )
-                )
-                continue
-            axis = np.eye(3)["XYZ".index(name[-1])]
-            loads.append((axis, _curve(model, int(rec["lcid"])), float(rec.get("sf", 1.0))))
+    for rec in model.find("LOAD_BODY_"):  # typed cards only: unread variants are refused
+        name = rec.keyword
+        if int(rec.get("lcid", 0)) not in model.curves:
+            problems.append(_problem(rec, "lcid", f"curve {rec.get('lcid')} is not defined"))
+            continue
+        if int(rec.get("cid", 0) or 0) or int(rec.get("lciddr", 0) or 0):
+            problems.append(
+                _problem(rec, "cid", "body loads in a local system or with dynamic relaxation are not supported yet")
+            )
+            continue
+        axis = np.eye(3)["XYZ".index(name[-1])]
+        loads.append((axis, _curve(model, int(rec["lcid"])), float(rec.get("sf", 1.0))))
 
     nodal_loads = build_nodal_loads(model, rot_inertia > 0, problems)
     sections = build_sections(model, beams.ids if beams is not None else np.zeros(0, np.int64), problems, groups)

@@ -315,9 +315,6 @@ def _shell_normals(model: Model) -> np.ndarray:
 
 def build_spotwelds(model: Model, problems: list) -> SpotWelds | None:
     """The spot welds of a deck (None without any)."""
-    from .tied import refuse_unread
-
-    refuse_unread(model, ("CONSTRAINED_SPOTWELD", "CONSTRAINED_GENERALIZED_WELD"), problems)
     rows = []  # (id, keyword, node indices, sn, ss, n, m, tfail, rec)
     for rec in model.find("CONSTRAINED_SPOTWELD"):
         r = rec.rows if rec.rows else None

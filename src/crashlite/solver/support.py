@@ -7,11 +7,20 @@ they are; cards that cannot change the solution but that crashlite does not
 act on (other output requests, parallel and memory settings, sensors that no
 *SENSOR_CONTROL uses) run with one warning per keyword, as LS-DYNA would run
 them.
+
+A card the reader keeps verbatim (a keyword or option it does not type,
+e.g. *BOUNDARY_SPC_NODE_BIRTH_DEATH, *PART_MOVE, *INITIAL_VELOCITY_RIGID_BODY)
+is never taken as run, whatever its prefix: the solver reads typed cards
+only. Definitions that other cards name by ID (materials, sections, curves,
+tables, boxes, sets …) are passed over with a warning while nothing the
+solver runs names them; a part naming an unread material, section,
+equation of state or hourglass set is refused, naming both.
 """
 
 from __future__ import annotations
 
 from ..keyword.errors import Problem
+from ..keyword.schema import RawKeyword
 from ..model.model import Model
 
 # cards the solver reads (prefixes; element, part, section, material, set,
@@ -70,6 +79,8 @@ NEUTRAL = (
     "DATABASE_BINARY_D3PLOT",
     "DATABASE_CROSS_SECTION",
 )
+# definitions that act only through a card naming them (see the module text); the PART field naming each kind
+DEFINITIONS = {"MAT_": "mid", "SECTION_": "secid", "EOS_": "eosid", "HOURGLASS": "hgid", "DEFINE_": None, "SET_": None}
 PASSED = "passed over"  # how a passed-over card's warning begins (run() names each card once)
 # cards that cannot change the solution but are not acted on: keyword -> why (one warning each)
 PASSED_OVER = {
@@ -107,29 +118,51 @@ def unsupported_cards(model: Model, extra_run: tuple[str, ...] = (), warnings: l
     known = RUN + NEUTRAL + tuple(extra_run)
     passed = tuple(PASSED_OVER)
     problems, seen, warned = [], set(), set()
+
+    def warn(file, line, name, why):
+        if warnings is not None and name not in warned:
+            warned.add(name)
+            warnings.append(
+                Problem(file or model.source or "", line, name, None, f"{PASSED}: {why}; it cannot change the solution")
+            )
+
     for rec in list(model.keywords) + list(model.unknown):
         name = _name(rec)
         file, line = _where(rec)
-        if name.startswith(known) or (file, line, name) in seen:
+        raw = isinstance(rec, RawKeyword)  # kept verbatim: an option or variant the reader does not type
+        if name.startswith(NEUTRAL if raw else known) or (file, line, name) in seen:
             continue
         seen.add((file, line, name))
         if name.startswith(passed):
-            if warnings is not None and name not in warned:
-                warned.add(name)
-                why = next(v for k, v in PASSED_OVER.items() if name.startswith(k))
-                warnings.append(
-                    Problem(
-                        file or model.source or "", line, name, None, f"{PASSED}: {why}; it cannot change the solution"
-                    )
-                )
+            warn(file, line, name, next(v for k, v in PASSED_OVER.items() if name.startswith(k)))
             continue
-        problems.append(
-            Problem(
-                file or model.source or "",
-                line,
-                name,
-                None,
-                f"*{name} is not run by the crashlite solver yet; remove it or run the deck in LS-DYNA",
-            )
-        )
+        kind = next((k for k in DEFINITIONS if name.startswith(k)), None) if raw else None
+        if kind is not None:
+            users = _parts_naming(model, rec, DEFINITIONS[kind])
+            if not users:
+                warn(file, line, name, "a definition crashlite does not read, and no card the solver runs names it")
+                continue
+            why = f"*{name} is not run by the crashlite solver yet, and part(s) {', '.join(map(str, users))} use it"
+        else:
+            why = f"*{name} is not run by the crashlite solver yet; remove it or run the deck in LS-DYNA"
+        problems.append(Problem(file or model.source or "", line, name, None, why))
     return problems
+
+
+def _parts_naming(model: Model, raw: RawKeyword, part_field: str | None) -> list[int]:
+    """The parts whose ``part_field`` names the ID on the first data card of
+    an unread definition (curves, tables, boxes and sets: none are checked
+    here, the card naming one fails where it is built)."""
+    if part_field is None or not raw.lines:
+        return []
+    title = "TITLE" in raw.keyword.split("_")
+    lines = [ln for ln in raw.lines if ln.strip() and not ln.lstrip().startswith("$")]
+    if len(lines) <= title:
+        return []
+    first = lines[int(title)]
+    text = first.split(",")[0] if "," in first else first[:10]
+    try:
+        ident = int(float(text))
+    except ValueError:
+        return []
+    return sorted(pid for pid, p in model.parts.items() if int(p.get(part_field) or 0) == ident)

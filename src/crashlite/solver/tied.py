@@ -529,32 +529,10 @@ def project(points: np.ndarray, x: np.ndarray, seg: np.ndarray, tol: np.ndarray)
     return best, best_w, best_d
 
 
-def refuse_unread(model: Model, prefixes: tuple, problems: list) -> None:
-    """A Problem for each card kept unread (no spec) whose name starts with
-    one of ``prefixes``: the solver accepts the prefix, so a variant it does
-    not build must not pass silently."""
-    from .support import _name, _where
-
-    for raw in model.unknown:
-        name = _name(raw)
-        if name.startswith(prefixes):
-            file, line = _where(raw)
-            problems.append(
-                Problem(
-                    file or model.source or "",
-                    line,
-                    name,
-                    None,
-                    f"*{name} is not run by the crashlite solver yet; remove it or run the deck in LS-DYNA",
-                )
-            )
-
-
 def build_tied(model: Model, problems: list, warnings: list | None = None) -> list[TiedContact]:
     """The tied contacts of a deck (projection done; masses not yet moved:
     see ``TiedContact.lump``)."""
     out = []
-    refuse_unread(model, ("CONTACT_TIED_",), problems)
     x = model.nodes.xyz
     node_t = None
     taken: dict[int, int] = {}

@@ -42,6 +42,8 @@ ZERO_READS: dict[str, dict] = {
     "BOUNDARY_PRESCRIBED_MOTION_NODE": _MOTION,
     "BOUNDARY_PRESCRIBED_MOTION_SET": _MOTION,
     "BOUNDARY_PRESCRIBED_MOTION_RIGID": _MOTION,
+    "BOUNDARY_SPC_NODE": {"death": 1e20},  # _BIRTH_DEATH
+    "BOUNDARY_SPC_SET": {"death": 1e20},
     "LOAD_BODY_X": {"sf": 1.0},
     "LOAD_BODY_Y": {"sf": 1.0},
     "LOAD_BODY_Z": {"sf": 1.0},
@@ -98,6 +100,11 @@ _SAMPLE_OPTIONS = {  # options that bring every optional card of a keyword into 
     "CONSTRAINED_NODAL_RIGID_BODY": frozenset({"INERTIA", "SPC"}),
     "PART": frozenset({"INERTIA"}),
     "ELEMENT_SHELL": frozenset({"THICKNESS"}),
+    "BOUNDARY_SPC_NODE": frozenset({"ID", "BIRTH", "DEATH"}),
+    "BOUNDARY_SPC_SET": frozenset({"ID", "BIRTH", "DEATH"}),
+    "BOUNDARY_PRESCRIBED_MOTION_NODE": frozenset({"ID"}),
+    "BOUNDARY_PRESCRIBED_MOTION_SET": frozenset({"ID"}),
+    "BOUNDARY_PRESCRIBED_MOTION_RIGID": frozenset({"ID"}),
     "ELEMENT_BEAM": frozenset({"THICKNESS", "PID", "OFFSET", "ORIENTATION"}),
 }
 

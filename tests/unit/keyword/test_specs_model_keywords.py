@@ -37,8 +37,8 @@ EXPECTED = {
     "SET_DISCRETE": (SET_OPTS, True, "sets", "sid"),
     "SET_SEGMENT": ((), True, "sets", "sid"),
     # boundary conditions, initial velocities, loads, rigid walls
-    "BOUNDARY_SPC_NODE": (("ID",), None, "keywords", None),
-    "BOUNDARY_SPC_SET": (("ID",), None, "keywords", None),
+    "BOUNDARY_SPC_NODE": (("ID", "BIRTH", "DEATH"), None, "keywords", None),
+    "BOUNDARY_SPC_SET": (("ID", "BIRTH", "DEATH"), None, "keywords", None),
     "BOUNDARY_PRESCRIBED_MOTION_NODE": (("ID",), None, "keywords", None),
     "BOUNDARY_PRESCRIBED_MOTION_SET": (("ID",), None, "keywords", None),
     "BOUNDARY_PRESCRIBED_MOTION_RIGID": (("ID",), None, "keywords", None),
@@ -300,8 +300,48 @@ def test_prescribed_motion(name, first, ref):
     assert _field(card, "death").default == 1e28 and _field(card, "sf").default == 1.0
     assert _field(card, "vad").default == 0 and _field(card, "birth").default == 0
     assert _col(card, "death") == (61, 70)
-    assert [_names(c) for c in _layout(name, "ID").head] == ["id heading"]
-    assert [_names(c) for c in _layout(name, "ID").row] == [_names(card)]
+    # _ID: every motion carries its own ID card (LS-DYNA reads ID/data pairs)
+    assert _layout(name, "ID").head == ()
+    assert [_names(c) for c in _layout(name, "ID").row] == ["id heading", _names(card)]
+
+
+MOTION_PAIRS = """\
+*KEYWORD
+*BOUNDARY_PRESCRIBED_MOTION_NODE_ID
+         5first
+         3         3         1         1       0.6         0       10.        0.
+         6
+         2         3         1         1       0.6
+         8
+        15         3         1         1      1.15            0       38.        0.
+*BOUNDARY_SPC_NODE_BIRTH_DEATH_ID
+         2
+       205                   1         1         1         1         1         1
+        0.      38.
+       204                   1
+        0.        0.
+*END
+"""
+
+
+def test_motion_id_pairs_and_spc_birth_death(tmp_path):
+    """Four motions under one *BOUNDARY_PRESCRIBED_MOTION_NODE_ID, each with
+    its ID card (as a pre-processor writes them and LS-DYNA reads them), the
+    last one's fields shifted by three columns as written: DEATH reads its
+    blank-and-0 field as 1e28, BIRTH the 38. (LS-DYNA's d3hsp echoes motion
+    ID8 with birth 38, death 1e28); an SPC with _BIRTH_DEATH reads each
+    node's times (DEATH 0: 1e20)."""
+    p = tmp_path / "d.k"
+    p.write_text(MOTION_PAIRS)
+    recs = {r.keyword: r for r in read_records(p)[0] if isinstance(r, Record)}
+    mo = recs["BOUNDARY_PRESCRIBED_MOTION_NODE"].rows
+    assert mo["id"].tolist() == [5, 6, 8] and mo["nid"].tolist() == [3, 2, 15]
+    assert mo["sf"].tolist() == [0.6, 0.6, 1.15] and mo["lcid"].tolist() == [1, 1, 1]
+    assert mo["death"].tolist() == [10.0, 1e28, 1e28] and mo["birth"].tolist() == [0.0, 0.0, 38.0]
+    spc = recs["BOUNDARY_SPC_NODE"]
+    assert spc["id"] == 2 and spc.rows["nid"].tolist() == [205, 204]
+    assert spc.rows["dofz"].tolist() == [1, 0] and spc.rows["dofx"].tolist() == [1, 1]
+    assert spc.rows["birth"].tolist() == [0.0, 0.0] and spc.rows["death"].tolist() == [38.0, 1e20]
 
 
 def test_initial_velocity():

@@ -10,28 +10,44 @@ def _rows_with_id(data):
     return lambda options: Layout(head=(_IDCARD,) if "ID" in options else (), row=(data,))
 
 
+def _spc(data):
+    """*BOUNDARY_SPC: one ID card with _ID; _BIRTH_DEATH follows each data
+    card with the constraint's activation and deactivation times."""
+    life = card("birth:f=0 death:f~1e20")
+    return lambda options: Layout(
+        head=(_IDCARD,) if "ID" in options else (), row=(data, life) if "BIRTH" in options else (data,)
+    )
+
+
+def _motion_rows(data):
+    """*BOUNDARY_PRESCRIBED_MOTION: with _ID every motion carries its own ID
+    card before its data card (LS-DYNA reads ID/data pairs: a deck with four
+    pairs under one keyword is echoed in d3hsp as motions ID5 … ID8)."""
+    return lambda options: Layout(row=(_IDCARD, data) if "ID" in options else (data,))
+
+
 _DOFS = "dofx:i=0 dofy:i=0 dofz:i=0 dofrx:i=0 dofry:i=0 dofrz:i=0"
 register(
     Spec(
         "BOUNDARY_SPC_NODE",
-        _rows_with_id(card(f"nid:i@node cid:i=0@coord {_DOFS}")),
-        options=("ID",),
-        doc="Nodal single-point constraints (1 fixes a DOF).",
+        _spc(card(f"nid:i@node cid:i=0@coord {_DOFS}")),
+        options=("ID", "BIRTH", "DEATH"),
+        doc="Nodal single-point constraints (1 fixes a DOF); _BIRTH_DEATH: active from BIRTH to DEATH.",
     )
 )
 register(
     Spec(
         "BOUNDARY_SPC_SET",
-        _rows_with_id(card(f"nsid:i@set_node cid:i=0@coord {_DOFS}")),
-        options=("ID",),
-        doc="Single-point constraints on a node set.",
+        _spc(card(f"nsid:i@set_node cid:i=0@coord {_DOFS}")),
+        options=("ID", "BIRTH", "DEATH"),
+        doc="Single-point constraints on a node set; _BIRTH_DEATH: active from BIRTH to DEATH.",
     )
 )
 _MOTION = "dof:i=0 vad:i=0 lcid:i=0@curve sf:f~1 vid:i=0@vector death:f~1e28 birth:f=0"
 register(
     Spec(
         "BOUNDARY_PRESCRIBED_MOTION_NODE",
-        _rows_with_id(card(f"nid:i@node {_MOTION}")),
+        _motion_rows(card(f"nid:i@node {_MOTION}")),
         options=("ID",),
         doc="Prescribed velocity (VAD 0), acceleration (1) or displacement (2).",
     )
@@ -39,7 +55,7 @@ register(
 register(
     Spec(
         "BOUNDARY_PRESCRIBED_MOTION_SET",
-        _rows_with_id(card(f"nsid:i@set_node {_MOTION}")),
+        _motion_rows(card(f"nsid:i@set_node {_MOTION}")),
         options=("ID",),
         doc="Prescribed motion of a node set.",
     )
@@ -47,7 +63,7 @@ register(
 register(
     Spec(
         "BOUNDARY_PRESCRIBED_MOTION_RIGID",
-        _rows_with_id(card(f"pid:i@part {_MOTION}")),
+        _motion_rows(card(f"pid:i@part {_MOTION}")),
         options=("ID",),
         doc="Prescribed motion of a rigid part.",
     )
