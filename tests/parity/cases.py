@@ -220,7 +220,7 @@ def _cantilevers() -> list[Case]:
             f"Element_Types/01_Shell/{sub}/01_Shell.dyn",
             None,
             {},
-            f"Element_Types/01_Shell/{sub}/{{glstat,nodout,d3hsp}}",
+            f"Element_Types/01_Shell/{sub}/{{glstat,nodout,d3hsp,d3plot}}",
             measure=measure_cantilever,
             bounds=dict(CANTILEVER_BOUNDS),
             d3plot=f"Element_Types/01_Shell/{sub}",
