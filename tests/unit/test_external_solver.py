@@ -461,7 +461,7 @@ def test_study_config_for_external_runs(tmp_path, standin, monkeypatch):
             load_study(p)
     # responses an LS-DYNA run cannot give, said before anything runs
     for response, match in (
-        ('type = "contact_force"', "rcforc"),
+        ('type = "contact_force"', r"no \*CONTACT_ card"),
         ('type = "node_displacement"\nnode = 1', r"node\(s\) 1: .*\*DATABASE_HISTORY_NODE"),
         ('type = "wall_force"', None),
     ):

@@ -31,6 +31,7 @@ after it; ``write`` writes the file. lasso-python is imported by ``write``
 from __future__ import annotations
 
 from collections.abc import Iterable
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -293,3 +294,36 @@ def read_states(path: Path | str) -> tuple | None:
             # a triangle or degenerate solid repeats nodes: keep each once, in order
             cells += [np.array(list(dict.fromkeys(r.tolist())), np.int64) for r in np.asarray(arr[key], np.int64)]
     return t, x, ids, cells
+
+
+@dataclass
+class FinalState:
+    """The last state of a d3plot: ``time``, ``node_ids`` (n,) and each
+    node's ``displacement`` (n, 3) from the geometry's coordinates."""
+
+    time: float
+    node_ids: np.ndarray
+    displacement: np.ndarray
+    source: str = ""
+
+
+def read_final_state(path: Path | str) -> FinalState | None:
+    """The final state of an LS-DYNA d3plot family (``path`` the d3plot or
+    its folder), its last state alone read through lasso-python (a full
+    car's states would not fit in memory); None where there is no d3plot
+    or it holds no state. Raises ImportError without lasso-python."""
+    p = Path(path)
+    first = p / "d3plot" if p.is_dir() else p
+    if first.name != "d3plot" or not first.is_file():
+        return None
+    lib = lasso()
+    if lib is None:
+        raise ImportError(MISSING)
+    D3plot, A = lib
+    d = D3plot(str(first), state_filter={-1}, state_array_filter=[A.global_timesteps, A.node_displacement])
+    t = np.atleast_1d(np.asarray(d.arrays.get(A.global_timesteps, []), float))
+    if not len(t) or A.node_displacement not in d.arrays:
+        return None
+    x = np.asarray(d.arrays[A.node_displacement], float)[-1]  # d3plot's "displacement" is the coordinates
+    x0 = np.asarray(d.arrays[A.node_coordinates], float)
+    return FinalState(float(t[-1]), np.asarray(d.arrays[A.node_ids], np.int64), x - x0, str(first))

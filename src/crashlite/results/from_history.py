@@ -4,9 +4,12 @@ responses) reads LS-DYNA runs too: the inverse of
 ``solver.results.categories``.
 
 What an LS-DYNA history output cannot give stays empty: field states
-(``states_x``), element results (plastic strain, element energy), contact
-forces (rcforc is not read), moving-wall velocities (zero). ``final_x`` and
-``node_ids`` hold the history nodes only (their last nodout coordinates).
+(``states_x``), element results (plastic strain, element energy),
+moving-wall velocities (zero). ``final_x`` and ``node_ids`` hold the
+history nodes only (their last nodout coordinates); the final state of
+every node is in the d3plot (``results.d3plot.read_final_state``).
+Contact forces are rcforc's slave lines (the force on each interface's
+slave side, as crashlite's ``contact_force``).
 
 LS-DYNA writes each history file at its own interval; every history is
 put on the time axis of the one with the most states (linear
@@ -33,6 +36,7 @@ _TIME = {
     "deforc": ("time",),
     "secforc": ("time",),
     "spcforc": ("time",),
+    "rcforc": ("time",),
 }
 
 
@@ -69,6 +73,24 @@ def _interp(t_src: np.ndarray, y: np.ndarray, t: np.ndarray) -> np.ndarray:
     return out.reshape((len(t),) + y.shape[1:])
 
 
+def _rcforc_lines(history) -> tuple[np.ndarray, np.ndarray]:
+    """Interface ID and side (0 slave, 1 master) of each rcforc line. A
+    binout lists a contact without surfaces under ID 0 but writes no force
+    for it: such IDs are dropped where the forces have fewer columns (as
+    LS-DYNA's l2a does)."""
+    ids = _ids(history, "rcforc")
+    if ids is None:
+        return np.zeros(0, np.int64), np.zeros(0)
+    side = _get(history, "rcforc", "side")
+    side = np.zeros(len(ids)) if side is None else np.atleast_1d(side).ravel()
+    x = _get(history, "rcforc", "x_force")
+    width = len(ids) if x is None else (x.shape[1] if x.ndim == 2 else 1)
+    if width < len(ids):
+        keep = ids != 0
+        ids, side = ids[keep], side[keep]
+    return ids, side
+
+
 def results_from_history(history: History, model: Model | None = None) -> Results:
     """A ``solver.results.Results`` from a ``results.History``. ``model``
     (the run's deck) gives the history nodes' initial coordinates where
@@ -80,7 +102,8 @@ def results_from_history(history: History, model: Model | None = None) -> Result
     times = {c: np.atleast_1d(v).ravel() for c, v in times.items() if v is not None}
     if not times:
         raise ValueError(
-            f"{history.source}: no time history (glstat, nodout, matsum, rwforc, deforc, secforc, spcforc) to read"
+            f"{history.source}: no time history (glstat, nodout, matsum, rwforc, deforc, secforc, spcforc, rcforc) "
+            "to read"
         )
     ref = max(times, key=lambda c: (len(times[c]), c == "glstat"))
     t = times[ref]
@@ -161,6 +184,11 @@ def results_from_history(history: History, model: Model | None = None) -> Result
     spc = ids("spcforc")
     spc_force = vectors("spcforc", len(spc), "{}_force")
 
+    lines, side = _rcforc_lines(history) if "rcforc" in times else (np.zeros(0, np.int64), np.zeros(0))
+    slave = np.flatnonzero(side == 0)  # crashlite's contact_force: the force on the slave side
+    rc = vectors("rcforc", len(lines), "{}_force")
+    cids = lines[slave] if rc is not None else np.zeros(0, np.int64)
+
     final_x = np.zeros((0, 3))
     final_v = np.zeros((0, 3))
     node_ids = np.zeros(0, np.int64)
@@ -212,6 +240,8 @@ def results_from_history(history: History, model: Model | None = None) -> Result
         discrete_force_vector=dvec if dvec is not None else np.zeros((0, 0, 3)),
         wall_normal_force=wall_normal if wall_normal is not None else np.zeros((0, 0)),
         node_ids=node_ids,
+        contact_force=rc[:, slave] if rc is not None else np.zeros((0, 0, 3)),
+        contact_ids=cids,
         info={"source": history.source, "time_axis": ref},
     )
     if cycle is not None and len(np.atleast_1d(cycle)) == n:

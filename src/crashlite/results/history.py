@@ -102,7 +102,7 @@ def _from_binout(path) -> History:
 def load(path: Path | str) -> History:
     """Time histories of a crashlite results folder (its results.npz), an
     LS-DYNA binout (lasso-python), an LS-DYNA ASCII output folder (glstat,
-    matsum, nodout, rwforc, deforc, secforc, spcforc: the categories are
+    matsum, nodout, rwforc, deforc, secforc, spcforc, rcforc: the categories are
     the files present) or one such ASCII file."""
     from ..solver.results import Results
     from .lsdyna_ascii import FILES, present, read_folder

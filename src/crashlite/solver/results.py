@@ -1,5 +1,5 @@
 """Time histories of a run (glstat, matsum, nodout, rwforc, deforc,
-secforc, spcforc) and the final state; saved as results.npz (full
+secforc, spcforc, rcforc) and the final state; saved as results.npz (full
 precision) and as LS-DYNA-style ASCII files."""
 
 from __future__ import annotations
@@ -120,7 +120,7 @@ class Results:
     def save(self, directory, title: str | None = None) -> Path:
         """results.npz (every array, full precision) and the LS-DYNA ASCII
         files that have data (glstat always; matsum, nodout, rwforc,
-        deforc, secforc, spcforc when the run has their entities)."""
+        deforc, secforc, spcforc, rcforc when the run has their entities)."""
         directory = Path(directory)
         directory.mkdir(parents=True, exist_ok=True)
         path = directory / "results.npz"
@@ -268,7 +268,20 @@ def categories(res) -> dict:
         "deforc": deforc,
         "secforc": sec,
         "spcforc": spc,
+        "rcforc": _rcforc(res),
     }
+
+
+def _rcforc(res) -> dict:
+    """rcforc as LS-DYNA writes it: a slave and a master line per interface;
+    the master side takes the reaction (penalty forces come in equal and
+    opposite pairs) and the mass in contact is not known (left out)."""
+    cids = np.asarray(res.contact_ids, np.int64)
+    f = res.contact_force if res.recorded("contact_force") else np.zeros((len(res.time), len(cids), 3))
+    both = np.stack([f, -f], axis=2).reshape(len(res.time), 2 * len(cids), 3)  # slave 1, master 1, slave 2 ...
+    out = {"time": res.time, "ids": np.repeat(cids, 2), "side": np.tile([0, 1], len(cids))}
+    _xyz(out, both, "{}_force")
+    return out
 
 
 def element_counts(model) -> dict[str, int]:

@@ -52,9 +52,10 @@ def _attempt(directory: Path) -> int:
     return len(marks.read_text().splitlines())
 
 
-def _run_external(deck: Path, folder: Path, solver, model):
+def _run_external(deck: Path, folder: Path, solver, model, d3plot: bool = False):
     """Run the design deck in an external solver (``crashlite.external``)
-    and read its results as a crashlite ``Results`` (time histories)."""
+    and read its results as a crashlite ``Results`` (time histories), with
+    its d3plot's final state where ``d3plot`` (else None)."""
     from ..external import run as run_external
     from ..results import load
     from ..results.from_history import results_from_history
@@ -64,7 +65,22 @@ def _run_external(deck: Path, folder: Path, solver, model):
         history = load(folder)
     except FileNotFoundError as e:
         raise FileNotFoundError(f"{solver.name} terminated normally but left no results crashlite reads: {e}") from None
-    return results_from_history(history, model), float(ext.wall_time)
+    final = _final_state(folder, solver) if d3plot else None
+    return results_from_history(history, model), float(ext.wall_time), final
+
+
+def _final_state(folder: Path, solver):
+    """The final state of the run's d3plot (final displacements of nodes
+    that are not history nodes)."""
+    from ..results.d3plot import read_final_state
+
+    state = read_final_state(folder)
+    if state is None:
+        raise FileNotFoundError(
+            f"{solver.name} terminated normally but left no d3plot state in {folder}: the final displacement "
+            "of nodes that are not history nodes is read from it"
+        )
+    return state
 
 
 def evaluate(task: Task) -> dict:
@@ -87,7 +103,7 @@ def evaluate(task: Task) -> dict:
     try:
         from .. import read_deck
         from ..solver import run
-        from .responses import evaluate_responses
+        from .responses import evaluate_responses, reads_d3plot
 
         deck = task.template.write(task.values, directory)
         out["deck"] = str(deck)
@@ -96,16 +112,18 @@ def evaluate(task: Task) -> dict:
         task.template.check(model, task.values)
         stage = "running"
         solver = task.options.get("solver")  # external.SolverSettings, or None: crashlite's solver
+        final_state = None
         if solver is None:
             res = run(model, out=directory / "results", quiet=True)
             run_time = float(res.wall_time)
         else:
-            res, run_time = _run_external(deck, directory / "results", solver, model)
+            d3plot = any(reads_d3plot(spec, model) for spec in task.responses.values())
+            res, run_time, final_state = _run_external(deck, directory / "results", solver, model, d3plot)
             out["solver"] = solver.solver
             stage = "taking the responses"
         out.update(cycles=int(res.cycles), end_time=float(res.time[-1]) if len(res.time) else 0.0, run_time=run_time)
         stage = "taking the responses"
-        out["responses"] = evaluate_responses(task.responses, res, model, task.values)
+        out["responses"] = evaluate_responses(task.responses, res, model, task.values, final_state=final_state)
         out["status"] = "complete"
     except Exception as e:  # noqa: BLE001 - a design's failure is a result, not a crash of the study
         out["message"] = f"{stage}: {type(e).__name__}: {e}"

@@ -11,7 +11,8 @@ Types (``type = ...`` in ``[responses.NAME]``):
 ``section_force``   cross section ``id`` force (secforc)
 ``discrete_force``  discrete element ``id`` axial force (deforc)
 ``contact_force``   contact interface ``id`` slave-side force (rcforc)
-``node_displacement`` history ``node`` displacement (final: any node)
+``node_displacement`` history ``node`` displacement (final: any node; an
+                    LS-DYNA run's from its d3plot where not a history node)
 ``node_velocity``   history ``node`` velocity
 ``intrusion``       largest displacement of ``nodes`` (IDs) or node ``set``,
                     optionally relative to a ``reference`` node
@@ -41,6 +42,7 @@ import numpy as np
 
 if TYPE_CHECKING:
     from ..model.model import Model
+    from ..results.d3plot import FinalState
     from ..solver.results import Results
     from ..units import UnitSystem
 
@@ -281,45 +283,117 @@ EXTERNAL_OUTPUT = {
     "deceleration": "NODOUT",
     "pulse": "NODOUT",
     "intrusion": "NODOUT",
+    "contact_force": "RCFORC",
 }
+
+
+def final_nodes(spec: ResponseSpec, model: Model) -> list[int]:
+    """The nodes whose final displacement a response takes (with its
+    reference node last); empty for other responses."""
+    t, o = spec.type, spec.options
+    final = (t == "node_displacement" and o.get("stat", "final") == "final") or (
+        t == "intrusion" and o.get("over", "final") == "final"
+    )
+    if not final:
+        return []
+    nodes = (
+        [o["node"]]
+        if "node" in o
+        else (model.set_members("NODE", o["set"]).tolist() if "set" in o else list(o["nodes"]))
+    )
+    return nodes + ([o["reference"]] if "reference" in o else [])
+
+
+def reads_d3plot(spec: ResponseSpec, model: Model) -> bool:
+    """True where an external solver's run gives the response from its
+    d3plot's final state: a final displacement of a node that is not a
+    history node (nodout has the history nodes only)."""
+    nodes = final_nodes(spec, model)
+    return bool(nodes) and not set(nodes) <= history_node_ids(model)
+
+
+def _contact_ids(model: Model) -> tuple[dict[int, str], bool]:
+    """Interface number -> keyword of the deck's contacts, numbered as
+    LS-DYNA's rcforc numbers them: the contact's ID (_ID), else its place
+    among the *CONTACT_ cards; False where a card the reader keeps verbatim
+    has an ID it does not know."""
+    from ..keyword.schema import Record
+
+    out, known = {}, True
+    cards = [k for k in model.keywords if getattr(k, "name", getattr(k, "keyword", "")).startswith("CONTACT_")]
+    for k, rec in enumerate(cards):
+        if isinstance(rec, Record):
+            cid = rec.get("cid") if "ID" in rec.options else None
+            out[int(cid) if cid else k + 1] = rec.name
+        elif rec.keyword.endswith("_ID"):
+            known = False
+        else:
+            out[k + 1] = rec.keyword
+    return out, known
+
+
+def _check_lsdyna_contact(spec: ResponseSpec, model: Model) -> None:
+    contacts, known = _contact_ids(model)
+    if not contacts and known:
+        raise ValueError("the deck has no *CONTACT_ card")
+    cid = spec.get("id", next(iter(contacts), None))
+    if cid not in contacts:
+        if known:
+            raise ValueError(f"id: contact interface {cid} is not in the deck (interfaces: {sorted(contacts)})")
+        return
+    if any(s in contacts[cid] for s in ("SINGLE_SURFACE", "SINGLE_EDGE", "AUTOMATIC_GENERAL")):
+        raise ValueError(
+            f"id: contact interface {cid} is a single surface contact (*{contacts[cid]}), for which LS-DYNA "
+            "writes no resultant in rcforc (its forces cancel): measure it with a *CONTACT_FORCE_TRANSDUCER_PENALTY"
+        )
 
 
 def check_external_response(spec: ResponseSpec, model: Model, solver: str) -> None:
     """ValueError where a run of the deck in an external solver (LS-DYNA,
-    OpenRadioss: its time histories are read, ``results.from_history``)
-    cannot give the response."""
+    OpenRadioss: its time histories are read, ``results.from_history``,
+    and LS-DYNA's d3plot for final displacements of other nodes) cannot
+    give the response."""
     from ..external import NAMES
 
     name = NAMES.get(solver, solver)
-    t, o = spec.type, spec.options
-    if t == "contact_force":
+    t = spec.type
+    if t == "contact_force" and solver != "lsdyna":
         raise ValueError(
-            f"contact_force is read from crashlite's own runs only: the contact forces (rcforc) of "
-            f'an {name} run are not read; use wall_force or section_force, or solver = "crashlite"'
+            f"contact_force is read from crashlite's and LS-DYNA's runs only: an {name} run writes no "
+            'rcforc; use wall_force or section_force, or solver = "crashlite" or "lsdyna"'
         )
-    final = (t == "node_displacement" and o.get("stat", "final") == "final") or (
-        t == "intrusion" and o.get("over", "final") == "final"
-    )
-    if final:
-        nodes = (
-            [o["node"]]
-            if "node" in o
-            else (model.set_members("NODE", o["set"]).tolist() if "set" in o else list(o["nodes"]))
-        )
-        nodes += [o["reference"]] if "reference" in o else []
-        hist = history_node_ids(model)
-        lack = [n for n in nodes if n not in hist]
-        if lack:
-            raise ValueError(
-                f"the final displacement of node(s) {', '.join(map(str, lack[:10]))}: an {name} run "
-                "gives it for history nodes only (nodout; its d3plot states are not read): add them "
-                "to *DATABASE_HISTORY_NODE"
-            )
+    if t == "contact_force":
+        _check_lsdyna_contact(spec, model)
+    d3plot = reads_d3plot(spec, model)
+    if d3plot:
+        _check_d3plot(spec, model, name, solver)
     kw = EXTERNAL_OUTPUT.get(t)
-    if kw and not model.find(f"DATABASE_{kw}"):
+    if kw and not d3plot and not model.find(f"DATABASE_{kw}"):
         raise ValueError(
             f"{t} reads {kw.lower()}, which {name} writes only when the deck asks for it: add *DATABASE_{kw}"
         )
+
+
+def _check_d3plot(spec: ResponseSpec, model: Model, name: str, solver: str) -> None:
+    """The final displacement of nodes that are not history nodes comes
+    from the d3plot's final state: the deck must ask for one."""
+    hist = history_node_ids(model)
+    lack = ", ".join([str(n) for n in final_nodes(spec, model) if n not in hist][:10])
+    if solver != "lsdyna":
+        raise ValueError(
+            f"the final displacement of node(s) {lack}: an {name} run gives it for history nodes only "
+            "(nodout): add them to *DATABASE_HISTORY_NODE"
+        )
+    if not model.find("DATABASE_BINARY_D3PLOT"):
+        raise ValueError(
+            f"the final displacement of node(s) {lack}: an {name} run gives it for history nodes (nodout) "
+            "and, from the d3plot's final state, for any node, but the deck asks for no d3plot: add "
+            "*DATABASE_BINARY_D3PLOT, or add the nodes to *DATABASE_HISTORY_NODE"
+        )
+    from ..results.d3plot import MISSING, lasso
+
+    if lasso() is None:
+        raise ValueError(f"the final displacement of node(s) {lack} is read from the d3plot, and {MISSING}")
 
 
 # --- evaluation ----------------------------------------------------------------
@@ -372,13 +446,20 @@ def _filtered(spec, t, y, time_scale):
 
 
 def evaluate_responses(
-    specs: dict, res: Results, model: Model, variables: dict, units: UnitSystem | None = None
+    specs: dict,
+    res: Results,
+    model: Model,
+    variables: dict,
+    units: UnitSystem | None = None,
+    final_state: FinalState | None = None,
 ) -> dict[str, float]:
     """Every response of a finished run: name -> float (scaled).
 
     res: solver Results; model: the design's Model; variables: name ->
     value of the design; units: the deck's UnitSystem (default from its
-    densities), for g and the CFC filters' seconds."""
+    densities), for g and the CFC filters' seconds; final_state: an
+    external solver's d3plot final state, for final displacements of
+    nodes ``res`` lacks (an LS-DYNA run's are its history nodes)."""
     if units is None:
         from ..units import system
 
@@ -390,14 +471,14 @@ def evaluate_responses(
     g = G_MM_S2 * units.length / units.time**2
     out: dict[str, float] = {}
     for name, spec in specs.items():
-        v = _one(spec, res, model, variables, out, time_scale, g)
+        v = _one(spec, res, model, variables, out, time_scale, g, final_state)
         if not math.isfinite(v):
             raise ResponseError(f"response {name!r} is not finite ({v})")
         out[name] = v * spec.scale if spec.type != "expression" else v
     return out
 
 
-def _one(spec: ResponseSpec, res, model, variables, done, time_scale, g) -> float:
+def _one(spec: ResponseSpec, res, model, variables, done, time_scale, g, final_state=None) -> float:
     t, o = spec.type, spec.options
     if t == "mass":
         return float(model.mass_properties(o.get("parts")).mass)
@@ -447,13 +528,13 @@ def _one(spec: ResponseSpec, res, model, variables, done, time_scale, g) -> floa
         comp = o.get("component", "x")
         st = o.get("stat", "final")
         if t == "node_displacement" and st == "final":
-            d = _final_displacement(res, model, [o["node"]])
+            d = _final_displacement(res, model, [o["node"]], final_state)
             return float(_component(d, comp)[0])
         j = _column(res.history_nodes, o["node"], "history node")
         arr = res.node_displacement if t == "node_displacement" else res.node_velocity
         return _reduce(time, _component(arr[:, j], comp), st)
     if t == "intrusion":
-        return _intrusion(spec, res, model)
+        return _intrusion(spec, res, model, final_state)
     if t in ("deceleration", "pulse"):
         from ..verify.pulse import crash_pulse
 
@@ -474,9 +555,13 @@ def _one(spec: ResponseSpec, res, model, variables, done, time_scale, g) -> floa
     raise ResponseError(f"response type {t!r} not handled")  # pragma: no cover
 
 
-def _final_displacement(res, model, nodes) -> np.ndarray:
-    """(n, 3) final displacement of deck nodes from the final state."""
+def _final_displacement(res, model, nodes, final_state=None) -> np.ndarray:
+    """(n, 3) final displacement of deck nodes from the run's final state;
+    from ``final_state`` (a d3plot's) for all of them where the run's lacks
+    one, so the nodes of a response share one state."""
     ids = np.asarray(res.node_ids) if len(res.node_ids) else model.nodes.ids
+    if final_state is not None and not {int(n) for n in nodes} <= set(ids.tolist()):
+        return _state_displacement(final_state, nodes)
     pos = {int(n): i for i, n in enumerate(ids)}
     idx = []
     for n in nodes:
@@ -488,13 +573,22 @@ def _final_displacement(res, model, nodes) -> np.ndarray:
     return np.asarray(res.final_x)[idx] - x0
 
 
-def _intrusion(spec, res, model) -> float:
+def _state_displacement(state: FinalState, nodes) -> np.ndarray:
+    """(n, 3) displacement of deck nodes in a d3plot's final state (by node ID)."""
+    pos = {int(n): i for i, n in enumerate(state.node_ids)}
+    lack = [int(n) for n in nodes if int(n) not in pos]
+    if lack:
+        raise ResponseError(f"node(s) {', '.join(map(str, lack[:10]))} not in the final state of {state.source}")
+    return state.displacement[[pos[int(n)] for n in nodes]]
+
+
+def _intrusion(spec, res, model, final_state=None) -> float:
     o = spec.options
     members = model.set_members("NODE", o["set"]).tolist() if "set" in o else list(o["nodes"])
     comp = o.get("component", "magnitude")
     ref = o.get("reference")
     if o.get("over", "final") == "final":
-        d = _final_displacement(res, model, members + ([ref] if ref is not None else []))
+        d = _final_displacement(res, model, members + ([ref] if ref is not None else []), final_state)
         if ref is not None:
             d = d[:-1] - d[-1]
         y = _component(d, comp)

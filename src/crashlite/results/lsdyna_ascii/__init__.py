@@ -1,11 +1,12 @@
 """LS-DYNA ASCII time-history files (glstat, matsum, nodout, rwforc,
-deforc, secforc, spcforc): written by crashlite runs in LS-DYNA's layout,
+deforc, secforc, spcforc, rcforc): written by crashlite runs in LS-DYNA's layout,
 so engineers' existing scripts read them, and read from crashlite or
 LS-DYNA output folders.
 
 Each module has ``write(path, data, title)`` and ``read(path) -> data``
 where ``data`` maps lasso-python Binout names to arrays (time first);
-rwforc keys are ``("forces", name)`` as in the Binout.
+rwforc keys are ``("forces", name)`` as in the Binout; rcforc has a column
+per line (``ids`` and ``side``: each interface's slave and master line).
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import deforc, glstat, matsum, nodout, rwforc, secforc, spcforc
+from . import deforc, glstat, matsum, nodout, rcforc, rwforc, secforc, spcforc
 
 FILES = {
     "glstat": glstat,
@@ -24,6 +25,7 @@ FILES = {
     "deforc": deforc,
     "secforc": secforc,
     "spcforc": spcforc,
+    "rcforc": rcforc,
 }
 
 
