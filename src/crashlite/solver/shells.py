@@ -1,14 +1,19 @@
-"""Shell elements from the Model: Belytschko–Lin–Tsay quads and C0 triangles.
+"""Shell elements from the Model: Belytschko–Lin–Tsay quads, C0 triangles and
+fully integrated quads (ELFORM 16).
 
-Builds the struct-of-arrays set the kernels in ``kernels.shell`` run
+Builds the struct-of-arrays set the kernels in ``kernels.shell`` and
+``kernels.shell_full`` run
 (connectivity, thickness, integration rule, material table and curves,
 hourglass settings), the lumped masses and rotary inertias, and the shell
 group the time loop drives.
 
-Section formulations: ELFORM 2 (and blank/0) runs as is; 1, 4, 6, 7, 8, 10,
-11, 16, -16, 17, 18, 20 (other one-point and fully integrated shells and
-triangles) run as ELFORM 2 with a warning; membranes (5, 9) and any other
-form are refused. Degenerate quadrilaterals (n3 = n4) are C0 triangles.
+Section formulations: ELFORM 2 (and blank/0) runs as is; 16 and -16 run as
+the fully integrated shell (kernels.shell_full; its triangles, n3 = n4, as
+the C0 triangle); 1, 4, 6, 7, 8, 10, 11, 17, 18, 20 (other one-point and
+fully integrated shells and triangles) run as ELFORM 2 with a warning;
+membranes (5, 9) and any other form are refused. Degenerate quadrilaterals
+(n3 = n4) are C0 triangles. The hourglass control applies to the one-point
+quadrilaterals only.
 NIP 0 means 2; 1–10 Gauss points (Lobatto for *CONTROL_SHELL INTGRD = 1,
 NIP ≥ 3). Hourglass IHQ 1–3 run viscous, 4–5 stiffness; 6 and 8 run as
 stiffness with a warning. *CONTROL_SHELL: ISTUPD (1, 3, 4: thickness
@@ -31,9 +36,11 @@ from ..model.model import Model
 from .groups import ElementGroup
 from .kernels import plane_stress as ps
 from .kernels.shell import scratch, shell_forces, shell_timestep
+from .kernels.shell_full import full_forces
 from .kernels.solid import corner_incidence, gather_corner_pair
 
-_AS_BT = (0, 1, 2, 4, 6, 7, 8, 10, 11, 16, -16, 17, 18, 20)
+_AS_BT = (0, 1, 2, 4, 6, 7, 8, 10, 11, 17, 18, 20)
+FULL = (16, -16)  # fully integrated (kernels.shell_full)
 VISCOUS, STIFFNESS = 1, 2
 
 
@@ -70,6 +77,7 @@ class ShellSet:
     rotascl: float = 1.0  # rotary inertia scale factor
     warnings: list = field(default_factory=list)  # Problem: options run in an approximated way
     isdo: int = 0  # *CONTROL_TIMESTEP ISDO: the characteristic length of the time step (0, 1, 2)
+    full: np.ndarray | None = None  # (n,) int8 1: fully integrated quadrilateral (ELFORM 16)
 
     def __len__(self) -> int:
         return len(self.ids)
@@ -96,12 +104,21 @@ class ShellState:
     point_k: np.ndarray
     node_ptr: np.ndarray  # (n_nodes + 1,) int64 CSR node -> corners
     corner_of: np.ndarray  # (4n,) int64
+    # the fully integrated elements (kernels.shell_full): their rows, and their state at the four
+    # Gauss points (sig, back, epsp, ipfail above then hold the element-averaged layers)
+    full_idx: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (nf,) int64
+    sig4: np.ndarray = field(default_factory=lambda: np.zeros((0, 4, 5)))  # (nf, 4·nip_max, 5) [stress]
+    back4: np.ndarray = field(default_factory=lambda: np.zeros((0, 4, 5)))  # (nf, 4·nip_max, 5) [stress]
+    epsp4: np.ndarray = field(default_factory=lambda: np.zeros((0, 4)))  # (nf, 4·nip_max)
+    ipfail4: np.ndarray = field(default_factory=lambda: np.zeros((0, 4), np.int8))  # (nf, 4·nip_max)
 
 
 def new_state(s: ShellSet, n_nodes: int) -> ShellState:
     n = len(s)
     k = int(s.nip.max()) if n else 1
     ptr, corner_of = corner_incidence(n_nodes, s.conn)
+    idx = np.flatnonzero(s.full) if s.full is not None else np.zeros(0, np.int64)
+    nf = len(idx)
     return ShellState(
         np.zeros((n, k, 5)),
         np.zeros((n, k, 5)),
@@ -118,11 +135,62 @@ def new_state(s: ShellSet, n_nodes: int) -> ShellState:
         *scratch(k),
         ptr,
         corner_of,
+        idx.astype(np.int64),
+        np.zeros((nf, 4 * k, 5)),
+        np.zeros((nf, 4 * k, 5)),
+        np.zeros((nf, 4 * k)),
+        np.zeros((nf, 4 * k), np.int8),
     )
 
 
 def compute_forces(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
-    """Advance the shells' state to t(n+1) and fill st.fe, st.me."""
+    """Advance the shells' state to t(n+1) and fill st.fe, st.me: the
+    one-point elements and triangles (kernels.shell), then the fully
+    integrated ones (kernels.shell_full)."""
+    idx = st.full_idx
+    if len(idx) < len(s):
+        keep = st.alive[idx].copy()
+        st.alive[idx] = 2  # not the one-point kernel's: it leaves them as they are
+        _one_point(s, st, x, v, w, dt)
+        st.alive[idx] = keep
+    if len(idx):
+        full_forces(
+            x,
+            v,
+            w,
+            float(dt),
+            idx,
+            s.conn,
+            s.mat_of,
+            s.mtype,
+            s.props,
+            s.mcurve,
+            s.curve_start,
+            s.curve_stop,
+            s.curve_x,
+            s.curve_y,
+            s.nip,
+            s.rule,
+            s.shrf,
+            int(s.istupd == 1),
+            s.isdo,
+            st.sig4,
+            st.back4,
+            st.epsp4,
+            st.ipfail4,
+            st.thick,
+            st.alive,
+            st.energy,
+            st.sig,
+            st.epsp,
+            st.ipfail,
+            st.fe,
+            st.me,
+            st.step,
+        )
+
+
+def _one_point(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
     shell_forces(
         x,
         v,
@@ -382,11 +450,11 @@ def _isdo(model: Model, problems: list) -> int:
 
 
 def _section(sec, part, p, intgrd, problems, warns):
-    """(nip, rule, shrf, (t1..t4), marea) of a *SECTION_SHELL, or None."""
+    """(nip, rule, shrf, (t1..t4), marea, fully integrated) of a *SECTION_SHELL, or None."""
     ok = True
     elform = int(sec.get("elform") if sec.get("elform") is not None else 2)
-    if elform in _AS_BT:
-        if elform not in (0, 2):
+    if elform in _AS_BT or elform in FULL:
+        if elform not in (0, 2) + FULL:
             warns.append(
                 _problem(
                     sec,
@@ -399,7 +467,7 @@ def _section(sec, part, p, intgrd, problems, warns):
             _problem(
                 sec,
                 "elform",
-                f"shell formulation {elform} is not supported (2; 0, 1, 4, 6-8, 10, 11, 16-18, 20 run as 2)",
+                f"shell formulation {elform} is not supported (2, 16, -16; 0, 1, 4, 6-8, 10, 11, 17, 18, 20 run as 2)",
             )
         )
         ok = False
@@ -421,7 +489,7 @@ def _section(sec, part, p, intgrd, problems, warns):
     t = [ti if ti > 0 else t[0] for ti in t]
     shrf = _num(sec, "shrf", 1.0) or 1.0
     rule = 1 if intgrd == 1 and nip >= 3 else 0
-    return (nip, rule, shrf, np.array(t), _num(sec, "marea")) if ok else None
+    return (nip, rule, shrf, np.array(t), _num(sec, "marea"), elform in FULL) if ok else None
 
 
 def _hourglass(model, part, p, ihq0, qh0, problems, warns):
@@ -498,6 +566,7 @@ def build_shell_set(model: Model, rigid_pids, problems: list, warnings: list | N
     nip, rule, shrf = np.full(n, 2, np.int64), np.zeros(n, np.int64), np.ones(n)
     tnode = np.zeros((n, 4))
     marea = np.zeros(n)
+    full = np.zeros(n, np.int8)
     hg_kind, hg_qm, hg_qb, hg_qw = np.zeros(n, np.int64), np.zeros(n), np.zeros(n), np.zeros(n)
     for p in np.unique(pid):
         m = pid == p
@@ -530,7 +599,7 @@ def build_shell_set(model: Model, rigid_pids, problems: list, warnings: list | N
         if got is None or hg is None:
             continue
         mat_of[m] = mat_rows[mid]
-        nip[m], rule[m], shrf[m], tnode[m], marea[m] = got
+        nip[m], rule[m], shrf[m], tnode[m], marea[m], full[m] = got
         hg_kind[m], hg_qm[m], hg_qb[m], hg_qw[m] = hg
     if not mtypes:
         return None
@@ -594,6 +663,7 @@ def build_shell_set(model: Model, rigid_pids, problems: list, warnings: list | N
         rotascl,
         warns,
         _isdo(model, problems),
+        full * (1 - tri),  # an ELFORM 16 triangle runs as the C0 triangle
     )
     if warnings is not None:
         warnings.extend(warns)
