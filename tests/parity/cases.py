@@ -351,13 +351,8 @@ def _plate() -> Case:
         measure=measure_plate,
         bounds={"IEmax": 0.05, "cycles": 0.05},
         d3plot=UQ_FOLDER,
-        field_bounds={"u_field": 5.0, "stress_field": 10.0},
-        known={
-            q: "ELFORM 16 (fully integrated) runs as ELFORM 2 (one point, viscous hourglass control): "
-            "displacements within 0.5 % and stresses within 1 % of LS-DYNA's while driven (10 ms), then "
-            "the free swing takes about 2 % longer per period than LS-DYNA's"
-            for q in ("u_field", "stress_field")
-        },
+        # the stresses at the last state, after 28 ms of free swing, against single-precision output
+        field_bounds={"u_field": 1.0, "stress_field": 2.0},
     )
     if available(case):
         case.reference = lsdyna_plate(repo_dir(case) / UQ_FOLDER)
