@@ -79,6 +79,9 @@ NEUTRAL = (
     "DATABASE_BINARY_D3PLOT",
     "DATABASE_CROSS_SECTION",
 )
+# run although the reader keeps them verbatim: the reader resolves parameters and includes, the solids read
+# *CONTROL_BULK_VISCOSITY's fields themselves
+READ_VERBATIM = ("CONTROL_BULK_VISCOSITY", "PARAMETER", "INCLUDE")
 # definitions that act only through a card naming them (see the module text); the PART field naming each kind
 DEFINITIONS = {"MAT_": "mid", "SECTION_": "secid", "EOS_": "eosid", "HOURGLASS": "hgid", "DEFINE_": None, "SET_": None}
 PASSED = "passed over"  # how a passed-over card's warning begins (run() names each card once)
@@ -130,7 +133,7 @@ def unsupported_cards(model: Model, extra_run: tuple[str, ...] = (), warnings: l
         name = _name(rec)
         file, line = _where(rec)
         raw = isinstance(rec, RawKeyword)  # kept verbatim: an option or variant the reader does not type
-        if name.startswith(NEUTRAL if raw else known) or (file, line, name) in seen:
+        if name.startswith(NEUTRAL + READ_VERBATIM if raw else known) or (file, line, name) in seen:
             continue
         seen.add((file, line, name))
         if name.startswith(passed):

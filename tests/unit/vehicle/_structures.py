@@ -83,8 +83,9 @@ def shell_model(xyz, quads, thickness=1.0, pids=None, young=E, poisson=NU, densi
     m.shells = sh
     m.materials[1] = record("MAT_ELASTIC", mid=1, ro=density, e=young, pr=poisson)
     for p in np.unique(sh.pid):
+        # the one-point shell of the generic car (the figures of these structures' tests were measured with it)
         m.sections[int(p)] = record(
-            "SECTION_SHELL", secid=int(p), elform=16, t1=thickness, t2=thickness, t3=thickness, t4=thickness
+            "SECTION_SHELL", secid=int(p), elform=2, t1=thickness, t2=thickness, t3=thickness, t4=thickness
         )
         m.parts[int(p)] = record("PART", heading=f"part {int(p)}", pid=int(p), secid=int(p), mid=1)
     return m
