@@ -203,8 +203,13 @@ def lsdyna_cantilever(folder: Path) -> dict:
         n = out["nodout"]
         k = list(n["ids"]).index(5)
         ref.update(uz5=float(n["z_displacement"][-1, k]), ux5=float(n["x_displacement"][-1, k]))
-    ref["cycles"] = float(re.findall(r"for\s+(\d+)\s+cycles", (folder / "d3hsp").read_text(errors="replace"))[-1])
+    ref["cycles"] = d3hsp_cycles(folder)
     return ref
+
+
+def d3hsp_cycles(folder: Path) -> float:
+    """The cycle count of LS-DYNA's d3hsp in ``folder`` (its closing "... for N cycles")."""
+    return float(re.findall(r"for\s+(\d+)\s+cycles", (folder / "d3hsp").read_text(errors="replace"))[-1])
 
 
 def _cantilevers() -> list[Case]:
@@ -320,8 +325,7 @@ def lsdyna_plate(folder: Path) -> dict:
     from lasso.dyna import ArrayType, D3plot
 
     a = D3plot(str(folder / "d3plot")).arrays
-    cycles = re.findall(r"for\s+(\d+)\s+cycles", (folder / "d3hsp").read_text(errors="replace"))[-1]
-    return {"IEmax": float(np.max(a[ArrayType.global_internal_energy])), "cycles": float(cycles)}
+    return {"IEmax": float(np.max(a[ArrayType.global_internal_energy])), "cycles": d3hsp_cycles(folder)}
 
 
 def measure_plate(res) -> dict:

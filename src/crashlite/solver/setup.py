@@ -316,12 +316,17 @@ def _constraints(model: Model, problems: list) -> tuple[np.ndarray, np.ndarray, 
     return fixed, fixed_rot, skew
 
 
+def _end_time(model: Model) -> float:
+    """*CONTROL_TERMINATION ENDTIM (0 without the card)."""
+    term = model.find("CONTROL_TERMINATION")
+    return float(term[0].get("endtim", 0.0) or 0.0) if term else 0.0
+
+
 def _spc_whole_run(model: Model, rec, problems: list) -> bool:
     """Whether every constraint of a *BOUNDARY_SPC_..._BIRTH_DEATH card holds
     from the start to the end time (then it is a plain SPC); constraints
     that start or end inside the run are refused, not held throughout."""
-    term = model.find("CONTROL_TERMINATION")
-    end = float(term[0].get("endtim", 0.0) or 0.0) if term else 0.0
+    end = _end_time(model)
     rows = rec.rows
     for fld, inside in (("birth", rows["birth"] > 0.0), ("death", rows["death"] < end)):
         if inside.any():
@@ -901,7 +906,7 @@ def _build(model: Model) -> Setup:
     constraints = _constraint_objects(model, mass, rot_inertia, v0, w0, in_body, problems)
     term = model.find("CONTROL_TERMINATION")
     ts = model.find("CONTROL_TIMESTEP")
-    end_time = float(term[0].get("endtim", 0.0)) if term else 0.0
+    end_time = _end_time(model)
     if end_time <= 0:
         problems.append(Problem(model.source or "", 0, "CONTROL_TERMINATION", "ENDTIM", "an end time > 0 is needed"))
     end_cycle = int(term[0].get("endcyc", 0) or 0) if term else 0
