@@ -11,7 +11,7 @@ import pytest
 from _contact_decks import STEEL, Deck, momentum, run
 
 from crashlite import read_deck
-from crashlite.solver.contact import build_surface
+from crashlite.solver.contact_build import build_surface
 from crashlite.solver.kernels.contact import CAP, find_candidates
 from crashlite.solver.results import Results
 from crashlite.solver.setup import SetupError, build

@@ -728,7 +728,7 @@ def _element_groups(model: Model, rigid: np.ndarray, n: int, problems: list, war
     matrices = build_superelements(model, problems)
     if matrices is not None:
         groups.append(matrices)
-    from .contact import build_contacts
+    from .contact_build import build_contacts
 
     return groups + build_contacts(model, groups, problems)  # after the elements: they add to their forces
 
