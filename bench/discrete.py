@@ -19,8 +19,9 @@ import numba
 import numpy as np
 
 from crashlite.solver import integrate
+from crashlite.solver.discretes import Discrete
 from crashlite.solver.kernels.discrete import LINEAR
-from crashlite.solver.setup import Discrete, Setup
+from crashlite.solver.setup import Setup
 
 
 def chain(n: int, cycles: int) -> Setup:
