@@ -30,6 +30,7 @@ import numpy as np
 
 from .groups import ElementGroup
 from .kernels import contact as kc
+from .state import State
 
 BSORT_DEFAULT = 100  # cycles between bucket sorts (BSORT)
 
@@ -170,7 +171,7 @@ class ContactGroup(ElementGroup):
     def lumped(self, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
         return np.zeros(n_nodes), np.zeros(n_nodes)
 
-    def critical_dt(self, st) -> float:
+    def critical_dt(self, st: State) -> float:
         return np.inf  # the penalty is sized to the elements' step (SOFT = 1: to the initial step)
 
     def _sort(self, x) -> None:
@@ -190,7 +191,7 @@ class ContactGroup(ElementGroup):
         ) / nn
         self._sort(st.x)
 
-    def forces(self, st) -> None:
+    def forces(self, st: State) -> None:
         c = self.c
         if self._smass is None:
             self._first(st)

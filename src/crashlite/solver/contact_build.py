@@ -29,13 +29,17 @@ not run are refused with a Problem naming the field.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from types import SimpleNamespace
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..keyword.errors import Problem
+from ..keyword.schema import Record
 from ..model.model import Model
 from .contact import BSORT_DEFAULT, ContactGroup, Interface, Surface, concat
+from .groups import ElementGroup
 from .kernels.solid import N_CHUNKS, N_WORK, solid_volumes
 
 KINDS = (
@@ -250,7 +254,14 @@ def _areas(x, seg):
 
 
 def build_surface(
-    model: Model, pids, slsfac: float, sf: float, thick: float, thick_scale: float, problems: list, rec
+    model: Model,
+    pids: ArrayLike,
+    slsfac: float,
+    sf: float,
+    thick: float,
+    thick_scale: float,
+    problems: list,
+    rec: Record | None,
 ) -> Surface:
     """Segments of the parts ``pids``: shells and exterior solid faces, with
     their thickness (``thick`` > 0 replaces the shells'; else scaled by
@@ -561,7 +572,7 @@ def _initial_dt(model: Model, groups) -> float:
     return tssfac * min(dts, default=np.inf)
 
 
-def build_contacts(model: Model, groups, problems: list) -> list[ContactGroup]:
+def build_contacts(model: Model, groups: Sequence[ElementGroup], problems: list) -> list[ContactGroup]:
     """One ContactGroup per *CONTACT_AUTOMATIC_{SINGLE_SURFACE,
     NODES_TO_SURFACE, SURFACE_TO_SURFACE} card, in deck order; ``groups``:
     the element groups (their initial step sizes SOFT = 1). Cards with

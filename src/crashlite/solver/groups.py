@@ -8,10 +8,13 @@ New families (shells, solids) join the loop by being a group.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+
 import numpy as np
 
 from .kernels.beam import beam_forces, energy_step6, gather_ends
 from .kernels.discrete import discrete_forces, energy_step, gather, incidence
+from .state import State
 
 
 class ElementGroup:
@@ -29,7 +32,7 @@ class ElementGroup:
     energy: np.ndarray
     hourglass: np.ndarray | None = None
 
-    def forces(self, st) -> None:
+    def forces(self, st: State) -> None:
         """Add this group's forces ON the nodes to st.f (moments to st.moment)."""
         raise NotImplementedError
 
@@ -80,7 +83,7 @@ class DiscreteGroup(ElementGroup):
         self.energy = np.zeros(ne)
         self._ptr, self._elem, self._sign = incidence(n_nodes, d.n1, d.n2)
 
-    def forces(self, st) -> None:
+    def forces(self, st: State) -> None:
         d = self.d
         if not len(d.ids):
             return
@@ -145,7 +148,7 @@ class BeamGroup(ElementGroup):
         np.add.at(ptr, corner_nodes + 1, 1)
         self._ptr = np.cumsum(ptr)
 
-    def forces(self, st) -> None:
+    def forces(self, st: State) -> None:
         bm = self.bm
         beam_forces(
             st.x,
@@ -181,7 +184,7 @@ class BeamGroup(ElementGroup):
         return self.me
 
 
-def part_energy(groups, part_ids: np.ndarray, attr: str = "energy") -> np.ndarray:
+def part_energy(groups: Iterable[ElementGroup], part_ids: np.ndarray, attr: str = "energy") -> np.ndarray:
     """(n_parts,) sum of a per-element energy over the groups, per part."""
     out = np.zeros(len(part_ids))
     for g in groups:

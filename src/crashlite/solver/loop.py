@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import time as _time
 from collections.abc import Callable
-from dataclasses import dataclass, fields
+from dataclasses import fields
 from pathlib import Path
 
 import numpy as np
@@ -24,36 +24,9 @@ from .parts import PartAccount
 from .results import Results, element_counts
 from .sections import section_forces
 from .setup import Setup, SetupError, build
+from .state import State
 from .timestep import MAX_CYCLES, scale_masses, smallest_step, stable_dt, step_problem
 from .walls import Walls
-
-
-@dataclass
-class State:
-    """The arrays every part of the loop reads and writes.
-
-    x, v, f (n, 3): coordinates, half-step velocities, nodal forces;
-    rot (n, 3, 3), w (n, 3), moment (n, 3): nodal rotations (integrated
-    only when beams read them), angular velocities and moments (nodes with
-    rotational inertia); mass, inv_mass,
-    rot_inertia, inv_j (n,); fixed, fixed_rot (n, 3) held DOFs; t the time
-    and dt the step just taken (0 at the first force evaluation).
-    """
-
-    x: np.ndarray
-    v: np.ndarray
-    f: np.ndarray
-    rot: np.ndarray
-    w: np.ndarray
-    moment: np.ndarray
-    mass: np.ndarray
-    inv_mass: np.ndarray
-    rot_inertia: np.ndarray
-    inv_j: np.ndarray
-    fixed: np.ndarray
-    fixed_rot: np.ndarray
-    t: float = 0.0
-    dt: float = 0.0
 
 
 def _state(s: Setup) -> State:
@@ -594,7 +567,12 @@ def _results(s, rec, groups, parts, walls, st, locals_) -> Results:
     )
 
 
-def run(model_or_path, out=None, quiet: bool = True, output_dt: float | None = None) -> Results:
+def run(
+    model_or_path: Model | Path | str,
+    out: Path | str | None = None,
+    quiet: bool = True,
+    output_dt: float | None = None,
+) -> Results:
     """Run a deck (path) or Model; results saved to ``out`` when given."""
     from .. import read_deck
 

@@ -15,9 +15,13 @@ kinetic-energy jump from the kicked velocity instead counts a spurious
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from .kernels.motion import prescribe_nodes
+from .rigid import RigidBody
+from .state import State
 
 
 class Motions:
@@ -27,7 +31,7 @@ class Motions:
         self.bodies = {b.body_id: b for b in bodies}
         self.cog0 = {b.body_id: b.cog.copy() for b in bodies}
 
-    def apply(self, st, t: float, dt_v: float, dt: float, place) -> float:
+    def apply(self, st: State, t: float, dt_v: float, dt: float, place: Callable[[RigidBody], None]) -> float:
         """Prescribed velocities for the half step t .. t + dt (dt_v: time
         since the previous half step; the nodal forces st.f of time t have
         already been applied over dt_v); returns the work the prescriptions

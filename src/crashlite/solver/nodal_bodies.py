@@ -11,6 +11,7 @@ import numpy as np
 from ..keyword.errors import Problem
 from ..model.model import Model
 from .records import _node_set, _problem
+from .rigid import RigidBody
 
 
 def node_inertia(model: Model, problems: list) -> np.ndarray:
@@ -96,8 +97,14 @@ def _no_inertia_problem(model: Model, rec, body, used, mass) -> Problem | None:
 
 
 def build_nodal_bodies(
-    model: Model, x, v, mass, problems: list, used: np.ndarray | None = None, rot_inertia: np.ndarray | None = None
-) -> list:
+    model: Model,
+    x: np.ndarray,
+    v: np.ndarray,
+    mass: np.ndarray,
+    problems: list,
+    used: np.ndarray | None = None,
+    rot_inertia: np.ndarray | None = None,
+) -> list[RigidBody]:
     from .rigid import build_body
 
     bodies = []

@@ -20,8 +20,14 @@ what a first move leaves or causes.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from ..keyword.errors import Problem
+    from .contact import ContactGroup
 
 MAX_PASSES = 12
 
@@ -35,7 +41,7 @@ class Moved:
     tracked: bool = False  # IGNORE 1, 2: kept and tracked
 
 
-def remove_initial_penetrations(contacts, x: np.ndarray, movable: np.ndarray) -> list[Moved]:
+def remove_initial_penetrations(contacts: list[ContactGroup], x: np.ndarray, movable: np.ndarray) -> list[Moved]:
     """Move the penetrating slave nodes of ``contacts`` (ContactGroup, active
     at t = 0) out of their segments in ``x`` (n, 3), in place; ``movable``
     (n,) bool. Contacts with IGNORE 1 or 2 keep them: their groups' offsets
@@ -72,7 +78,7 @@ def remove_initial_penetrations(contacts, x: np.ndarray, movable: np.ndarray) ->
     return list(found.values())
 
 
-def report(moved: list[Moved], names: dict[int, str], node_ids: np.ndarray, source: str):
+def report(moved: list[Moved], names: dict[int, str], node_ids: np.ndarray, source: str) -> list[Problem]:
     """One warning (keyword.errors.Problem) per interface with initial
     penetrations: how many nodes were moved, the deepest, those that could not."""
     from ..keyword.errors import Problem
@@ -113,7 +119,7 @@ def report(moved: list[Moved], names: dict[int, str], node_ids: np.ndarray, sour
     return out
 
 
-def write_csv(path, moved: list[Moved], node_ids: np.ndarray) -> None:
+def write_csv(path: Path, moved: list[Moved], node_ids: np.ndarray) -> None:
     """contact, node ID, initial penetration, moved out (1) or not (0), tracked (1: IGNORE 1, 2)."""
     lines = ["contact,node,depth,moved,tracked"]
     lines += [

@@ -6,8 +6,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field, fields
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from ..model.model import Model
 
 
 def _empty(*trailing: int):
@@ -117,7 +121,7 @@ class Results:
         ratio = self.total / np.where(supplied != 0, supplied, 1.0)
         return np.where((supplied == 0) & (self.total == 0), 1.0, ratio)
 
-    def save(self, directory, title: str | None = None) -> Path:
+    def save(self, directory: Path | str, title: str | None = None) -> Path:
         """results.npz (every array, full precision) and the LS-DYNA ASCII
         files that have data (glstat always; matsum, nodout, rwforc,
         deforc, secforc, spcforc, rcforc when the run has their entities)."""
@@ -155,7 +159,7 @@ class Results:
         }
 
     @classmethod
-    def load(cls, path) -> Results:
+    def load(cls, path: Path | str) -> Results:
         """A results.npz (or the folder holding it); histories the file
         lacks (written by an older crashlite) come back empty."""
         with np.load(Path(path) / "results.npz" if Path(path).is_dir() else path) as z:
@@ -184,7 +188,7 @@ def _xyz(out: dict, array: np.ndarray, fmt: str):
         out[fmt.format(axis)] = array[:, :, k]
 
 
-def categories(res) -> dict:
+def categories(res: Results) -> dict:
     """A crashlite Results as LS-DYNA history categories (Binout names).
     Optional histories the run did not record are left out."""
     t = res.time
@@ -284,7 +288,7 @@ def _rcforc(res) -> dict:
     return out
 
 
-def element_counts(model) -> dict[str, int]:
+def element_counts(model: Model) -> dict[str, int]:
     """Elements of a Model by LS-DYNA element type, as a d3hsp counts them
     (rigid ones included; point masses as "mass")."""
     counts = {

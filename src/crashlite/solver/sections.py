@@ -24,12 +24,14 @@ nodes with +95.5 kN."""
 
 from __future__ import annotations
 
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..keyword.errors import Problem
 from ..model.model import Model
+from .groups import ElementGroup
 
 
 @dataclass
@@ -41,7 +43,7 @@ class Section:
     beam_ends: np.ndarray  # (j,)
     corners: dict = field(default_factory=dict)  # group kind ("shell", "solid") -> (elements (m,), corners (m,))
 
-    def cuts(self):
+    def cuts(self) -> Iterator[tuple[str, np.ndarray, np.ndarray]]:
         """(group kind, element indices, corner indices) of the cut elements."""
         yield "discrete", self.disc_elems, self.disc_ends
         yield "beam", self.beam_elems, self.beam_ends
@@ -112,7 +114,9 @@ def _region(rec, point: np.ndarray, normal: np.ndarray):
     return None
 
 
-def build_sections(model: Model, beam_ids: np.ndarray, problems: list, groups=()) -> list[Section]:
+def build_sections(
+    model: Model, beam_ids: np.ndarray, problems: list, groups: Sequence[ElementGroup] = ()
+) -> list[Section]:
     """The sections of a deck; ``groups`` the solver's element groups
     (shells and solids are cut through their group's element indices)."""
     out = []
@@ -170,7 +174,9 @@ def build_sections(model: Model, beam_ids: np.ndarray, problems: list, groups=()
     return out
 
 
-def section_forces(sections: list[Section], groups, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def section_forces(
+    sections: list[Section], groups: Sequence[ElementGroup], x: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """Force and moment (n_sections, 3) through each section: minus the sum
     of the cut elements' corner forces on the section-side nodes (the
     elements' internal force there), and its moment (plus the corner moments

@@ -30,6 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..keyword.errors import Problem
 from ..model.model import Model
@@ -38,6 +39,7 @@ from .kernels import plane_stress as ps
 from .kernels.shell import scratch, shell_forces, shell_timestep
 from .kernels.shell_full import full_forces
 from .kernels.solid import corner_incidence, gather_corner_pair
+from .state import State
 
 _AS_BT = (0, 1, 2, 4, 6, 7, 8, 10, 11, 17, 18, 20)
 FULL = (16, -16)  # fully integrated (kernels.shell_full)
@@ -143,7 +145,7 @@ def new_state(s: ShellSet, n_nodes: int) -> ShellState:
     )
 
 
-def compute_forces(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
+def compute_forces(s: ShellSet, st: ShellState, x: np.ndarray, v: np.ndarray, w: np.ndarray, dt: float) -> None:
     """Advance the shells' state to t(n+1) and fill st.fe, st.me: the
     one-point elements and triangles (kernels.shell), then the fully
     integrated ones (kernels.shell_full)."""
@@ -524,7 +526,9 @@ def _hourglass(model, part, p, ihq0, qh0, problems, warns):
     return (VISCOUS if ihq <= 3 else STIFFNESS), qm, (qb or qm), (qw or qm)
 
 
-def build_shell_set(model: Model, rigid_pids, problems: list, warnings: list | None = None) -> ShellSet | None:
+def build_shell_set(
+    model: Model, rigid_pids: ArrayLike, problems: list, warnings: list | None = None
+) -> ShellSet | None:
     """Shells of the deformable parts, or None if there are none. Problems
     (unsupported options, missing data) go to ``problems``; options run in
     an approximated way to ``warnings`` (and the set's ``warnings``)."""
@@ -690,7 +694,7 @@ class ShellGroup(ElementGroup):
         self._dt = self.st.step
         self._fresh = False  # the kernel's steps are those of the current positions
 
-    def forces(self, st) -> None:
+    def forces(self, st: State) -> None:
         compute_forces(self.s, self.st, st.x, st.v, st.w, st.dt)
         self._fresh = True
         gather_corner_pair(self.st.node_ptr, self.st.corner_of, self._frows, st.f, self._mrows, st.moment)
@@ -707,7 +711,7 @@ class ShellGroup(ElementGroup):
     def lumped(self, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
         return lumped(self.s, n_nodes)
 
-    def critical_dt(self, st) -> float:
+    def critical_dt(self, st: State) -> float:
         """The smallest element step at st.x: the one the forces just
         computed (the time loop asks right after them), else computed."""
         if not self._fresh:
@@ -721,7 +725,9 @@ class ShellGroup(ElementGroup):
         return int(np.count_nonzero(self.st.alive != 1))
 
 
-def build_shells(model: Model, rigid_pids, problems: list, warnings: list | None = None) -> ShellGroup | None:
+def build_shells(
+    model: Model, rigid_pids: ArrayLike, problems: list, warnings: list | None = None
+) -> ShellGroup | None:
     """The shell group of a Model (None without deformable shells); see
     ``build_shell_set`` for ``problems`` and ``warnings``."""
     s = build_shell_set(model, rigid_pids, problems, warnings)

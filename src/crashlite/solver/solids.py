@@ -16,6 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..keyword.errors import Problem
 from ..keyword.schema import RawKeyword
@@ -31,6 +32,7 @@ from .kernels.solid import (
     solid_timestep,
     solid_volumes,
 )
+from .state import State
 
 _AS_ONE_POINT = (0, 2, -1, -2)
 
@@ -411,7 +413,7 @@ def _axes(x, conn, aopt, a_vec, d_vec):
     return q
 
 
-def build_solids(model: Model, rigid_pids, problems: list, warnings: list | None = None) -> SolidSet | None:
+def build_solids(model: Model, rigid_pids: ArrayLike, problems: list, warnings: list | None = None) -> SolidSet | None:
     """Solids of the deformable parts, or None if there are none. Problems
     (unsupported options, missing data) are appended to ``problems``;
     options run in an approximated way are reported in ``warnings`` (and
@@ -605,7 +607,7 @@ class SolidGroup(ElementGroup):
         self._dt_first = 0.0
         self.erosions = 0  # elements deleted by ERODE (inverted or below the step limit)
 
-    def forces(self, st) -> None:
+    def forces(self, st: State) -> None:
         compute_forces(self.s, self.st, st.x, st.v, st.dt)
         if self.s.erode and self.st.alive.min() < 0:  # deleted: its mass stays, it carries no more force
             self.erosions += int(np.count_nonzero(self.st.alive < 0))
@@ -628,7 +630,7 @@ class SolidGroup(ElementGroup):
     def lumped(self, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
         return lumped_mass(self.s, n_nodes), np.zeros(n_nodes)
 
-    def critical_dt(self, st) -> float:
+    def critical_dt(self, st: State) -> float:
         s, g = self.s, self.st
         solid_timestep(st.x, s.conn, g.alive, g.vol, s.rho0, s.vol0, g.cmod, g.rate, s.q1, s.q2, self._dt)
         if not len(self._dt):
@@ -649,7 +651,9 @@ class SolidGroup(ElementGroup):
         return int(np.count_nonzero(self.st.alive != 1))
 
 
-def build_solid_group(model: Model, rigid_pids, problems: list, warnings: list | None = None) -> SolidGroup | None:
+def build_solid_group(
+    model: Model, rigid_pids: ArrayLike, problems: list, warnings: list | None = None
+) -> SolidGroup | None:
     """The solids of a Model as a time-loop group (see build_solids), or None."""
     s = build_solids(model, rigid_pids, problems, warnings)
     return SolidGroup(s, len(model.nodes.xyz)) if s is not None and len(s) else None

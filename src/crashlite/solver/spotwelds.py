@@ -27,6 +27,7 @@ from numba import njit
 
 from ..keyword.errors import Problem
 from ..model.model import Model
+from .state import State
 from .tied import _solve3
 
 _LOG = logging.getLogger(__name__)
@@ -230,7 +231,7 @@ class SpotWelds:
             self._jrot = np.asarray(st.rot_inertia, float)
         return self._jrot
 
-    def forces(self, st) -> None:
+    def forces(self, st: State) -> None:
         if not self.alive.any():
             return
         t = float(getattr(st, "t", 0.0))
@@ -258,7 +259,7 @@ class SpotWelds:
         for k in np.flatnonzero(self.alive & (self.crit >= 1.0)):
             self._fail(k, t, "force")
 
-    def velocities(self, st) -> None:
+    def velocities(self, st: State) -> None:
         if self.alive.any():
             weld_velocities(self.ptr, self.nodes, self.alive, st.x, st.v, st.w, st.mass, self._rot(st))
 

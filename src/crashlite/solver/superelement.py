@@ -23,6 +23,7 @@ from ..keyword.errors import Problem
 from ..model.model import Model
 from .groups import ElementGroup
 from .kernels.matrix import matrix_forces
+from .state import State
 
 
 class SuperelementGroup(ElementGroup):
@@ -57,11 +58,11 @@ class SuperelementGroup(ElementGroup):
                 np.add.at(mass, nodes[x], m[x])
         return mass, np.zeros(n_nodes)
 
-    def forces(self, st) -> None:
+    def forces(self, st: State) -> None:
         for e, (n, c, k) in enumerate(zip(self.dof_nodes, self.dof_comps, self.k)):
             self.energy[e] = matrix_forces(k, st.x, self._x0[e], n, c, self._u[e], self._f[e], st.f)
 
-    def critical_dt(self, st) -> float:
+    def critical_dt(self, st: State) -> float:
         if getattr(st, "mass", None) is None:  # asked for the elements' geometric steps only (contact SOFT = 1)
             return np.inf
         if self._dt is None:

@@ -33,6 +33,7 @@ from numba import njit
 
 from ..keyword.errors import Problem
 from ..model.model import Model
+from .state import State
 
 # hexahedron faces (LS-DYNA node order) for the exterior of solid parts
 _HEX_FACES = np.array([[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]])
@@ -227,13 +228,13 @@ class TiedContact:
     def __len__(self) -> int:
         return len(self.slave)
 
-    def forces(self, st) -> None:
+    def forces(self, st: State) -> None:
         if len(self.slave):
             tie_forces(
                 self.slave, self.seg, self.w, self.nn, self.offset, self.rotations, self.mrot, st.x, st.f, st.moment
             )
 
-    def velocities(self, st) -> None:
+    def velocities(self, st: State) -> None:
         if len(self.slave):
             tie_velocities(
                 self.slave, self.seg, self.w, self.nn, self.offset, self.rotations, self.mrot, st.x, st.v, st.w
@@ -492,7 +493,9 @@ def _closest_tri(p, a, b, c):
     return best_w
 
 
-def project(points: np.ndarray, x: np.ndarray, seg: np.ndarray, tol: np.ndarray):
+def project(
+    points: np.ndarray, x: np.ndarray, seg: np.ndarray, tol: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Nearest segment of each point: (segment index (-1: none within
     reach), weights (P, 4), distance (P,)). ``tol`` (n_seg,) the search
     distance of each segment."""

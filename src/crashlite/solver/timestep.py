@@ -1,12 +1,19 @@
 """Stable time step of discrete elements (nodal rule)."""
 
+from __future__ import annotations
+
+from collections.abc import Sequence
+
 import numpy as np
 
+from .discretes import Discrete
+from .groups import ElementGroup
 from .kernels.discrete import CURVE, DAMPER, GENERAL, INELASTIC
 from .setup import Setup
+from .state import State
 
 
-def stiffness(d) -> np.ndarray:
+def stiffness(d: Discrete) -> np.ndarray:
     """Largest stiffness (damping constant for dampers) of each element:
     the steepest curve slope for non-linear springs, or KU if steeper."""
     k = np.abs(d.k * d.scale)
@@ -82,7 +89,7 @@ def discrete_dt(s: Setup) -> np.ndarray:
 MAX_CYCLES = 1e9
 
 
-def smallest_step(s: Setup, groups, st) -> tuple[float, str]:
+def smallest_step(s: Setup, groups: Sequence[ElementGroup], st: State) -> tuple[float, str]:
     """(step, description) of the element with the smallest critical step
     (TSSFAC applied), naming it, its nodes and, for rigid-body nodes, the
     body and its effective mass there; for diagnoses."""

@@ -10,12 +10,15 @@ takes the opposite impulses, so momentum is conserved.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from .kernels.integrate import copy_rows
 from .kernels.rigid import plane_reach
 from .kernels.rigidwall import N_CHUNKS, cylinder_wall, planar_wall
-from .rigid import cross
+from .rigid import RigidBody, cross
+from .state import State
 
 
 class Walls:
@@ -41,7 +44,7 @@ class Walls:
                 by_body.setdefault(int(owner[i]), []).append(int(i))
             self.body_nodes.append([(bodies[k], np.array(v, np.int64)) for k, v in by_body.items()])
 
-    def snapshot(self, v) -> None:
+    def snapshot(self, v: np.ndarray) -> None:
         """Velocities before the velocity update: the energy a wall takes is
         the work of its impulses over the step (kernels.rigidwall)."""
         if self.walls:
@@ -54,7 +57,7 @@ class Walls:
         for k, w in enumerate(self.walls):
             self.point[k] += dt * self.velocity[k] * w.normal
 
-    def apply(self, st, t: float, dt: float, place) -> float:
+    def apply(self, st: State, t: float, dt: float, place: Callable[[RigidBody], None]) -> float:
         """Correct the velocities for the next step ``dt``; returns the
         energy the walls took out of the model over the step (the work of
         their impulses, kernels.rigidwall, and what the rigid bodies lost)."""
