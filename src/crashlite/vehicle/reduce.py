@@ -30,10 +30,13 @@ from __future__ import annotations
 
 import json
 import time
+from collections.abc import Collection, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..model.model import Model
 from .connection.condense import relieved_condensation
@@ -42,10 +45,13 @@ from .connection.connection import compare_connection, connection_stiffness
 from .connection.modes import free_modes, held_modes
 from .steps import loadpaths as lp
 from .steps.cut import Cut, cut_behind
-from .steps.massprops import ReplacedMass, replaced_mass
+from .steps.massprops import NodeSelection, ReplacedMass, replaced_mass
 from .steps.relief import relieved_stiffness
 from .steps.stiffness import StiffnessResult, longitudinal_stiffness
 from .steps.surrogate import Surrogate, build_surrogate
+
+if TYPE_CHECKING:
+    from ..results.history import History
 
 
 @dataclass
@@ -123,7 +129,7 @@ class Reduction:
             "notes": list(self.notes),
         }
 
-    def write(self, deck_path, report_dir=None, fmt: str = "fixed") -> dict:
+    def write(self, deck_path: Path | str, report_dir: Path | str | None = None, fmt: str = "fixed") -> dict:
         """The simplified deck at ``deck_path``; reduction.json and
         reduction.html in ``report_dir`` (default: beside the deck)."""
         from ..report.build import jsonable
@@ -141,7 +147,7 @@ class Reduction:
         return written
 
 
-def section_assemblies(model: Model, names=None) -> tuple[dict, dict, np.ndarray | None]:
+def section_assemblies(model: Model, names: Collection[str] | None = None) -> tuple[dict, dict, np.ndarray | None]:
     """Assemblies of the deck's cross sections: (name -> part IDs of the
     section's part set, name -> section ID, the common plane point or None).
     ``names``: the section titles to use (default every titled plane section
@@ -182,15 +188,15 @@ def _support(model: Model, support):
 
 
 def reduce_vehicle(
-    deck,
-    results,
-    load_cases=None,
-    interface=None,
-    axis=(1.0, 0.0, 0.0),
-    assemblies=None,
-    support=None,
-    axle_parts=None,
-    shares="combined",
+    deck: Model | Path | str,
+    results: History | Path | str | Sequence[History | Path | str],
+    load_cases: Sequence[str] | None = None,
+    interface: float | None = None,
+    axis: ArrayLike = (1.0, 0.0, 0.0),
+    assemblies: dict[str, int | str | Iterable[int | str]] | None = None,
+    support: NodeSelection | None = None,
+    axle_parts: int | str | Iterable[int | str] | None = None,
+    shares: str = "combined",
     t_end: float | None = None,
     interface_mode: str = "rigid",
     spring_length: float = 100.0,

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import json
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -37,13 +38,13 @@ class Study:
 
 
 def us_ncap_study(
-    out,
+    out: Path | str,
     mesh_size: float = 38.0,
     end_time: float = 0.08,
     interface_x: float = -600.0,
     speed_kmh: float = 56.0,
     quiet: bool = True,
-    say=print,
+    say: Callable[[str], None] = print,
     twin: bool = False,
     **reduce_options,
 ) -> Study:
@@ -186,7 +187,7 @@ def _slug(name: str) -> str:
 
 
 def paper_study(
-    out,
+    out: Path | str,
     mesh_size: float = 38.0,
     barrier_size: float = 50.0,
     usncap_end: float = 0.08,
@@ -195,7 +196,7 @@ def paper_study(
     shares: str = "combined",
     variants: bool = True,
     quiet: bool = True,
-    say=print,
+    say: Callable[[str], None] = print,
     twin: bool = False,
     **reduce_options,
 ) -> PaperStudy:

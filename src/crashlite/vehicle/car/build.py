@@ -10,6 +10,7 @@ their front.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
@@ -32,7 +33,7 @@ class Mesh:
         except ValueError:
             raise KeyError(f"no part named {name!r}") from None
 
-    def nodes_of(self, names) -> np.ndarray:
+    def nodes_of(self, names: Iterable[str]) -> np.ndarray:
         """Sorted unique node indices of the elements of the named parts."""
         k = [self.part_index(n) for n in names]
         return np.unique(self.quads[np.isin(self.part, k)])

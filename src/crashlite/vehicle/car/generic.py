@@ -58,7 +58,7 @@ class GenericVehicle:
     def shells(self) -> int:
         return len(self.model.shells)
 
-    def write(self, path, fmt: str = "fixed") -> Path:
+    def write(self, path: Path | str, fmt: str = "fixed") -> Path:
         from ...keyword.writer import write_deck
 
         return write_deck(self.model, path, fmt=fmt)[0]

@@ -19,6 +19,7 @@ Everything is vectorised (no Python loop per element).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -79,11 +80,11 @@ class Plate:
     lo: tuple[float, float]
     hi: tuple[float, float]
 
-    def keypoints(self):
+    def keypoints(self) -> list[tuple[int, float]]:
         u, v = _others(self.axis)
         return [(self.axis, self.at), (u, self.lo[0]), (u, self.hi[0]), (v, self.lo[1]), (v, self.hi[1])]
 
-    def mesh(self, g: Grid):
+    def mesh(self, g: Grid) -> tuple[np.ndarray, np.ndarray]:
         u, v = _others(self.axis)
         cu, cv = g.span(u, self.lo[0], self.hi[0]), g.span(v, self.lo[1], self.hi[1])
         xyz = np.empty((len(cu), len(cv), 3))
@@ -106,7 +107,7 @@ class Tube:
     profile: tuple[tuple[float, float], ...]
     closed: bool = True
 
-    def keypoints(self):
+    def keypoints(self) -> list[tuple[int, float]]:
         u, v = _others(self.axis)
         return (
             [(self.axis, self.s0), (self.axis, self.s1)]
@@ -118,7 +119,7 @@ class Tube:
         """(m, 2) in-plane coordinates of the profile's grid points."""
         return profile_points(g, self.axis, self.profile, self.closed)
 
-    def mesh(self, g: Grid):
+    def mesh(self, g: Grid) -> tuple[np.ndarray, np.ndarray]:
         u, v = _others(self.axis)
         ring = self.ring(g)
         s = g.span(self.axis, self.s0, self.s1)
@@ -129,7 +130,7 @@ class Tube:
         return xyz.reshape(-1, 3), _grid_quads(len(s), len(ring), wrap=self.closed)
 
 
-def profile_points(g: Grid, axis: int, profile, closed: bool) -> np.ndarray:
+def profile_points(g: Grid, axis: int, profile: Sequence[tuple[float, float]], closed: bool) -> np.ndarray:
     """Grid points along an axis-aligned polyline in the plane normal to ``axis``."""
     u, v = _others(axis)
     pts = list(profile) + ([profile[0]] if closed else [])
@@ -149,7 +150,7 @@ def profile_points(g: Grid, axis: int, profile, closed: bool) -> np.ndarray:
     return np.concatenate(out)
 
 
-def lattice_line(g: Grid, vertices) -> np.ndarray:
+def lattice_line(g: Grid, vertices: Sequence[tuple[float, float, float]]) -> np.ndarray:
     """(m, 3) grid points along a 3D polyline whose segments each run along
     one axis between keypoints."""
     out = []
@@ -177,10 +178,10 @@ class Ruled:
     length: float
     closed: bool = False
 
-    def keypoints(self):
+    def keypoints(self) -> list[tuple[int, float]]:
         return [(ax, p[ax]) for p in self.a + self.b for ax in range(3)]
 
-    def mesh(self, g: Grid):
+    def mesh(self, g: Grid) -> tuple[np.ndarray, np.ndarray]:
         ra, rb = lattice_line(g, self.a), lattice_line(g, self.b)
         if self.closed:
             ra, rb = ra[:-1], rb[:-1]

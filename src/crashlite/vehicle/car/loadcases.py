@@ -54,7 +54,7 @@ class VehicleInfo:
         return float(0.5 * (self.hi[1] + self.lo[1]))
 
 
-def vehicle_info(path, units: str | None = None) -> VehicleInfo:
+def vehicle_info(path: Path | str, units: str | None = None) -> VehicleInfo:
     """Read a vehicle deck for a load case; ``units`` overrides the guess
     from its densities."""
     from ... import read_deck
@@ -178,8 +178,8 @@ def _deck(title: str, includes: list[str], recs: list) -> str:
 
 
 def usncap_deck(
-    car,
-    out,
+    car: Path | str,
+    out: Path | str,
     speed_kmh: float = 56.0,
     end_time: float = 0.1,
     gap: float = 1.0,
@@ -250,8 +250,8 @@ def _rig_wall(v: VehicleInfo, pl, nodes: int):
 
 
 def odb_deck(
-    car,
-    out,
+    car: Path | str,
+    out: Path | str,
     barrier: str = "simplified",
     speed_kmh: float = 64.0,
     overlap: float = 0.4,

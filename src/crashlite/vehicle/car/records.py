@@ -8,6 +8,7 @@ Model read back from its written deck (``keyword.equality``).
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ...keyword.schema import FLOAT, INT, STR, Record, lookup
 
@@ -59,7 +60,7 @@ def record(name: str, rows: dict | None = None, card_title: str | None = None, *
     return Record(spec.name, options, vals, cols, card_title)
 
 
-def id_list(name: str, sid: int, members, title: str | None = None, **values) -> Record:
+def id_list(name: str, sid: int, members: ArrayLike, title: str | None = None, **values) -> Record:
     """A *SET_..._LIST(_TITLE) of ``members`` (IDs), eight per card."""
     m = np.asarray(members, np.int64).ravel()
     n = -(-len(m) // 8)

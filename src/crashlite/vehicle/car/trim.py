@@ -14,9 +14,18 @@ driven negative are dropped and the rest solved again.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 
-def solve(base_mass: float, base_cog, centres, nominal, mass: float, cog, tol: float = 1e-9) -> np.ndarray:
+def solve(
+    base_mass: float,
+    base_cog: ArrayLike,
+    centres: ArrayLike,
+    nominal: ArrayLike,
+    mass: float,
+    cog: ArrayLike,
+    tol: float = 1e-9,
+) -> np.ndarray:
     """Group masses (k,) [mass units of the inputs]; ``centres`` (k, 3) the
     group centres. Raises ValueError when the target cannot be reached with
     non-negative group masses."""

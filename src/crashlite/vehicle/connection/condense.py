@@ -33,9 +33,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..steps.cut import Cut
-from ..steps.massprops import node_indices
+from ..steps.massprops import NodeSelection, node_indices
 from ..steps.relief import _support_321, static_masses
 from ..steps.statics import factor as _factor
 from ..steps.stiffness import build_static
@@ -77,7 +78,7 @@ class Condensation:
         """(N,) the kept modes' frequencies [1/time]."""
         return np.sqrt(self.omega2) / (2.0 * np.pi) if self.omega2 is not None else np.zeros(0)
 
-    def rigid_stiffness(self, point) -> np.ndarray:
+    def rigid_stiffness(self, point: ArrayLike) -> np.ndarray:
         """(6, 6) stiffness of the cut held rigid about ``point`` (force and
         moment against translation and rotation): Tᵀ K_s T."""
         t = rigid_modes(self.xyz_nodes, np.asarray(point, float)).reshape(-1, 6)
@@ -98,7 +99,9 @@ class Condensation:
         }
 
 
-def relieved_condensation(cut: Cut, nodes=None, modes: int = 0, drill: float = 1e-3) -> Condensation:
+def relieved_condensation(
+    cut: Cut, nodes: NodeSelection | None = None, modes: int = 0, drill: float = 1e-3
+) -> Condensation:
     """The replaced structure of ``cut`` condensed onto the translations of
     the cut nodes (default: all its interface nodes) under inertia relief
     (module docstring); with ``modes`` > 0 also its lowest free elastic

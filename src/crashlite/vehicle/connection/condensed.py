@@ -36,6 +36,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ...model import mass as mk
 from ...model.mesh import Discretes, Masses, Nodes
@@ -73,7 +74,7 @@ class CondensedSurrogate(Surrogate):
 
     matrix: tuple | None = None  # (dofs (k, 2) [node ID, component], K)
 
-    def write(self, path, fmt: str = "fixed") -> Path:
+    def write(self, path: Path | str, fmt: str = "fixed") -> Path:
         from ...keyword.dmig import write_dmig
 
         path = Path(path)
@@ -85,7 +86,7 @@ class CondensedSurrogate(Surrogate):
 
 
 def build_condensed_surrogate(
-    cut: Cut, cond: Condensation, mass: ReplacedMass, keep_nodes=None, dashpots: bool = True
+    cut: Cut, cond: Condensation, mass: ReplacedMass, keep_nodes: ArrayLike | None = None, dashpots: bool = True
 ) -> Surrogate:
     """The surrogate deck joined at the cut by the condensed structure
     (module docstring); ``dashpots``: the cut's wave impedance along the

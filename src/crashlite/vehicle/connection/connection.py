@@ -23,9 +23,15 @@ surrogate moves the interface too little or too much relative to the rear.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..steps.stiffness import vehicle_axes
+
+if TYPE_CHECKING:
+    from ..steps.surrogate import Surrogate
 
 DIRECTIONS = ("axial", "lateral", "vertical", "roll", "pitch", "yaw")
 
@@ -73,7 +79,7 @@ def beam_end_stiffness(held: np.ndarray, end: np.ndarray, ea: float, ei: float, 
     return r @ k @ r.T
 
 
-def connection_stiffness(sur, point: np.ndarray) -> np.ndarray:
+def connection_stiffness(sur: Surrogate, point: ArrayLike) -> np.ndarray:
     """6×6 of the surrogate's springs and anti-rotation beam at ``point``:
     the interface body's motion against the rear body (one interface body)."""
     if sur.interface != "rigid":
@@ -87,7 +93,7 @@ def connection_stiffness(sur, point: np.ndarray) -> np.ndarray:
     return k + moved_to(beam, end, point)
 
 
-def vehicle_frame(axis) -> np.ndarray:
+def vehicle_frame(axis: ArrayLike) -> np.ndarray:
     """6×6 rotation into the frame (axis, lateral, vertical) of ``stiffness.vehicle_axes``."""
     f = vehicle_axes(axis)
     r = np.zeros((6, 6))
@@ -95,7 +101,7 @@ def vehicle_frame(axis) -> np.ndarray:
     return r
 
 
-def compare_connection(k_surrogate: np.ndarray, flexibility: np.ndarray, axis) -> dict:
+def compare_connection(k_surrogate: np.ndarray, flexibility: np.ndarray, axis: ArrayLike) -> dict:
     """Per direction of the vehicle frame: compliance (that load alone, the
     rest free) and stiffness (the rest held) of the surrogate and of the
     structure, and the surrogate's over the structure's (module docstring)."""

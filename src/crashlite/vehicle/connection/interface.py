@@ -40,10 +40,12 @@ rigid interface holds the cut flat, and the kept structure's deformation
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ...model.model import Model
 
@@ -152,7 +154,7 @@ def _shell_field(model: Model, results, name: str) -> np.ndarray | None:
     return np.where(k >= 0, values[np.maximum(k, 0)], 0.0)
 
 
-def shell_plastic_strain(model: Model, results) -> np.ndarray | None:
+def shell_plastic_strain(model: Model, results: Path | str) -> np.ndarray | None:
     """(n_shells,) effective plastic strain of every shell of ``model`` at the
     end of the run in the crashlite results folder ``results`` (0 for rigid
     shells, matched by element ID), or None when the run did not record it."""
@@ -174,7 +176,9 @@ def shell_volumes(model: Model) -> np.ndarray:
     return shell_areas(model) * shell_thickness(model)
 
 
-def shell_measures(model: Model, results, states=None) -> tuple[np.ndarray, np.ndarray, dict]:
+def shell_measures(
+    model: Model, results: Path | str, states: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray, dict]:
     """(plastic strain, absorbed energy, how each was obtained) of every
     shell in the run ``results`` (module docstring); ``states``: its field
     states already in the deck's node order (``_aligned_states``)."""
@@ -193,14 +197,14 @@ def shell_measures(model: Model, results, states=None) -> tuple[np.ndarray, np.n
 
 def propose_interface(
     model: Model,
-    results,
+    results: Path | str,
     strain: float = 0.01,
     allowed: float = 0.01,
     energy: float = 0.03,
-    axis=(1.0, 0.0, 0.0),
+    axis: ArrayLike = (1.0, 0.0, 0.0),
     step: float | None = None,
-    also=(),
-    measures=None,
+    also: Iterable[float] = (),
+    measures: tuple[ArrayLike, ArrayLike] | None = None,
 ) -> InterfaceProposal:
     """Candidate planes at the multiples of ``step`` (default: four element
     sizes) along ``axis`` over the model's length, and at the positions
@@ -288,7 +292,9 @@ def _yielded_percent(eps: np.ndarray, area: np.ndarray, limit: float) -> float:
     return 100.0 * float(area[eps > limit].sum() / area.sum()) if area.sum() > 0 else 0.0
 
 
-def part_plastic_strain(model: Model, results, yield_strain: float = 0.002, _ea=None) -> dict:
+def part_plastic_strain(
+    model: Model, results: Path | str, yield_strain: float = 0.002, _ea: tuple[np.ndarray, np.ndarray] | None = None
+) -> dict:
     """Effective plastic strain of every shell part at the end of a
     crashlite run (``shell_plastic_strain``): part title -> largest, 95th
     percentile, area-weighted mean and the share of its area beyond
@@ -311,7 +317,7 @@ def part_plastic_strain(model: Model, results, yield_strain: float = 0.002, _ea=
     return out
 
 
-def assembly_parts(model: Model, names=PASSENGER_CELL) -> np.ndarray:
+def assembly_parts(model: Model, names: Iterable[str] = PASSENGER_CELL) -> np.ndarray:
     """Part IDs of the assemblies ``names`` (their sides included) from the
     part sets titled "assembly <name>" (as the generic car writes them)."""
     want = {n.strip().lower() for n in names}
@@ -331,7 +337,9 @@ def assembly_parts(model: Model, names=PASSENGER_CELL) -> np.ndarray:
     return np.array(sorted(out), np.int64)
 
 
-def cell_plastic_strain(model: Model, results, names=PASSENGER_CELL, yield_strain: float = 0.002) -> dict:
+def cell_plastic_strain(
+    model: Model, results: Path | str, names: Iterable[str] = PASSENGER_CELL, yield_strain: float = 0.002
+) -> dict:
     """The passenger cell's plastic strain at the end of a run (issue 7's
     "stays nearly elastic"): over all shells of the assemblies ``names``,
     the largest, 95th and 99th percentile plastic strain, the share of

@@ -28,9 +28,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
+from numpy.typing import ArrayLike
 from scipy.sparse.linalg import eigsh
 
 from ..steps.cut import Cut
+from ..steps.massprops import NodeSelection
 from ..steps.relief import static_masses
 from ..steps.stiffness import build_static
 from .connection import DIRECTIONS, vehicle_frame
@@ -45,7 +47,7 @@ class FreeModes:
     where: list = field(default_factory=list)  # per mode: {part title: share of its kinetic energy}, the largest
     notes: list = field(default_factory=list)
 
-    def shares(self, flexibility: np.ndarray, axis) -> dict:
+    def shares(self, flexibility: np.ndarray, axis: ArrayLike) -> dict:
         """direction -> (k,) share of the interface's relieved compliance
         (``flexibility``, 6×6 global, at ``point``) each mode carries."""
         r = vehicle_frame(axis)
@@ -54,7 +56,7 @@ class FreeModes:
         lam = (2.0 * np.pi * self.frequencies) ** 2
         return {name: phi[:, j] ** 2 / lam / c[j] for j, name in enumerate(DIRECTIONS)}
 
-    def summary(self, flexibility=None, axis=(1.0, 0.0, 0.0)) -> dict:
+    def summary(self, flexibility: np.ndarray | None = None, axis: ArrayLike = (1.0, 0.0, 0.0)) -> dict:
         out = {
             "frequencies": self.frequencies.tolist(),
             "rigid_modes": self.rigid_modes,
@@ -68,7 +70,9 @@ class FreeModes:
         return out
 
 
-def free_modes(cut: Cut, count: int = 8, interface_nodes=None, drill: float = 1e-3) -> FreeModes:
+def free_modes(
+    cut: Cut, count: int = 8, interface_nodes: NodeSelection | None = None, drill: float = 1e-3
+) -> FreeModes:
     """The ``count`` lowest elastic modes of the replaced structure of ``cut``,
     free, its interface nodes one rigid body (module docstring)."""
     ls, master, _, m, u, lam, rigid, notes = _eigen(cut, count, "rigid", interface_nodes, drill)
@@ -104,7 +108,9 @@ class HeldModes:
         }
 
 
-def held_modes(cut: Cut, count: int = 8, interface_nodes=None, drill: float = 1e-3) -> HeldModes:
+def held_modes(
+    cut: Cut, count: int = 8, interface_nodes: NodeSelection | None = None, drill: float = 1e-3
+) -> HeldModes:
     """The ``count`` lowest modes of the replaced structure of ``cut`` with
     its interface nodes held, and each mode's effective mass: with L = Ψᵀ M φ
     (Ψ the six rigid motions about the interface centre, in the vehicle

@@ -10,6 +10,7 @@ simplified vehicle cannot follow.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 
 def rigid_motion(p0: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -24,7 +25,9 @@ def rigid_motion(p0: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray,
     return vt.T @ np.diag([1.0, 1.0, d]) @ u.T, c0, c
 
 
-def rearward_in_frame(x: np.ndarray, x0: np.ndarray, nodes: np.ndarray, frame: np.ndarray, axis) -> np.ndarray:
+def rearward_in_frame(
+    x: np.ndarray, x0: np.ndarray, nodes: np.ndarray, frame: np.ndarray, axis: int | ArrayLike
+) -> np.ndarray:
     """Rearward displacement of ``nodes`` along ``axis`` (an index 0–2 or a
     unit vector, the driving direction) in the frame of the ``frame`` nodes
     (their best-fitting rigid motion; positions x, initial x0)."""
@@ -34,14 +37,14 @@ def rearward_in_frame(x: np.ndarray, x0: np.ndarray, nodes: np.ndarray, frame: n
     return -((local - x0[nodes]) @ a)
 
 
-def warping(x: np.ndarray, x0: np.ndarray, nodes: np.ndarray, axis) -> np.ndarray:
+def warping(x: np.ndarray, x0: np.ndarray, nodes: np.ndarray, axis: int | ArrayLike) -> np.ndarray:
     """(k,) displacement of each of ``nodes`` along ``axis`` away from the
     rigid motion that best fits them all (0 for a plane that moves rigidly);
     positive rearwards."""
     return rearward_in_frame(x, x0, nodes, nodes, axis)
 
 
-def warping_history(xs: np.ndarray, x0: np.ndarray, nodes: np.ndarray, axis) -> dict:
+def warping_history(xs: np.ndarray, x0: np.ndarray, nodes: np.ndarray, axis: int | ArrayLike) -> dict:
     """Largest |warping| of ``nodes`` over the states xs (m, n, 3) and the
     largest root mean square over the nodes of one state, with the state
     index of each [length]."""

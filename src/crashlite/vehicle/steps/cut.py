@@ -24,9 +24,11 @@ merged parts joined).
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ...model.model import Model
 
@@ -165,7 +167,13 @@ def rigid_groups(model: Model) -> list[RigidGroup]:
     return [g for g in out if len(g.nodes)]
 
 
-def cut_behind(model: Model, point=None, x: float | None = None, axis=(1.0, 0.0, 0.0), parts=None) -> Cut:
+def cut_behind(
+    model: Model,
+    point: ArrayLike | None = None,
+    x: float | None = None,
+    axis: ArrayLike = (1.0, 0.0, 0.0),
+    parts: int | str | Iterable[int | str] | None = None,
+) -> Cut:
     """Split ``model`` at the interface plane through ``point`` (or at
     coordinate ``x`` along ``axis`` from the origin) normal to the vehicle
     ``axis``. ``parts``: part IDs or titles that may be replaced (None: all)."""

@@ -26,6 +26,7 @@ repeated nodes).
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 _GP = 1.0 / np.sqrt(3.0)
 _XI = np.array([-_GP, _GP, _GP, -_GP])
@@ -157,7 +158,14 @@ def _to_global(kl, rot, n_nodes):
     return k.reshape(n, 3 * m, 3 * m)
 
 
-def shell_stiffness(x, thickness, young, poisson, drill: float = 1e-3, shear_factor: float = 5.0 / 6.0):
+def shell_stiffness(
+    x: np.ndarray,
+    thickness: ArrayLike,
+    young: ArrayLike,
+    poisson: ArrayLike,
+    drill: float = 1e-3,
+    shear_factor: float = 5.0 / 6.0,
+) -> np.ndarray:
     """(n, 24, 24) global stiffness of flat shells.
 
     x          (n, 4, 3) node coordinates (triangles: node 4 = node 3) [length]
@@ -195,7 +203,15 @@ def shell_stiffness(x, thickness, young, poisson, drill: float = 1e-3, shear_fac
     return out
 
 
-def beam_stiffness(x1, x2, frames, ea, gj, ei2, ei3):
+def beam_stiffness(
+    x1: np.ndarray,
+    x2: np.ndarray,
+    frames: np.ndarray,
+    ea: ArrayLike,
+    gj: ArrayLike,
+    ei2: ArrayLike,
+    ei3: ArrayLike,
+) -> np.ndarray:
     """(n, 12, 12) global Euler–Bernoulli frame stiffness.
 
     x1, x2   (n, 3) end coordinates [length]
@@ -252,7 +268,7 @@ def beam_stiffness(x1, x2, frames, ea, gj, ei2, ei3):
     return _to_global(k, rot, 2)
 
 
-def spring_stiffness(direction, k):
+def spring_stiffness(direction: np.ndarray, k: ArrayLike) -> np.ndarray:
     """(n, 6, 6) axial spring k along unit ``direction`` (n, 3) on the
     translations of its two ends (ux uy uz of node 1, then node 2)."""
     d = np.asarray(direction, float)
@@ -260,7 +276,7 @@ def spring_stiffness(direction, k):
     return np.block([[dd, -dd], [-dd, dd]])
 
 
-def hex_stiffness(x, young, poisson):
+def hex_stiffness(x: np.ndarray, young: ArrayLike, poisson: ArrayLike) -> np.ndarray:
     """(n, 24, 24) global stiffness of trilinear hexahedra ``x`` (n, 8, 3),
     DOFs ux uy uz per node, 2x2x2 Gauss points."""
     x = np.asarray(x, float)

@@ -30,10 +30,17 @@ their scale arguments say.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
+
+if TYPE_CHECKING:
+    from ...model.model import Model
+    from ...results.history import History
 
 
 @dataclass
@@ -93,7 +100,7 @@ class LoadPaths:
         return {"load_case": self.load_case, "assemblies": self.table(), "notes": list(self.notes)}
 
 
-def cumulative_impulse(time, force) -> np.ndarray:
+def cumulative_impulse(time: ArrayLike, force: ArrayLike) -> np.ndarray:
     """∫₀ᵗ F dt at every state by the trapezoidal rule: ``time`` (n_states,),
     ``force`` (n_states, ...) -> same shape as ``force``, 0 at the first state."""
     t = np.asarray(time, float)
@@ -109,7 +116,9 @@ def cumulative_impulse(time, force) -> np.ndarray:
     return out
 
 
-def axial_force(force_xyz, axis=(1.0, 0.0, 0.0), normals=None) -> np.ndarray:
+def axial_force(
+    force_xyz: ArrayLike, axis: ArrayLike = (1.0, 0.0, 0.0), normals: ArrayLike | None = None
+) -> np.ndarray:
     """Axial force, compression positive (module docstring): ``force_xyz``
     (n_states, n, 3) section forces, ``axis`` the vehicle axis, ``normals``
     (n, 3) section normals or None (taken along ``axis``)."""
@@ -127,7 +136,14 @@ def axial_force(force_xyz, axis=(1.0, 0.0, 0.0), normals=None) -> np.ndarray:
     return fa * side
 
 
-def load_paths(time, force, names, section_ids=None, load_case: str = "", notes=None) -> LoadPaths:
+def load_paths(
+    time: ArrayLike,
+    force: ArrayLike,
+    names: Sequence[str],
+    section_ids: ArrayLike | None = None,
+    load_case: str = "",
+    notes: Iterable[str] | None = None,
+) -> LoadPaths:
     """LoadPaths of axial forces already reduced: ``force`` (n_states, n)
     compression positive, ``names`` the n assemblies."""
     t = np.asarray(time, float)
@@ -138,7 +154,7 @@ def load_paths(time, force, names, section_ids=None, load_case: str = "", notes=
     return LoadPaths(tuple(names), ids, t, f, cumulative_impulse(t, f), load_case, list(notes or []))
 
 
-def deck_sections(model) -> dict:
+def deck_sections(model: Model) -> dict:
     """The cross sections of a deck: title (or ``section <ID>``) -> (ID,
     unit normal (3,) or None). Planes give the normal from (XCT, YCT, ZCT)
     to (XCH, YCH, ZCH); set sections have none."""
@@ -157,7 +173,12 @@ def deck_sections(model) -> dict:
 
 
 def from_history(
-    history, sections=None, axis=(1.0, 0.0, 0.0), normals=None, load_case: str = "", t_end: float | None = None
+    history: History | Path | str,
+    sections: dict[str, int] | None = None,
+    axis: ArrayLike = (1.0, 0.0, 0.0),
+    normals: dict[int, np.ndarray | None] | None = None,
+    load_case: str = "",
+    t_end: float | None = None,
 ) -> LoadPaths:
     """LoadPaths from the secforc of a run.
 
@@ -207,7 +228,12 @@ def from_history(
 
 
 def from_run(
-    results, deck=None, sections=None, axis=(1.0, 0.0, 0.0), load_case: str = "", t_end: float | None = None
+    results: History | Path | str,
+    deck: Model | Path | str | None = None,
+    sections: dict[str, int] | None = None,
+    axis: ArrayLike = (1.0, 0.0, 0.0),
+    load_case: str = "",
+    t_end: float | None = None,
 ) -> LoadPaths:
     """LoadPaths of a run with the section titles and normals of its deck.
 
@@ -230,7 +256,7 @@ def from_run(
     return from_history(results, sections, axis, normals, load_case, t_end)
 
 
-def combined_shares(paths, weights=None) -> dict:
+def combined_shares(paths: Iterable[LoadPaths], weights: ArrayLike | None = None) -> dict:
     """One set of shares for several load cases: the weighted mean of their
     shares (equal weights by default) over the assemblies all of them have,
     and per load case the largest absolute difference from it.
@@ -307,7 +333,7 @@ def plot_impulses(
     )
 
 
-def plot_shares(paths) -> bytes:
+def plot_shares(paths: LoadPaths | Iterable[LoadPaths]) -> bytes:
     """Figure 12: load-path shares [%] per assembly, one bar per load case
     (a LoadPaths or a list of them), PNG bytes."""
     from ...report.plots import _pyplot, png

@@ -17,14 +17,20 @@ Units are the model's (mm–t: t, mm, t·mm²); ``table`` converts for print.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ...model import mass as mk
 from ...model.mass import MassProperties
+from ...model.model import Model
 from ...model.properties import section_area
 from .cut import Cut
+
+# a selection of nodes (``node_indices``): node indices, ("set", SID) or a *SET_NODE title
+NodeSelection = ArrayLike | tuple[str, int] | str
 
 
 @dataclass
@@ -92,7 +98,7 @@ def _area(model, part):
     return section_area(sec) if sec is not None else None
 
 
-def element_moments(model) -> dict:
+def element_moments(model: Model) -> dict:
     """Raw moments (``model.mass.Moments``) of every shell, solid and beam,
     table name -> Moments with one row per element, *ELEMENT_MASS_PART
     scaling applied per part."""
@@ -202,7 +208,11 @@ def replaced_rows(cut: Cut, moments: dict | None = None) -> tuple[list, list, li
 
 
 def split_replaced(
-    cut: Cut, far_point, only=None, without=None, moments: dict | None = None
+    cut: Cut,
+    far_point: ArrayLike,
+    only: Iterable[int] | None = None,
+    without: Iterable[int] | None = None,
+    moments: dict | None = None,
 ) -> tuple[MassProperties, MassProperties]:
     """The replaced mass shared between the interface and a point behind it
     (the rear-axle point) as a two-node bar lumps its mass: each element
@@ -246,7 +256,12 @@ def split_replaced(
     return mk.combine(*rows, weights_mask=near_w), mk.combine(*rows, weights_mask=far_w)
 
 
-def replaced_mass(cut: Cut, axle_nodes=None, axle_parts=None, moments: dict | None = None) -> ReplacedMass:
+def replaced_mass(
+    cut: Cut,
+    axle_nodes: NodeSelection | None = None,
+    axle_parts: int | str | Iterable[int | str] | None = None,
+    moments: dict | None = None,
+) -> ReplacedMass:
     """Mass, CoG and inertia (about the CoG) of the structure ``cut`` replaces.
 
     axle_nodes  node indices, or ("set", SID) / a *SET_NODE title of the
@@ -272,7 +287,7 @@ def replaced_mass(cut: Cut, axle_nodes=None, axle_parts=None, moments: dict | No
     return out
 
 
-def node_indices(model, spec) -> np.ndarray:
+def node_indices(model: Model, spec: NodeSelection) -> np.ndarray:
     """Node indices from indices, ("set", SID) or a *SET_NODE title."""
     if isinstance(spec, str):
         for (kind, sid), rec in model.sets.items():

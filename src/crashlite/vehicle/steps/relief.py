@@ -37,10 +37,12 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ...model import mass as mk
 from .cut import Cut
-from .massprops import _given_inertia, element_moments, node_indices
+from .massprops import NodeSelection, _given_inertia, element_moments, node_indices
+from .statics import LinearStatic
 from .stiffness import (
     StiffnessResult,
     build_static,
@@ -80,7 +82,7 @@ def replaced_node_masses(cut: Cut) -> tuple[np.ndarray, list]:
     return m, notes
 
 
-def static_masses(cut: Cut, ls) -> tuple:
+def static_masses(cut: Cut, ls: LinearStatic) -> tuple:
     """The replaced mass on the nodes of the static model ``ls`` (masses on
     nodes it lacks cannot be loaded): (node masses, the nodes with mass,
     total, CoG, notes)."""
@@ -141,8 +143,8 @@ def _rigid_fit(r: np.ndarray, u: np.ndarray, w: np.ndarray, c: np.ndarray) -> tu
 def relieved_stiffness(
     cut: Cut,
     force: float = 1000.0,
-    direction=None,
-    interface_nodes=None,
+    direction: ArrayLike | None = None,
+    interface_nodes: NodeSelection | None = None,
     drill: float = 1e-3,
     transverse: tuple | None = None,
 ) -> StiffnessResult:

@@ -26,11 +26,13 @@ solid blocks give three.
 from __future__ import annotations
 
 import warnings
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.sparse.linalg import MatrixRankWarning, splu
+from numpy.typing import ArrayLike
+from scipy.sparse.linalg import MatrixRankWarning, SuperLU, splu
 
 
 class MechanismError(ValueError):
@@ -45,7 +47,7 @@ class MechanismError(ValueError):
 PIVOT_RATIO = 1e-12  # a pivot below this fraction of its diagonal term: a free motion
 
 
-def factor(k, dof_node, permc_spec: str = "MMD_AT_PLUS_A"):
+def factor(k: sp.spmatrix, dof_node: np.ndarray, permc_spec: str = "MMD_AT_PLUS_A") -> SuperLU:
     """Sparse LU of the SPD matrix k with a symmetric ordering (``permc_spec``;
     "NATURAL": k's own) and diagonal pivots; a pivot much smaller than its
     diagonal term means a mechanism (MechanismError naming the nodes of
@@ -132,7 +134,7 @@ class LinearStatic:
     def n_total(self) -> int:
         return self.n + len(self._master_xyz)
 
-    def add_elements(self, nodes, stiffness, dofs_per_node: int = 6) -> None:
+    def add_elements(self, nodes: ArrayLike, stiffness: ArrayLike, dofs_per_node: int = 6) -> None:
         """Element blocks: ``nodes`` (m, k) node indices, ``stiffness``
         (m, k·d, k·d) with d = ``dofs_per_node`` (6, or 3 translations)."""
         nodes = np.asarray(nodes, np.int64)
@@ -148,7 +150,7 @@ class LinearStatic:
         dofs = (6 * nodes[:, :, None] + np.arange(d)).reshape(m, k * d)
         self._blocks.append((dofs, kmat))
 
-    def add_rigid(self, nodes, master=None) -> int:
+    def add_rigid(self, nodes: ArrayLike, master: ArrayLike | None = None) -> int:
         """Tie ``nodes`` rigidly to a new master node at ``master`` (default:
         their centroid); returns the master's node index."""
         nodes = np.unique(np.asarray(nodes, np.int64))
@@ -171,12 +173,12 @@ class LinearStatic:
         """(3,) coordinates of a model node or a master."""
         return self.xyz[node].copy() if node < self.n else np.array(self._master_xyz[node - self.n])
 
-    def fix(self, nodes, dofs=(0, 1, 2, 3, 4, 5)) -> None:
+    def fix(self, nodes: ArrayLike, dofs: ArrayLike = (0, 1, 2, 3, 4, 5)) -> None:
         """Hold DOFs (0–5: ux uy uz rx ry rz) of model nodes."""
         nodes = np.asarray(nodes, np.int64)
         self.fixed[np.ix_(nodes, np.asarray(dofs, np.int64))] = True
 
-    def load(self, node: int, force=(0.0, 0.0, 0.0), moment=(0.0, 0.0, 0.0)) -> None:
+    def load(self, node: int, force: ArrayLike = (0.0, 0.0, 0.0), moment: ArrayLike = (0.0, 0.0, 0.0)) -> None:
         """Add a nodal force and moment (a model node or a master)."""
         v = self._loads.setdefault(int(node), np.zeros(6))
         v[:3] += np.asarray(force, float)
@@ -226,7 +228,7 @@ class LinearStatic:
         """Solve for the loads given with ``load``."""
         return self.solve_cases([self._loads])[0]
 
-    def reduction(self):
+    def reduction(self) -> tuple[sp.csr_matrix, np.ndarray, np.ndarray, list[str]]:
         """(t, fixed, slave_of, notes): the map t (6·n_total, n_q) of the
         independent DOFs (free, not tied to a rigid group's master) to all
         DOFs, with u_slave = u_master + θ_master × r; the held DOFs and each
@@ -282,7 +284,7 @@ class LinearStatic:
         t = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(size, n_q))
         return t, fixed, slave_of, notes
 
-    def solve_cases(self, cases) -> list[StaticSolution]:
+    def solve_cases(self, cases: Sequence[dict[int, np.ndarray]]) -> list[StaticSolution]:
         """Solve several load cases on one factorisation: ``cases`` a list
         of {node: (6,) force and moment}; one StaticSolution each."""
         n_all = self.n_total

@@ -27,14 +27,16 @@ plates and frames with closed-form answers).
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ...model.model import Model
 from . import elements as el
 from .cut import ELEMENT_TABLES, Cut, rigid_part_ids
-from .massprops import node_indices
+from .massprops import NodeSelection, node_indices
 from .statics import LinearStatic, MechanismError, StaticSolution
 
 
@@ -237,13 +239,13 @@ def build_static(model: Model, select: dict | None = None, drill: float = 1e-3) 
 
 def borne_structure(
     model: Model,
-    support,
-    load_nodes,
+    support: NodeSelection,
+    load_nodes: NodeSelection,
     select: dict | None = None,
-    support_dofs=(0, 1, 2, 3, 4, 5),
-    load_point=None,
+    support_dofs: ArrayLike = (0, 1, 2, 3, 4, 5),
+    load_point: ArrayLike | None = None,
     drill: float = 1e-3,
-):
+) -> tuple[LinearStatic, int, dict, list]:
     """The static model of the selected elements held at ``support`` with a
     rigid body (its master returned) over ``load_nodes``:
     (LinearStatic, master, element counts, notes)."""
@@ -273,7 +275,7 @@ def solve_named(ls: LinearStatic, model: Model, cases: list) -> list:
         raise MechanismError(f"{e} (deck node IDs {ids[:10].tolist()})", e.nodes) from None
 
 
-def vehicle_axes(axis) -> np.ndarray:
+def vehicle_axes(axis: ArrayLike) -> np.ndarray:
     """(3, 3) rows: the unit ``axis``, the lateral and the vertical direction
     (lateral = z × axis unless the axis is near z)."""
     a = np.asarray(axis, float) / np.linalg.norm(axis)
@@ -293,7 +295,7 @@ def transverse_loads(axis: np.ndarray, force: float, moment: float) -> dict:
     }
 
 
-def transverse_stiffnesses(across: dict, motions) -> dict:
+def transverse_stiffnesses(across: dict, motions: Iterable[tuple[np.ndarray, np.ndarray]]) -> dict:
     """Lateral, vertical and roll stiffness from the ``transverse_loads``
     cases and the interface's (displacement (3,), rotation (3,)) in each;
     shear is the softer of lateral and vertical."""
@@ -306,13 +308,13 @@ def transverse_stiffnesses(across: dict, motions) -> dict:
 
 def structure_stiffness(
     model: Model,
-    support,
-    load_nodes,
+    support: NodeSelection,
+    load_nodes: NodeSelection,
     force: float = 1000.0,
-    direction=(-1.0, 0.0, 0.0),
+    direction: ArrayLike = (-1.0, 0.0, 0.0),
     select: dict | None = None,
-    support_dofs=(0, 1, 2, 3, 4, 5),
-    load_point=None,
+    support_dofs: ArrayLike = (0, 1, 2, 3, 4, 5),
+    load_point: ArrayLike | None = None,
     drill: float = 1e-3,
     transverse: tuple | None = None,
 ) -> StiffnessResult:
@@ -354,11 +356,11 @@ def structure_stiffness(
 
 def longitudinal_stiffness(
     cut: Cut,
-    support,
+    support: NodeSelection,
     force: float = 1000.0,
-    direction=None,
-    support_dofs=(0, 1, 2, 3, 4, 5),
-    interface_nodes=None,
+    direction: ArrayLike | None = None,
+    support_dofs: ArrayLike = (0, 1, 2, 3, 4, 5),
+    interface_nodes: NodeSelection | None = None,
     drill: float = 1e-3,
     transverse: tuple | None = None,
 ) -> StiffnessResult:
@@ -385,7 +387,13 @@ def longitudinal_stiffness(
     return res
 
 
-def transverse_stiffness(cut: Cut, support, interface_nodes=None, force: float = 1000.0, moment: float = 1.0e6) -> dict:
+def transverse_stiffness(
+    cut: Cut,
+    support: NodeSelection,
+    interface_nodes: NodeSelection | None = None,
+    force: float = 1000.0,
+    moment: float = 1.0e6,
+) -> dict:
     """Shear and roll stiffness of the replaced structure at the interface,
     borne at ``support`` like step 3: the rigid interface loaded across the
     axis (both transverse directions, the softer taken) and about it.

@@ -40,10 +40,12 @@ the rest (point masses, parts of no assembly).
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ...model.mesh import Beams, Discretes, Inertias, Nodes
 from ...model.model import Model
@@ -88,7 +90,7 @@ class Surrogate:
     notes: list = field(default_factory=list)
     mass_shares: dict = field(default_factory=dict)  # "interface", "rear body" -> MassProperties
 
-    def write(self, path, fmt: str = "fixed") -> Path:
+    def write(self, path: Path | str, fmt: str = "fixed") -> Path:
         from ...keyword.writer import write_deck
 
         return write_deck(self.model, path, fmt=fmt)[0]
@@ -131,7 +133,7 @@ class Surrogate:
         }
 
 
-def profile_direction(cut: Cut, pids, nodes: np.ndarray, rows: int = 2) -> tuple[np.ndarray, float]:
+def profile_direction(cut: Cut, pids: Iterable[int], nodes: np.ndarray, rows: int = 2) -> tuple[np.ndarray, float]:
     """Unit direction (rearwards) in which the replaced elements of parts
     ``pids`` leave the cut at ``nodes``, and how much of it is along the
     vehicle axis (|d·axis|): from the centre of the cut nodes to the centre
@@ -194,7 +196,7 @@ class _Ids:
         return first
 
 
-def kept_front(cut: Cut, keep_nodes=None) -> tuple[Truncated, np.ndarray]:
+def kept_front(cut: Cut, keep_nodes: ArrayLike | None = None) -> tuple[Truncated, np.ndarray]:
     """The kept structure (``truncate``) and the removed nodes that ride on
     the rear body with it: the replaced structure's history nodes (so
     nodout of the full and the simplified run compare node by node) and
@@ -245,7 +247,7 @@ def build_surrogate(
     spring_length: float = 100.0,
     damping_ratio: float = 0.0,
     beam_axial: float = 1e-3,
-    keep_nodes=None,
+    keep_nodes: ArrayLike | None = None,
     mass_split: str = "axle",
 ) -> Surrogate:
     """The surrogate deck (module docstring).

@@ -27,6 +27,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ...keyword.references import head_references
 from ...keyword.schema import INT, Record
@@ -62,7 +63,7 @@ def _elements_kept(cut: Cut) -> dict:
     return {t: ~cut.replaced[t] for t in ELEMENT_TABLES}
 
 
-def truncate(cut: Cut, keep=None) -> Truncated:
+def truncate(cut: Cut, keep: ArrayLike | None = None) -> Truncated:
     """The kept structure of ``cut`` (module docstring). ``keep``: node
     indices of the full model to keep although the cut removes them."""
     full = cut.model

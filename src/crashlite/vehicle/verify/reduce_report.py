@@ -3,12 +3,24 @@
 
 from __future__ import annotations
 
+from typing import Protocol
+
 from ...report.html import Raw, esc, image, num, page, table
 from ..connection.connection import DIRECTIONS
 from ..steps import loadpaths as lp
 
 
-def reduction_page(r) -> str:
+class ReductionView(Protocol):
+    """What the page reads of a ``reduce.Reduction`` (the Reduction writes
+    its page, so this module names it without importing it)."""
+
+    deck: str
+    load_paths: list  # steps.loadpaths.LoadPaths, one per load case
+
+    def summary(self) -> dict: ...
+
+
+def reduction_page(r: ReductionView) -> str:
     """Self-contained HTML of a ``reduce.Reduction``."""
     s = r.summary()
     body = [

@@ -30,6 +30,7 @@ energy, part, section, wall and node curve) comes along in ``comparison``.
 from __future__ import annotations
 
 import json
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -61,7 +62,7 @@ class VehicleVerification:
     intrusion: dict | None = None  # ids, y, z, full, simplified, difference [length]
     notes: list = field(default_factory=list)
 
-    def write(self, directory) -> dict:
+    def write(self, directory: Path | str) -> dict:
         """summary.json and index.html in ``directory``."""
         from ...report.build import jsonable
         from .verification_report import verification_page
@@ -354,21 +355,21 @@ def interface_nodes(model: Model, prefix: str = "surrogate interface") -> np.nda
 
 
 def verify_vehicle(
-    full,
-    simplified,
-    full_deck,
-    simplified_deck,
+    full: Path | str,
+    simplified: Path | str,
+    full_deck: Model | Path | str,
+    simplified_deck: Model | Path | str,
     load_case: str = "US NCAP",
-    crash_boxes=("crash box left", "crash box right"),
+    crash_boxes: Iterable[str] = ("crash box left", "crash box right"),
     firewall: str = "firewall nodes",
     reference: str = "rear seat left",
     engine: str = "engine top",
     cfc: float = 60.0,
     axis: int = 0,
-    names=("full", "simplified"),
-    cell_frame=CELL_FRAME,
-    twin=None,
-    twin_deck=None,
+    names: Sequence[str] = ("full", "simplified"),
+    cell_frame: Iterable[str] = CELL_FRAME,
+    twin: Path | str | None = None,
+    twin_deck: Model | Path | str | None = None,
 ) -> VehicleVerification:
     """Compare the simplified run with the full one (module docstring).
     ``full``, ``simplified``: results folders; the decks name the parts,

@@ -2,8 +2,21 @@
 
 from __future__ import annotations
 
+from typing import Protocol
+
 from ...report.html import esc, image, num, page, table
 from ...report.plots import _pyplot, pair_plot, png
+
+
+class VerificationView(Protocol):
+    """What the page reads of a ``verification.VehicleVerification`` (it
+    writes its page, so this module names it without importing it)."""
+
+    names: tuple  # (full, simplified)
+    figures: dict
+    pairs: list  # verify.curves.CurvePair
+    intrusion: dict | None
+    notes: list
 
 
 def intrusion_plot(intr: dict, names: tuple) -> bytes:
@@ -35,7 +48,7 @@ def intrusion_plot(intr: dict, names: tuple) -> bytes:
     return png(fig)
 
 
-def verification_page(v) -> str:
+def verification_page(v: VerificationView) -> str:
     f = v.figures
     names = v.names
     body = [
