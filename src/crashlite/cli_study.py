@@ -11,7 +11,7 @@ from pathlib import Path
 def _run(args) -> int:
     from .study import load_study, run_study
     from .study.executor import ExecutorError, make_executor
-    from .study.runner import Progress, solver_options
+    from .study.runner import Progress, StudyInterrupted, solver_options
 
     cfg = load_study(args.study)
     solver_options(cfg)  # an external solver not configured: said before any worker starts
@@ -27,8 +27,17 @@ def _run(args) -> int:
     except ExecutorError as e:
         print(f"error: {e}", file=sys.stderr)
         return 3
-    except KeyboardInterrupt:
-        print("interrupted: the designs that were running will run again when the study is resumed", file=sys.stderr)
+    except StudyInterrupted as e:
+        i = e.summary
+        print(
+            f"interrupted: {i.ran} design(s) finished in this session ({i.complete} complete, {i.failed} failed) "
+            f"and are stored; {i.stopped} design(s) started and not finished were stopped, they run again when the study is resumed "
+            f"(crashlite study run {args.study})",
+            file=sys.stderr,
+        )
+        return 130
+    except KeyboardInterrupt:  # before the first design started
+        print("interrupted: no design of this session finished; run the study again to resume", file=sys.stderr)
         return 130
     print(
         f"study {cfg.name!r}: {s.ran} design(s) run in this session ({s.complete} complete, {s.failed} failed), "

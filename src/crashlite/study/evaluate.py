@@ -115,6 +115,10 @@ def evaluate(task: Task) -> dict:
         final_state = None
         if solver is None:
             res = run(model, out=directory / "results", quiet=True)
+            if str(res.info.get("stopped") or "").startswith("interrupted"):
+                # Ctrl-C in a study run in this process (serial): the study stops, the design
+                # is not a result (it runs again when the study is resumed)
+                raise KeyboardInterrupt(res.info["stopped"])
             run_time = float(res.wall_time)
         else:
             d3plot = any(reads_d3plot(spec, model) for spec in task.responses.values())

@@ -10,6 +10,11 @@ out of memory) is restarted by its nanny and the scheduler gives its design
 to another worker; a design that kills ``allowed_failures`` workers is
 reported failed. Designs read and write the study folder, so with a remote
 scheduler it must lie on a file system the workers share.
+
+Ctrl-C: the study's driver stops the designs and closes the cluster; the
+LocalCluster's workers ignore SIGINT themselves (a terminal sends it to
+every process of the foreground group), so that they are stopped by the
+driver, not killed half-way with a traceback each.
 """
 
 from __future__ import annotations
@@ -51,6 +56,8 @@ class SerialExecutor:
                 fn, arg = h._crashlite_call
                 try:
                     h.set_result(fn(arg))
+                except KeyboardInterrupt:  # Ctrl-C stops the study, it is not the design's result
+                    raise
                 except BaseException as e:  # noqa: BLE001
                     h.set_exception(e)
                 return [h]
@@ -138,8 +145,12 @@ class DaskExecutor:
                     env=env,
                     dashboard_address=":0" if self.dashboard else None,
                     silence_logs=40,
+                    preload=["crashlite.study.interrupts"],
                 )
                 self.client = Client(self.cluster)
+        except KeyboardInterrupt as e:  # Ctrl-C while the cluster starts: close what started
+            self.__exit__(type(e), e, e.__traceback__)
+            raise
         except Exception as e:
             self.__exit__(None, None, None)
             where = self.address or (
@@ -149,14 +160,23 @@ class DaskExecutor:
         return self
 
     def __exit__(self, *exc):
+        from .interrupts import held_interrupts
+
+        # after Ctrl-C: within seconds (the workers are killed if they do not stop)
+        quick = bool(exc) and exc[0] is not None and issubclass(exc[0], KeyboardInterrupt)
+        with held_interrupts(drop=True):
+            self._close(quick)
+        return False
+
+    def _close(self, quick: bool) -> None:
         try:
             if self.client is not None:
-                self.client.close(timeout=10)
+                self.client.close(timeout=3 if quick else 10)
         except Exception:  # noqa: BLE001
             pass
         try:
             if self.cluster is not None:
-                self.cluster.close(timeout=20)
+                self.cluster.close(timeout=5 if quick else 20)
         except Exception:  # noqa: BLE001
             pass
         try:
@@ -169,7 +189,6 @@ class DaskExecutor:
         if cfg is not None:
             cfg.__exit__(None, None, None)
             self._config = None
-        return False
 
     @property
     def capacity(self) -> int:

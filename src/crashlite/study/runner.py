@@ -28,6 +28,7 @@ import numpy as np
 
 from .config import StudyConfig
 from .evaluate import Task, evaluate
+from .interrupts import held_interrupts
 
 # the best and the Pareto-optimal designs: in ``optimize`` (which steers by
 # them); importable here
@@ -45,9 +46,21 @@ class RunSummary:
     failed: int = 0
     skipped: int = 0  # planned designs found done
     rerun: int = 0  # interrupted designs of an earlier session run again
+    stopped: int = 0  # designs running when Ctrl-C stopped this session (they run again on resume)
     phases: dict = field(default_factory=dict)
     wall_time: float = 0.0
     executor: str = ""
+
+
+class StudyInterrupted(KeyboardInterrupt):
+    """Ctrl-C stopped the study: the designs that finished are stored, the
+    ones that were running are closed as interrupted (they run again when
+    the study is resumed), the cluster is closed. ``summary``: what this
+    session did."""
+
+    def __init__(self, summary: RunSummary):
+        super().__init__(f"interrupted after {summary.ran} design(s) of this session")
+        self.summary = summary
 
 
 class Progress:
@@ -279,9 +292,12 @@ def run_study(
     [execution]; ``cluster`` (instead of ``executor``): a Dask cluster
     object to run on, e.g. dask-jobqueue's ``SLURMCluster(...)`` (anything
     with a ``scheduler_address``; the caller scales and closes it); ``fn``
-    is the per-design function the workers run."""
-    from .executor import make_executor
+    is the per-design function the workers run.
 
+    Ctrl-C raises :class:`StudyInterrupted` (a KeyboardInterrupt) within
+    about a second: the running designs are closed as interrupted and
+    cancelled, a cluster started here is closed, the finished designs stay
+    stored."""
     if executor is not None and cluster is not None:
         raise ValueError("give executor or cluster, not both")
     options = solver_options(cfg)  # before anything is stored: a solver not configured stops here
@@ -292,37 +308,54 @@ def run_study(
     store.claim(force=force)
     summary = RunSummary()
     try:
-        stale = store.recover()
-        if stale:
-            progress.say(
-                f"{len(stale)} design(s) interrupted in an earlier session will run again: "
-                + ", ".join(d.key for d in stale[:10])
-            )
-        summary.rerun = len(stale)
-        designs = store.designs()
-        progress.load(designs)
-        sources = _plan(cfg, store, designs)
-        executor = executor or make_executor(cfg.execution, cluster=cluster)
-        owned = not executor.started  # start (and close) it here unless the caller did
-        if owned:
-            executor.__enter__()
-        try:
-            summary.executor = executor.describe()
-            ext = options.get("solver")
-            progress.say(
-                f"study {cfg.name!r}: {len(designs)} design(s) stored in {cfg.storage}; "
-                f"running on {summary.executor}"
-                + (f"; designs run in {ext.name} ({ext.executable})" if ext is not None else "")
-            )
-            for src in sources:
-                _drive(cfg, store, executor, src, progress, summary, fn, options)
-        finally:
-            if owned:
-                executor.__exit__(None, None, None)
+        _run_phases(cfg, store, executor, progress, summary, fn, options, cluster)
+    except KeyboardInterrupt:
+        summary.wall_time = time.perf_counter() - t0
+        raise StudyInterrupted(summary) from None
     finally:
-        store.release()
+        with held_interrupts(drop=True):
+            store.release()
     summary.wall_time = time.perf_counter() - t0
     return summary
+
+
+def _run_phases(cfg, store, executor, progress, summary, fn, options, cluster) -> None:
+    """Every phase of the study, on ``executor`` (made and closed here if
+    not given or not started)."""
+    from .executor import make_executor
+
+    with held_interrupts():
+        stale = store.recover()
+    if stale:
+        progress.say(
+            f"{len(stale)} design(s) interrupted in an earlier session will run again: "
+            + ", ".join(d.key for d in stale[:10])
+        )
+    summary.rerun = len(stale)
+    designs = store.designs()
+    progress.load(designs)
+    sources = _plan(cfg, store, designs)
+    executor = executor or make_executor(cfg.execution, cluster=cluster)
+    owned = not executor.started  # start (and close) it here unless the caller did
+    if owned:
+        executor.__enter__()
+    try:
+        summary.executor = executor.describe()
+        ext = options.get("solver")
+        progress.say(
+            f"study {cfg.name!r}: {len(designs)} design(s) stored in {cfg.storage}; "
+            f"running on {summary.executor}"
+            + (f"; designs run in {ext.name} ({ext.executable})" if ext is not None else "")
+        )
+        for src in sources:
+            _drive(cfg, store, executor, src, progress, summary, fn, options)
+    except BaseException as e:
+        if owned:
+            with held_interrupts(drop=True):
+                executor.__exit__(type(e), e, e.__traceback__)
+        raise
+    if owned:
+        executor.__exit__(None, None, None)
 
 
 def _plan(cfg: StudyConfig, store: StudyStore, designs: list[Design]) -> list[_Source]:
@@ -371,21 +404,23 @@ def _drive(
     try:
         while True:
             while len(inflight) < max(executor.capacity, 1) + (1 if executor.name == "dask" else 0):
-                item = src.next(store, len(inflight))
-                if item is None:
-                    break
-                trial, values, key = item
-                inflight[executor.submit(fn, _task(cfg, key, values, options))] = (trial, key)
+                with held_interrupts():  # the trial started and its design submitted, or neither
+                    item = src.next(store, len(inflight))
+                    if item is None:
+                        break
+                    trial, values, key = item
+                    inflight[executor.submit(fn, _task(cfg, key, values, options))] = (trial, key)
                 progress.running = len(inflight)
             if not inflight:  # nothing running and nothing more to start
                 break
             for h in executor.wait(list(inflight), timeout=1.0):
+                result = _result(executor, h, inflight[h][1], cfg)
                 trial, key = inflight.pop(h)
-                result = _result(executor, h, key, cfg)
                 if result is None:  # the cluster failed: stop, the design runs next time
                     store.interrupt(trial, "the cluster failed")
                     raise _ClusterLost(key)
-                d = store.finish(trial, result)
+                with held_interrupts():  # a finished design is stored whole
+                    d = store.finish(trial, result)
                 summary.ran += 1
                 if d.status == "complete":
                     summary.complete += 1
@@ -403,9 +438,14 @@ def _drive(
                 src.told(d)
             store.heartbeat()
     except BaseException as e:
-        for _h, (trial, _key) in inflight.items():
-            store.interrupt(trial, "its session stopped" if not isinstance(e, _ClusterLost) else "the cluster failed")
-        executor.cancel(list(inflight))
+        with held_interrupts(drop=True):  # a second Ctrl-C does not cut this short
+            summary.stopped += len(inflight)
+            why = "the cluster failed" if isinstance(e, _ClusterLost) else "its session stopped"
+            if isinstance(e, KeyboardInterrupt):
+                why = "its session was interrupted (Ctrl-C)"
+            for _h, (trial, _key) in inflight.items():
+                store.interrupt(trial, why)
+            executor.cancel(list(inflight))
         if isinstance(e, _ClusterLost):
             from .executor import ExecutorError
 
