@@ -115,6 +115,48 @@ def test_a_shell_giving_its_own_thickness_needs_none_from_the_section(tmp_path):
     assert s.mass.sum() == pytest.approx(7.85e-9 * 100.0)
 
 
+PLP = "*MAT_PIECEWISE_LINEAR_PLASTICITY\n1,7.85e-9,210000.0,0.3,200.0,1000.0\n" + "0,0,0,0,0,0,0,0\n" * 3
+
+
+@pytest.mark.parametrize("material", ["elastic", "piecewise"])
+def test_a_refused_shell_formulation_is_the_only_problem_of_its_part(tmp_path, material):
+    """ELFORM 13 refused: the section was dropped, so its shells had no
+    thickness and their nodes no mass; "thickness <= 0" for every shell
+    (T1 = 1 on the card) and "has no mass" for every node followed."""
+    deck = tmp_path / "shell.k"
+    text = SHELL.format(t="1.0,1.0,1.0,1.0").replace("1,2,0.8333,2\n", "1,13,0.8333,2\n")
+    if material == "piecewise":
+        text = text.replace("*MAT_ELASTIC\n1,7.85e-9,210000.0,0.3\n", PLP)
+    deck.write_text(text)
+    with pytest.raises(SetupError) as e:
+        build(read_deck(str(deck)))
+    (elform,) = e.value.problems
+    assert (elform.keyword, elform.field, elform.line) == ("SECTION_SHELL", "ELFORM", 13)
+    assert "shell formulation 13 is not supported" in elform.message
+    assert "thickness <= 0" not in str(e.value) and "has no mass" not in str(e.value)
+
+
+def test_nodes_of_a_refused_part_only_are_not_reported_massless(tmp_path):
+    """A good part beside the refused one: their shared nodes have mass;
+    a node on a spring alone still has none and is reported."""
+    deck = tmp_path / "shell.k"
+    good = (
+        "*ELEMENT_SHELL\n1,1,1,2,3,4\n2,2,2,5,6,3\n*ELEMENT_DISCRETE\n3,3,5,7\n"
+        "*PART\ngood\n2,2,1\n*SECTION_SHELL\n2,2\n1.0,1.0,1.0,1.0\n"
+        "*PART\nspring\n3,3,3\n*SECTION_DISCRETE\n3,0\n*MAT_SPRING_ELASTIC\n3,100.0\n"
+    )
+    text = SHELL.format(t="1.0,1.0,1.0,1.0").replace("1,2,0.8333,2\n", "1,13,0.8333,2\n")
+    text = text.replace("*ELEMENT_SHELL\n1,1,1,2,3,4\n", good).replace(
+        "4,0,10,0\n", "4,0,10,0\n5,20,0,0\n6,20,10,0\n7,30,0,0\n"
+    )
+    deck.write_text(text)
+    with pytest.raises(SetupError) as e:
+        build(read_deck(str(deck)))
+    massless = [p.message for p in e.value.problems if "has no mass" in p.message]
+    assert massless == ["node 7 carries elements but has no mass"], e.value
+    assert "thickness <= 0" not in str(e.value) and "shell formulation 13" in str(e.value)
+
+
 def test_a_beam_section_without_area_is_named(tmp_path):
     deck = tmp_path / "beam.k"
     deck.write_text(

@@ -22,7 +22,9 @@ class ElementGroup:
 
     ids (ne,) deck element IDs; pid (ne,) part IDs; conn (ne, k) node
     indices (-1: none); energy (ne,) internal energy [energy]; hourglass
-    (ne,) hourglass energy or None.
+    (ne,) hourglass energy or None; refused (ne,) bool or None: elements of
+    a part whose card was refused (the run is refused; they carry no mass
+    and are not checked further).
     """
 
     kind = "element"
@@ -31,6 +33,7 @@ class ElementGroup:
     conn: np.ndarray
     energy: np.ndarray
     hourglass: np.ndarray | None = None
+    refused: np.ndarray | None = None
 
     def forces(self, st: State) -> None:
         """Add this group's forces ON the nodes to st.f (moments to st.moment)."""

@@ -189,8 +189,10 @@ def _build(model: Model) -> Setup:
         used[beams.n1] = used[beams.n2] = True
     used[disc.n1] = True
     used[disc.n2[disc.n2 >= 0]] = True
-    for g in groups:
-        used[g.conn[g.conn >= 0]] = True
+    for g in groups:  # a refused part's elements: its card is the problem, not their nodes' mass
+        refused = getattr(g, "refused", None)
+        conn = g.conn if refused is None else g.conn[~refused]
+        used[conn[conn >= 0]] = True
     bodies = build_nodal_bodies(model, model.nodes.xyz, v0, mass, problems, used, rot_inertia)
     bodies += part_bodies(model, model.nodes.xyz, v0, mass, problems)
     body_of = {b.body_id: b for b in bodies}

@@ -80,6 +80,9 @@ class ShellSet:
     warnings: list = field(default_factory=list)  # Problem: options run in an approximated way
     isdo: int = 0  # *CONTROL_TIMESTEP ISDO: the characteristic length of the time step (0, 1, 2)
     full: np.ndarray | None = None  # (n,) int8 1: fully integrated quadrilateral (ELFORM 16)
+    # (n,) bool: shells of a part whose section, material or hourglass card is refused (the run is
+    # refused: they have no thickness and no mass, and are not checked further); None: none
+    refused: np.ndarray | None = None
 
     def __len__(self) -> int:
         return len(self.ids)
@@ -572,6 +575,7 @@ def build_shell_set(
     marea = np.zeros(n)
     full = np.zeros(n, np.int8)
     hg_kind, hg_qm, hg_qb, hg_qw = np.zeros(n, np.int64), np.zeros(n), np.zeros(n), np.zeros(n)
+    refused = np.zeros(n, bool)
     for p in np.unique(pid):
         m = pid == p
         part = model.parts.get(int(p))
@@ -587,20 +591,21 @@ def build_shell_set(
                     f"shells of part {int(p)} need a *PART with a *SECTION_SHELL and a material",
                 )
             )
+            refused[m] = True
             continue
         got = _section(sec, part, int(p), intgrd, problems, warns)
         hg = _hourglass(model, part, int(p), ihq0, qh0, problems, warns)
         mid = int(mat.get("mid"))
         if mid not in mat_rows:
             mm = _material(model, mat, curves, problems)
-            if mm is None:
-                continue
-            mat_rows[mid] = len(mtypes)
-            mtypes.append(mm[0])
-            props.append(mm[1])
-            mcurves.append(mm[2])
-            mat_ids.append(mid)
-        if got is None or hg is None:
+            if mm is not None:
+                mat_rows[mid] = len(mtypes)
+                mtypes.append(mm[0])
+                props.append(mm[1])
+                mcurves.append(mm[2])
+                mat_ids.append(mid)
+        if got is None or hg is None or mid not in mat_rows:
+            refused[m] = True  # the card's refusal is the problem: not their thickness or nodes' mass
             continue
         mat_of[m] = mat_rows[mid]
         nip[m], rule[m], shrf[m], tnode[m], marea[m], full[m] = got
@@ -610,7 +615,7 @@ def build_shell_set(
     given = sh.thickness[sel]
     tn = np.where(np.isfinite(given) & (given > 0), given, tnode)
     thick0 = np.where(tri == 1, tn[:, :3].mean(axis=1), tn.mean(axis=1))
-    for i in np.flatnonzero(thick0 <= 0)[:10]:
+    for i in np.flatnonzero((thick0 <= 0) & ~refused)[:10]:
         problems.append(Problem(src, 0, "SECTION_SHELL", "T1", f"shell {int(ids[i])} has thickness <= 0"))
     x = model.nodes.xyz
     area0 = element_areas(x, conn, tri)
@@ -668,6 +673,7 @@ def build_shell_set(
         warns,
         _isdo(model, problems),
         full * (1 - tri),  # an ELFORM 16 triangle runs as the C0 triangle
+        refused if refused.any() else None,
     )
     if warnings is not None:
         warnings.extend(warns)
@@ -686,6 +692,7 @@ class ShellGroup(ElementGroup):
         self.s = s
         self.st = new_state(s, n_nodes)
         self.ids, self.pid, self.conn = s.ids, s.pid, s.conn
+        self.refused = s.refused
         self.energy = self.st.energy  # internal energy [energy]
         self.hourglass = self.st.hg_energy
         self.warnings = s.warnings
