@@ -20,12 +20,15 @@ Solid faces are one-sided (outward normal): a node behind the face is in
 contact up to ``depth`` (measured along the normal) when its closest point
 is its normal projection; such a contact wins over one in front of a face,
 and a node keeps the face it is behind while it stays there, so a node at
-a corner is not handed to the side face it grazes. A node found behind a
-face it was not on, deeper than its approach over the step (and than the
-penetration it had on the face it slides over from), came through the
-solid, through a deleted element or round an edge: it takes no contact
-there (pushed out through that face, it would gain energy no contact ever
-stored). Otherwise the nearest penetrated segment is taken.
+a corner is not handed to the side face it grazes. A node found in a
+segment it was not on (behind a solid face, or within a shell's contact
+thickness), deeper than its approach over the step and the penetration it
+had on the segment it slides over from, came through the solid (a deleted
+element, round an edge) or a fold of a shell closed over it: it takes no
+contact there (pushed out, it would gain energy no contact ever stored;
+LS-DYNA releases such nodes by its PENMAX depth). The set-up search for
+initial penetrations (dt = 0) takes every penetration. Otherwise the
+nearest penetrated segment is taken.
 
 Arrays (ns slave entries, nm segments, nc candidates; model units):
   x, v (n_nodes, 3) float64 coordinates at t(n+1), velocities at t(n+½)
@@ -435,6 +438,7 @@ def contact_forces(
     friction = fs > 0.0 or fd > 0.0
     for i in prange(snode.shape[0]):
         g_prev = gap[i]  # the penetration of the last cycle
+        g_last = g_prev + offset[i]  # the same, with a tracked initial penetration it did not push
         if g_prev > 0.0:  # in contact last cycle (otherwise its rows are zero still: most entries, and
             for a in range(5):  # not writing them halves this loop's memory traffic)
                 rnode[i, a] = -1
@@ -476,13 +480,6 @@ def contact_forces(
                     if math.sqrt(tx * tx + ty * ty + tz * tz) > 1e-2 * msize[s] or -sd > depth[s]:
                         continue
                     g = half - sd  # the depth along the normal (a node just past an edge has none)
-                    if s != prev[i] and g > g_prev + tol:
-                        # deeper behind a face it was not on than one step's approach: the node came through
-                        # the solid (a deleted element, round an edge), it did not strike this face
-                        ux, uy, uz = _relative_velocity(v, nd, n0, n1, n2, n3, w0, w1, w2, w3)
-                        approach = -(ux * nx + uy * ny + uz * nz) * dt
-                        if g > g_prev + 2.0 * max(approach, 0.0) + tol:
-                            continue
                     cls = _BEHIND
                 else:
                     cls = _OUTSIDE
@@ -504,6 +501,14 @@ def contact_forces(
                             nx, ny, nz = rx / d, ry / d, rz / d
                 if g <= tol:
                     continue
+                if dt > 0.0 and s != prev[i] and g > g_last + tol:
+                    # deeper in a segment it was not on than one step's approach brings it: the node came
+                    # through a solid (a deleted element, round an edge) or a fold of a shell closed over it;
+                    # it did not strike this segment, and pushed out it would gain energy no contact stored
+                    ux, uy, uz = _relative_velocity(v, nd, n0, n1, n2, n3, w0, w1, w2, w3)
+                    approach = -(ux * nx + uy * ny + uz * nz) * dt
+                    if g > g_last + 2.0 * max(approach, 0.0) + tol:
+                        continue
                 keep = s == prev[i] and cls == _BEHIND
                 if best_cls >= 0 and (keep or cls < best_cls or (cls == best_cls and d < best_d)):
                     best, best_cls, best_d, bg = s, cls, d, g
