@@ -106,3 +106,22 @@ def test_a_storage_that_cannot_be_written_names_its_key(study, tmp_path, where):
     with pytest.raises(StudyError, match=r"study.toml: \[study\] storage: cannot open the study storage"):
         StudyStore(cfg)
     assert (tmp_path / "plain").read_text() == "not a folder\n"
+
+
+@pytest.mark.parametrize(
+    "content, says",
+    [
+        (b"\x00\x00\x00\x00binary", "binary data"),
+        (b"just some text\nno keywords\n", "no keyword"),
+        (b"", "the file is empty"),
+    ],
+)
+def test_a_deck_path_that_is_no_deck_is_refused_naming_the_key(study, tmp_path, content, says):
+    """A study on a binary, keyword-less or empty "deck" ran its designs on
+    an empty model."""
+    p = study()
+    (tmp_path / "pulse.k").write_bytes(content)
+    with pytest.raises(StudyError, match=r"(?s)study.toml: \[study\] deck: .*not a keyword deck") as e:
+        load_study(p)
+    assert says in str(e.value)
+    assert not list(tmp_path.rglob("*.db")) and not list(tmp_path.rglob("designs"))  # nothing stored or run
