@@ -415,11 +415,11 @@ def _drive(
                 break
             for h in executor.wait(list(inflight), timeout=1.0):
                 result = _result(executor, h, inflight[h][1], cfg)
-                trial, key = inflight.pop(h)
-                if result is None:  # the cluster failed: stop, the design runs next time
-                    store.interrupt(trial, "the cluster failed")
-                    raise _ClusterLost(key)
-                with held_interrupts():  # a finished design is stored whole
+                with held_interrupts():  # a finished design leaves the ones in flight stored whole
+                    trial, key = inflight.pop(h)
+                    if result is None:  # the cluster failed: stop, the design runs next time
+                        store.interrupt(trial, "the cluster failed")
+                        raise _ClusterLost(key)
                     d = store.finish(trial, result)
                 summary.ran += 1
                 if d.status == "complete":

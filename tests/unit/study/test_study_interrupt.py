@@ -112,7 +112,7 @@ def test_ctrl_c_stops_a_dask_study_within_seconds_and_keeps_the_finished_designs
     reader.join(timeout=5)
     out = "".join(lines)
     assert rc == 130, out
-    assert took < 10.0, out
+    assert took < 15.0, out  # the stop itself: about a second
     assert "Traceback" not in out
     finished = sum("complete in" in line for line in lines)
     assert f"interrupted: {finished} design(s) finished in this session ({finished} complete, 0 failed)" in out
@@ -120,15 +120,20 @@ def test_ctrl_c_stops_a_dask_study_within_seconds_and_keeps_the_finished_designs
     designs = _check_store(cfg, finished)
     assert len(designs) > finished  # the Ctrl-C caught designs on their way
     time.sleep(0.5)
-    try:  # the cluster is gone with the driver: no worker or nanny left behind
-        alive = [
-            p
-            for p in psutil.process_iter(["pid", "status"])
-            if p.info["status"] != psutil.STATUS_ZOMBIE and os.getpgid(p.info["pid"]) == proc.pid
-        ]
-    except ProcessLookupError:
-        alive = []
-    assert not alive
+    assert not _alive_in_group(proc.pid)  # the cluster is gone with the driver: no worker or nanny left
+
+
+def _alive_in_group(pgid: int) -> list[int]:
+    """Processes of the process group, less zombies (exited, waiting for
+    a parent that is gone)."""
+    alive = []
+    for p in psutil.process_iter(["pid", "status"]):
+        try:
+            if os.getpgid(p.info["pid"]) == pgid and p.info["status"] != psutil.STATUS_ZOMBIE:
+                alive.append(p.info["pid"])
+        except (ProcessLookupError, psutil.Error):
+            pass
+    return alive
 
 
 def test_ctrl_c_in_a_serial_study_leaves_no_design_half_stored(tmp_path):
