@@ -25,6 +25,7 @@ MODULES = [
     "crashlite.results.vtk",
     "crashlite.results.d3plot",
     "crashlite.results.from_history",
+    "crashlite.results.openradioss_th",
     "crashlite.verify",
     "crashlite.verify.compare",
     "crashlite.verify.curves",

@@ -99,12 +99,21 @@ def _from_binout(path) -> History:
     return _Binout({}, str(path))
 
 
+def _from_openradioss(path: Path) -> History:
+    from . import openradioss_th
+
+    return History(openradioss_th.categories(openradioss_th.read(path)), str(path))
+
+
 def load(path: Path | str) -> History:
     """Time histories of a crashlite results folder (its results.npz), an
     LS-DYNA binout (lasso-python), an LS-DYNA ASCII output folder (glstat,
     matsum, nodout, rwforc, deforc, secforc, spcforc, rcforc: the categories are
-    the files present) or one such ASCII file."""
+    the files present) or one such ASCII file, or an OpenRadioss time history
+    (``<run>T01``, or a folder holding one and no LS-DYNA files: the same
+    categories, ``results.openradioss_th``)."""
     from ..solver.results import Results
+    from . import openradioss_th
     from .lsdyna_ascii import FILES, present, read_folder
 
     p = Path(path)
@@ -116,13 +125,23 @@ def load(path: Path | str) -> History:
         return _from_binout(p)
     if p.is_file() and p.name in FILES:
         return _from_ascii({p.name: FILES[p.name].read(p)}, str(p))
+    if p.is_file() and openradioss_th.is_time_history(p):
+        return _from_openradioss(p)
     if p.is_dir():
         ascii_files = present(p)
         if list(p.glob("binout*")) and (_lasso() is not None or not ascii_files):
             return _from_binout(p / "binout*")
         if ascii_files:
             return _from_ascii(read_folder(p), str(p))
+        t01 = openradioss_th.find(p)
+        if len(t01) == 1:
+            return _from_openradioss(t01[0])
+        if t01:
+            raise FileNotFoundError(
+                f"{p}: holds several OpenRadioss time histories ({', '.join(f.name for f in t01)}): "
+                "name the file to read"
+            )
     raise FileNotFoundError(
-        f"{p}: neither a crashlite results folder, an LS-DYNA binout nor LS-DYNA ASCII "
-        f"history files ({', '.join(FILES)})"
+        f"{p}: neither a crashlite results folder, an LS-DYNA binout, LS-DYNA ASCII "
+        f"history files ({', '.join(FILES)}) nor an OpenRadioss time history (<run>T01)"
     )
