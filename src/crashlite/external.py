@@ -3,7 +3,8 @@
 One concept: where the solver is (its configuration), the command line it
 gets, the run in the output folder, and the check that it terminated
 normally. The results are then read by ``crashlite.results.load`` like any
-LS-DYNA output folder.
+LS-DYNA output folder (an OpenRadioss run: its ``<stem>T01`` time history,
+``results.openradioss_th``).
 
 Configuration, environment first, then a TOML file
 (``$CRASHLITE_SOLVERS``, else ``~/.config/crashlite/solvers.toml``)::

@@ -259,3 +259,14 @@ def test_real_box_beam_into_a_wall():
     fx = c["rwforc"][("forces", "x_force")][:, 0]
     assert fx[-1] == pytest.approx(-49.589, rel=1e-4)  # the nodes push the wall along their motion (-x)
     assert c["secforc"]["ids"].tolist() == list(range(1, 9))
+
+
+def test_results_load_reads_an_openradioss_run_folder(tmp_path):
+    """The folder ``crashlite run --solver openradioss`` leaves: the log,
+    the manifest, the listings, animation files and the time history."""
+    for name in ("crashlite-solver.log", "crashlite-solver.json", "car_0000.out", "car_0001.out", "carA001"):
+        (tmp_path / name).write_text("x\n")
+    _sample(tmp_path, "carT01")
+    h = load(tmp_path)
+    assert h.source == str(tmp_path / "carT01")
+    np.testing.assert_allclose(h.read("glstat", "internal_energy"), [0.0, 1.0, 3.0, 6.0])
