@@ -8,6 +8,7 @@ killed by the same Ctrl-C would only add a traceback).
 
 from __future__ import annotations
 
+import logging
 import signal
 import threading
 from collections.abc import Iterator
@@ -38,6 +39,14 @@ def held_interrupts(drop: bool = False) -> Iterator[None]:
 
 def dask_setup(worker) -> None:
     """Dask preload of the LocalCluster's workers, called in each worker
-    process as it starts: SIGINT is ignored there."""
+    process as it starts: SIGINT is ignored there, and a failed heartbeat
+    is not printed as a traceback (the driver closing the scheduler after
+    Ctrl-C races the workers' heartbeats; a worker that truly lost its
+    scheduler is closed by its nanny all the same)."""
     if threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGINT, signal.SIG_IGN)
+    logging.getLogger("distributed.worker").addFilter(_no_heartbeat_failure)
+
+
+def _no_heartbeat_failure(record: logging.LogRecord) -> bool:
+    return not str(record.msg).startswith("Failed to communicate with scheduler during heartbeat")
