@@ -1,7 +1,11 @@
 """The explicit solver: central difference with lumped masses.
 
-This stage runs masses, discrete springs and dampers, nodal constraints,
-initial velocities and stationary planar rigid walls.
+``build`` (setup.py) turns a Model into a Setup: element groups (shells,
+solids, beams, discrete elements, superelements: one module each), contacts
+(contact_build.py, run by contact.py), rigid bodies, constraints, walls and
+motions (boundary.py); ``integrate``/``run`` (loop.py) advance it in time
+and write the results. The Numba kernels those groups call live in
+``kernels/``; the keywords run and refused: docs/solver.md.
 """
 
 from .loop import RunError, integrate, run
