@@ -334,7 +334,8 @@ def test_refused_before_any_run(tmp_path, standin):
     ):
         with pytest.raises(StudyError, match=match):
             _study(tmp_path, table, output=output)
-    with pytest.raises(StudyError, match=r"\[responses\.push\] contact_force .* an OpenRadioss run writes no rcforc"):
-        _study(tmp_path, push, solver="openradioss")
+    _study(tmp_path, push + "id = 7\n", solver="openradioss")  # its /INTER 7 (model.contacts)
+    with pytest.raises(StudyError, match=r"\[responses\.push\] id: contact interface 2 is a single surface contact"):
+        _study(tmp_path, push + "id = 2\n", solver="openradioss")
     with pytest.raises(StudyError, match=r"\[responses\.far\] the final displacement .* history nodes only"):
         _study(tmp_path, far, solver="openradioss")

@@ -37,6 +37,7 @@ from numpy.typing import ArrayLike
 
 from ..keyword.errors import Problem
 from ..keyword.schema import Record
+from ..model.contacts import interface_numbers
 from ..model.model import Model
 from .contact import BSORT_DEFAULT, ContactGroup, Interface, Surface, concat
 from .groups import ElementGroup
@@ -460,12 +461,13 @@ def _limit_thickness(surf: Surface, x: np.ndarray) -> None:
 def _interface(
     model: Model, rec, number: int, slsfac: float, problems: list, ssthk: int = 0, ignore: int = 0
 ) -> Interface | None:
-    """One interface; ``ssthk``, ``ignore``: *CONTROL_CONTACT's (the contact's
-    own IGNORE wins where it is not 0)."""
+    """One interface, numbered ``number`` (its rcforc interface number,
+    ``model.contacts``); ``ssthk``, ``ignore``: *CONTROL_CONTACT's (the
+    contact's own IGNORE wins where it is not 0)."""
     kind = rec.keyword
     n = len(model.nodes)
     o = _options(rec, problems)
-    cid = int(rec.get("cid") or number)
+    cid = int(number)
     slave = _part_ids(
         model,
         rec,
@@ -583,9 +585,10 @@ def build_contacts(model: Model, groups: Sequence[ElementGroup], problems: list)
     if not recs:
         return out
     slsfac, ignore, ssthk = _control(model, problems)
+    numbers = interface_numbers(model)
     dt0 = None
-    for i, rec in enumerate(recs):
-        c = _interface(model, rec, i + 1, slsfac, problems, ssthk, ignore)
+    for rec in recs:
+        c = _interface(model, rec, numbers[id(rec)], slsfac, problems, ssthk, ignore)
         if c is None:
             continue
         if c.soft == 1 and not np.isfinite(c.dt0):

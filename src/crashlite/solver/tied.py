@@ -32,6 +32,7 @@ import numpy as np
 from numba import njit
 
 from ..keyword.errors import Problem
+from ..model.contacts import interface_numbers
 from ..model.model import Model
 from .state import State
 
@@ -539,7 +540,8 @@ def build_tied(model: Model, problems: list, warnings: list | None = None) -> li
     x = model.nodes.xyz
     node_t = None
     taken: dict[int, int] = {}
-    for k, rec in enumerate(model.find("CONTACT_TIED_")):
+    numbers = interface_numbers(model)  # as rcforc numbers the deck's contacts (model.contacts)
+    for rec in model.find("CONTACT_TIED_"):
         kw = rec.keyword
         if kw not in ("CONTACT_TIED_NODES_TO_SURFACE", "CONTACT_TIED_SHELL_EDGE_TO_SURFACE"):
             problems.append(
@@ -567,7 +569,7 @@ def build_tied(model: Model, problems: list, warnings: list | None = None) -> li
         ok = idx >= 0
         j = idx[ok]
         ok[ok] = dist[ok] <= np.maximum(0.6 * (t_s[ok] + t_m[j]), 0.05 * diag[j]) * (1 + 1e-9)
-        cid = int(rec.get("cid") or k + 1)
+        cid = numbers[id(rec)]
         for s in cand[ok]:
             if int(s) in taken:
                 problems.append(

@@ -127,7 +127,14 @@ def evaluate(task: Task) -> dict:
             stage = "taking the responses"
         out.update(cycles=int(res.cycles), end_time=float(res.time[-1]) if len(res.time) else 0.0, run_time=run_time)
         stage = "taking the responses"
-        out["responses"] = evaluate_responses(task.responses, res, model, task.values, final_state=final_state)
+        out["responses"] = evaluate_responses(
+            task.responses,
+            res,
+            model,
+            task.values,
+            final_state=final_state,
+            solver=None if solver is None else solver.solver,
+        )
         out["status"] = "complete"
     except Exception as e:  # noqa: BLE001 - a design's failure is a result, not a crash of the study
         out["message"] = f"{stage}: {type(e).__name__}: {e}"

@@ -10,7 +10,9 @@ Types (``type = ...`` in ``[responses.NAME]``):
 ``wall_force``      rigid wall ``id`` (default the first) force
 ``section_force``   cross section ``id`` force (secforc)
 ``discrete_force``  discrete element ``id`` axial force (deforc)
-``contact_force``   contact interface ``id`` slave-side force (rcforc)
+``contact_force``   contact interface ``id`` slave-side force (rcforc; ``id``
+                    is the contact's CID, else its place among the deck's
+                    contacts: ``model.contacts``)
 ``node_displacement`` history ``node`` displacement (final: any node; an
                     LS-DYNA run's from its d3plot where not a history node)
 ``node_velocity``   history ``node`` velocity
@@ -312,40 +314,64 @@ def reads_d3plot(spec: ResponseSpec, model: Model) -> bool:
     return bool(nodes) and not set(nodes) <= history_node_ids(model)
 
 
-def _contact_ids(model: Model) -> tuple[dict[int, str], bool]:
-    """Interface number -> keyword of the deck's contacts, numbered as
-    LS-DYNA's rcforc numbers them: the contact's ID (_ID), else its place
-    among the *CONTACT_ cards; False where a card the reader keeps verbatim
-    has an ID it does not know."""
-    from ..keyword.schema import Record
+def _contact_card(spec: ResponseSpec, model: Model, solver: str = "lsdyna"):
+    """The deck's contact card a contact_force response names, numbered as
+    rcforc numbers them (``model.contacts``: its CID, else its place among
+    the contact interfaces); None where a verbatim card's ID is unknown.
+    ValueError where the deck lacks it or the run writes no force for it."""
+    from ..model.contacts import contact_cards, duplicates
 
-    out, known = {}, True
-    cards = [k for k in model.keywords if getattr(k, "name", getattr(k, "keyword", "")).startswith("CONTACT_")]
-    for k, rec in enumerate(cards):
-        if isinstance(rec, Record):
-            cid = rec.get("cid") if "ID" in rec.options else None
-            out[int(cid) if cid else k + 1] = rec.name
-        elif rec.keyword.endswith("_ID"):
-            known = False
-        else:
-            out[k + 1] = rec.keyword
-    return out, known
-
-
-def _check_lsdyna_contact(spec: ResponseSpec, model: Model) -> None:
-    contacts, known = _contact_ids(model)
-    if not contacts and known:
+    cards = contact_cards(model)
+    known = all(c.known for c in cards)
+    if not cards:
         raise ValueError("the deck has no *CONTACT_ card")
-    cid = spec.get("id", next(iter(contacts), None))
-    if cid not in contacts:
-        if known:
-            raise ValueError(f"id: contact interface {cid} is not in the deck (interfaces: {sorted(contacts)})")
-        return
-    if any(s in contacts[cid] for s in ("SINGLE_SURFACE", "SINGLE_EDGE", "AUTOMATIC_GENERAL")):
+    wanted = spec.get("id")
+    if wanted is None:  # the first interface rcforc has: the first that is not single surface
+        card = next((c for c in cards if not c.single_surface), cards[0])
+    else:
+        hits = [c for c in cards if c.number == wanted]
+        if not hits:
+            if known:
+                numbers = sorted({c.number for c in cards})
+                raise ValueError(f"id: contact interface {wanted} is not in the deck (interfaces: {numbers})")
+            return None
+        if len(hits) > 1 or wanted in duplicates(cards):
+            names = ", ".join(f"*{c.keyword} (place {c.place})" for c in hits)
+            raise ValueError(
+                f"id: contact interface {wanted} is ambiguous: {names} (a contact without an ID is numbered "
+                "by its place among the deck's contacts, which here is another contact's ID): give every "
+                "contact an _ID"
+            )
+        card = hits[0]
+    if card.single_surface:
         raise ValueError(
-            f"id: contact interface {cid} is a single surface contact (*{contacts[cid]}), for which LS-DYNA "
-            "writes no resultant in rcforc (its forces cancel): measure it with a *CONTACT_FORCE_TRANSDUCER_PENALTY"
+            f"id: contact interface {card.number} is a single surface contact (*{card.keyword}), for which "
+            "LS-DYNA writes no resultant in rcforc (its forces cancel): measure it with a "
+            "*CONTACT_FORCE_TRANSDUCER_PENALTY"
         )
+    if solver == "openradioss":
+        _openradioss_interface(card, cards)
+    return card
+
+
+def _openradioss_interface(card, cards) -> int:
+    """The /INTER ID OpenRadioss's LS-DYNA reader gives ``card`` (its time
+    history's interface); ValueError saying why where it cannot be known."""
+    from ..model.contacts import openradioss_ids
+
+    unknown = [c for c in cards if not c.known]
+    if unknown:
+        raise ValueError(
+            f"id: the /INTER ID OpenRadioss gives *{card.keyword} cannot be known: the ID of "
+            f"*{unknown[0].keyword} (a card crashlite keeps verbatim) could not be read, and OpenRadioss "
+            "numbers contacts without an ID after the largest ID: give every contact an _ID with a CID"
+        )
+    if not card.converted_by_openradioss:
+        raise ValueError(
+            f"id: OpenRadioss's LS-DYNA reader makes no interface of *{card.keyword}, so its time history "
+            'has no force for it: use wall_force or section_force, or solver = "crashlite" or "lsdyna"'
+        )
+    return openradioss_ids(cards)[card.number]
 
 
 def check_external_response(spec: ResponseSpec, model: Model, solver: str) -> None:
@@ -357,13 +383,8 @@ def check_external_response(spec: ResponseSpec, model: Model, solver: str) -> No
 
     name = NAMES.get(solver, solver)
     t = spec.type
-    if t == "contact_force" and solver != "lsdyna":
-        raise ValueError(
-            f"contact_force is read from crashlite's and LS-DYNA's runs only: an {name} run writes no "
-            'rcforc; use wall_force or section_force, or solver = "crashlite" or "lsdyna"'
-        )
     if t == "contact_force":
-        _check_lsdyna_contact(spec, model)
+        _contact_card(spec, model, solver)
     d3plot = reads_d3plot(spec, model)
     if d3plot:
         _check_d3plot(spec, model, name, solver)
@@ -452,6 +473,7 @@ def evaluate_responses(
     variables: dict,
     units: UnitSystem | None = None,
     final_state: FinalState | None = None,
+    solver: str | None = None,
 ) -> dict[str, float]:
     """Every response of a finished run: name -> float (scaled).
 
@@ -459,7 +481,9 @@ def evaluate_responses(
     value of the design; units: the deck's UnitSystem (default from its
     densities), for g and the CFC filters' seconds; final_state: an
     external solver's d3plot final state, for final displacements of
-    nodes ``res`` lacks (an LS-DYNA run's are its history nodes)."""
+    nodes ``res`` lacks (an LS-DYNA run's are its history nodes); solver:
+    the external solver that ran it ("lsdyna", "openradioss"; None:
+    crashlite's), for the contact interface IDs of an OpenRadioss run."""
     if units is None:
         from ..units import system
 
@@ -471,14 +495,14 @@ def evaluate_responses(
     g = G_MM_S2 * units.length / units.time**2
     out: dict[str, float] = {}
     for name, spec in specs.items():
-        v = _one(spec, res, model, variables, out, time_scale, g, final_state)
+        v = _one(spec, res, model, variables, out, time_scale, g, final_state, solver)
         if not math.isfinite(v):
             raise ResponseError(f"response {name!r} is not finite ({v})")
         out[name] = v * spec.scale if spec.type != "expression" else v
     return out
 
 
-def _one(spec: ResponseSpec, res, model, variables, done, time_scale, g, final_state=None) -> float:
+def _one(spec: ResponseSpec, res, model, variables, done, time_scale, g, final_state=None, solver=None) -> float:
     t, o = spec.type, spec.options
     if t == "mass":
         return float(model.mass_properties(o.get("parts")).mass)
@@ -521,7 +545,7 @@ def _one(spec: ResponseSpec, res, model, variables, done, time_scale, g, final_s
         j = _column(res.discrete_ids, o.get("id"), "discrete element")
         return _reduce(*_filtered(spec, time, res.discrete_force[:, j], time_scale), stat)
     if t == "contact_force":
-        j = _column(res.contact_ids, o.get("id"), "contact interface")
+        j = _column(res.contact_ids, _contact_id(spec, model, solver), "contact interface")
         y = _component(res.contact_force[:, j], o.get("component", "magnitude"))
         return _reduce(*_filtered(spec, time, y, time_scale), stat)
     if t in ("node_displacement", "node_velocity"):
@@ -553,6 +577,21 @@ def _one(spec: ResponseSpec, res, model, variables, done, time_scale, g, final_s
             val = val / g
         return float(val)
     raise ResponseError(f"response type {t!r} not handled")  # pragma: no cover
+
+
+def _contact_id(spec: ResponseSpec, model, solver) -> int | None:
+    """The interface ID of the response's contact in the run's rcforc: the
+    ``id`` as given (crashlite and LS-DYNA number alike; None: the first
+    interface the run has), or the /INTER ID OpenRadioss gives that card."""
+    if solver != "openradioss":
+        return spec.get("id")
+    from ..model.contacts import contact_cards
+
+    try:
+        card = _contact_card(spec, model, solver)
+        return spec.get("id") if card is None else _openradioss_interface(card, contact_cards(model))
+    except ValueError as e:
+        raise ResponseError(str(e)) from None
 
 
 def _final_displacement(res, model, nodes, final_state=None) -> np.ndarray:

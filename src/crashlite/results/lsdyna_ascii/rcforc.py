@@ -10,9 +10,10 @@ one line per side, interface and state: ``  slave %11d time%12.5E``
 (``  master%11d``), then label and ``%12.5E`` value pairs ``x``, ``y``,
 ``z``, ``mass`` (the mass of the nodes in contact), optionally ``mx``
 ``my`` ``mz`` (moments) and ``tied`` ``tied area``. The interface number is
-the contact's ID (``_ID``) or its place in the deck. Single surface
-contacts get no line ("... is single surface-resultants are undefined":
-their forces cancel) and are skipped on reading.
+the contact's ID (``_ID``) or its place among the deck's contacts
+(``model.contacts``). Single surface contacts get no line ("... is single
+surface-resultants are undefined": their forces cancel) and are skipped on
+reading.
 
 As in lasso-python's Binout, every line is a column: ``ids`` (n_lines,)
 holds each interface twice, ``side`` (n_lines,) 0 for its slave and 1 for
