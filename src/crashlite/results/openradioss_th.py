@@ -508,14 +508,22 @@ def _sum3(v: dict, a: tuple[str, str, str], b: tuple[str, str, str]) -> np.ndarr
 _FN, _FT = ("FNX", "FNY", "FNZ"), ("FTX", "FTY", "FTZ")
 
 
-def _rwforc(th: TimeHistory) -> dict | None:
-    got = _forces(th, RWALL)
+def _summed(th: TimeHistory, group: int) -> tuple | None:
+    """(ids, variables, normal + tangential force (n_times, n, 3)) of a
+    force group, or None where the file has none."""
+    got = _forces(th, group)
     if got is None:
         return None
     ids, v = got
     f = _sum3(v, _FN, _FT)
-    if f is None:
+    return None if f is None else (ids, v, f)
+
+
+def _rwforc(th: TimeHistory) -> dict | None:
+    got = _summed(th, RWALL)
+    if got is None:
         return None
+    ids, v, f = got
     out = {("forces", "time"): th.time, ("forces", "ids"): ids}
     for k, axis in enumerate("xyz"):
         out[("forces", f"{axis}_force")] = f[:, :, k]
@@ -525,13 +533,10 @@ def _rwforc(th: TimeHistory) -> dict | None:
 
 
 def _secforc(th: TimeHistory) -> dict | None:
-    got = _forces(th, SECTIO)
+    got = _summed(th, SECTIO)
     if got is None:
         return None
-    ids, v = got
-    f = _sum3(v, _FN, _FT)
-    if f is None:
-        return None
+    ids, v, f = got
     out: dict = {"time": th.time, "ids": ids}
     for k, axis in enumerate("xyz"):
         out[f"{axis}_force"] = f[:, :, k]
@@ -545,13 +550,10 @@ def _secforc(th: TimeHistory) -> dict | None:
 
 
 def _rcforc(th: TimeHistory) -> dict | None:
-    got = _forces(th, INTER)
+    got = _summed(th, INTER)
     if got is None:
         return None
-    ids, v = got
-    f = _sum3(v, _FN, _FT)
-    if f is None:
-        return None
+    ids, v, f = got
     n, m = f.shape[:2]
     both = np.stack([-f, f], axis=2).reshape(n, 2 * m, 3)  # secondary (slave) 1, main 1, secondary 2 ...
     out: dict = {"time": th.time, "ids": np.repeat(ids, 2), "side": np.tile([0, 1], m)}
