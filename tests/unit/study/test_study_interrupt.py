@@ -3,7 +3,9 @@
 running are closed as interrupted (they run again on resume), the Dask
 LocalCluster is closed, the CLI exits 130 saying how many designs finished.
 
-On the pulse example (one mass on a spring, about a second a design).
+On the pulse example (one mass on a spring, a tenth of a second a design
+once compiled: the Dask study has 256 designs, so that it is still running
+when the signal arrives on a loaded machine).
 """
 
 import os
@@ -52,10 +54,10 @@ workers = 1
 """
 
 
-def _study(tmp_path) -> Path:
+def _study(tmp_path, designs: int = 16) -> Path:
     (tmp_path / "pulse.k").write_text(PULSE.read_text())
     p = tmp_path / "study.toml"
-    p.write_text(STUDY)
+    p.write_text(STUDY.replace("designs = 16", f"designs = {designs}"))
     return p
 
 
@@ -83,7 +85,7 @@ def _check_store(cfg, finished: int) -> list:
 
 
 def test_ctrl_c_stops_a_dask_study_within_seconds_and_keeps_the_finished_designs(tmp_path):
-    study = _study(tmp_path)
+    study = _study(tmp_path, designs=256)
     cfg = load_study(study)
     proc = subprocess.Popen(
         [sys.executable, "-m", "crashlite.cli", "study", "run", str(study)],
