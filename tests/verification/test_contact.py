@@ -442,13 +442,22 @@ def test_contact_options_not_run_are_refused_by_name(tmp_path):
     assert "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE_TIEBREAK is not run by the crashlite solver" in str(e.value)
 
 
-@pytest.mark.parametrize("start_z, vz, struck", [(8.0, 1000.0, False), (10.1, -1000.0, True)])
-def test_a_node_inside_a_solid_is_not_pushed_out_through_its_face(tmp_path, start_z, vz, struck):
+@pytest.mark.parametrize(
+    "start_z, vz, struck, card2",
+    [
+        (8.0, 1000.0, False, "0,0,0,0,0,0,1e-4"),  # born (BT) while the node is inside: not moved at set-up
+        (8.0, 1000.0, False, ""),  # inside at t = 0: moved out at set-up (IGNORE 0), then leaves untouched
+        (10.1, -1000.0, True, ""),
+    ],
+)
+def test_a_node_inside_a_solid_is_not_pushed_out_through_its_face(tmp_path, start_z, vz, struck, card2):
     """A node that is already 2 mm behind the top face of a fixed solid bar
-    (it came through the solid, as through a deleted element) and moves
-    out slowly takes no contact: pushed out from that depth it would gain
-    energy no contact ever stored. The same node striking the face from
-    above rebounds."""
+    when the contact is born (as if it came through the solid, through a
+    deleted element) and moves out slowly takes no contact: pushed out
+    from that depth it would gain energy no contact ever stored. Inside at
+    t = 0, the set-up's initial-penetration check moves it out instead
+    (LS-DYNA's IGNORE 0). The same node striking the face from above
+    rebounds."""
     d = Deck()
     bar = d.bar(1, 4, 40.0, 10.0)
     (node,) = d.nodes([[15.0, 5.0, start_z]])
@@ -456,8 +465,10 @@ def test_a_node_inside_a_solid_is_not_pushed_out_through_its_face(tmp_path, star
     d.node_set(1, [node])
     d.fix(bar)
     d.velocity([node], (0.0, 0.0, vz))
-    d.contact("NODES_TO_SURFACE", "1,1,4,3")
+    d.contact("NODES_TO_SURFACE", "1,1,4,3", card2)
     res, (g,), s = run(d.write(tmp_path / "inside.k", 4e-3), output_dt=1e-4)
+    moved = [m.node for m in s.moved if m.moved]
+    assert moved == ([node - 1] if start_z < 10.0 and not card2 else [])
     if struck:
         assert res.final_v[node - 1, 2] == pytest.approx(-vz, rel=0.02) and g.max_gap > 0.0
     else:
