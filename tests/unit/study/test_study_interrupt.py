@@ -93,6 +93,8 @@ def test_ctrl_c_stops_a_dask_study_within_seconds_and_keeps_the_finished_designs
         stderr=subprocess.STDOUT,
         env={**os.environ, "PYTHONUNBUFFERED": "1"},
         start_new_session=True,
+        # SIGINT as a shell gives it (a disposition of SIG_IGN in the test process would be inherited)
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
         text=True,
     )
     lines: list[str] = []
