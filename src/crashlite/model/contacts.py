@@ -26,6 +26,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from ..keyword.cards import split
+from ..keyword.layout import INT, Field
 from ..keyword.schema import RawKeyword, Record
 
 if TYPE_CHECKING:
@@ -47,6 +49,7 @@ NOT_INTERFACES = (
 )
 SINGLE_SURFACE = ("SINGLE_SURFACE", "SINGLE_EDGE", "AUTOMATIC_GENERAL")  # no resultant in LS-DYNA's rcforc
 TRANSDUCER = "CONTACT_FORCE_TRANSDUCER_PENALTY"
+_CID = (Field("cid", INT),)  # the first field of an ID card
 # the parts of a keyword that make OpenRadioss's LS-DYNA reader convert it to an /INTER (dyna2rad ConvertContact)
 _OPENRADIOSS = (
     "AUTOMATIC_SURFACE_TO_SURFACE",
@@ -104,7 +107,7 @@ def _raw_cid(k: RawKeyword) -> tuple[int, bool]:
     for line in k.lines:
         if line.startswith("$") or not line.strip():
             continue
-        field = line.split(",")[0] if "," in line else line[: 20 if k.mode == "long" else 10]
+        (field,) = split(line, _CID, k.mode)  # as the reader splits a card (fixed, long, i10 or free)
         try:
             return max(int(field.strip() or 0), 0), True
         except ValueError:
