@@ -71,6 +71,8 @@ class Case:
     d3plot: str | None = None  # folder (relative to the repository) of LS-DYNA's d3plot of this deck
     field_bounds: dict = field(default_factory=lambda: dict(FIELD_BOUNDS))  # [%], see field_deviation
     known: dict = field(default_factory=dict)  # quantity -> why crashlite is known to miss its bound
+    # keywords (prefixes) whose warning the case expects: each says what crashlite runs in its place
+    warned: tuple = ()
 
 
 def data_root() -> Path:
@@ -166,7 +168,7 @@ def cases(lhs: int = 5) -> list[Case]:
         "lsopt_car6_v3/MODIFICATIONS_LOG.md, 'base design output 2024-05-03' (5 runs)",
         {q: float(np.ptp(v) / abs(np.mean(v))) for q, v in runs.items()},
     )
-    return [nominal] + _lhs(lhs) + _cantilevers() + [_cube(), _plate()]
+    return [nominal] + _lhs(lhs) + _cantilevers() + [_cube(), _plate(), _hat()]
 
 
 TUG_REPO = "scheckmate/test_fe_simulation"
@@ -360,4 +362,81 @@ def _plate() -> Case:
     )
     if available(case):
         case.reference = lsdyna_plate(repo_dir(case) / UQ_FOLDER)
+    return case
+
+
+HAT_REPO = "Renumics/mesh2vec"
+HAT_COMMIT = "01f717ea5896da09dc6078d24e697e2836dfc315"
+HAT_END = 1.5  # *CONTROL_TERMINATION [ms]
+HAT_BOUNDS = {"cycles": 0.05, "eps_max": 0.10, "zmax0": 1e-6}
+
+
+def lsdyna_hat(folder: Path) -> dict:
+    """LS-DYNA's figures of the hat profile from its binout (elout of the
+    history shells: plastic strain at every integration point, with the
+    cycle of each output) and its d3plot's geometry (the coordinates
+    LS-DYNA set up, after *PART_MOVE)."""
+    from lasso.dyna import ArrayType, Binout, D3plot
+
+    b = Binout(str(folder / "HAT.binout0000"))
+    ids = np.asarray(b.read("eloutdet", "shell", "ids"))[-1]
+    eps = np.asarray(b.read("eloutdet", "shell", "plastic_strain"), float)
+    eps = eps[-1].reshape(len(ids), -1).max(axis=1)  # the largest over each shell's points
+    t = np.asarray(b.read("eloutdet", "shell", "time"), float)
+    cyc = np.asarray(b.read("eloutdet", "shell", "cycle"), float)
+    x = D3plot(str(folder / "HAT.d3plot")).arrays[ArrayType.node_coordinates]
+    return {
+        # the last output is 0.45 µs before the end time: the cycles left at the last outputs' step
+        "cycles": float(cyc[-1] + (HAT_END - t[-1]) * (cyc[-1] - cyc[-2]) / (t[-1] - t[-2])),
+        "eps_max": float(eps.max()),
+        "zmax0": float(x[:, 2].max()),
+        "history_shells": ids.tolist(),
+    }
+
+
+def measure_hat(res, shells=None) -> dict:
+    """The hat profile's quantities from crashlite Results: cycles, the
+    largest effective plastic strain over LS-DYNA's history shells (the
+    largest over each shell's points), the highest initial z (the top of
+    the impactor, moved 30 mm by *PART_MOVE)."""
+    shells = HAT_HISTORY_SHELLS if shells is None else shells
+    rows = np.searchsorted(res.shell_ids, shells)
+    return {
+        "cycles": float(res.cycles),
+        "eps_max": float(res.shell_plastic_strain[rows].max()),
+        "zmax0": float(res.states_x[0][:, 2].max()),
+    }
+
+
+HAT_HISTORY_SHELLS = [1002198] + list(range(4700000, 4700020))  # *DATABASE_HISTORY_SHELL(_SET) of the deck
+
+
+def _hat() -> Case:
+    """A hat profile closed by a sheet, 500 mm long, hit at mid-span by a
+    rigid 5 kg cylinder at 20 m/s on two rigid cylindrical supports (a
+    three-point bending crash test, 1.5 ms): 6 400 fully integrated shells
+    (ELFORM 16, NIP 5) of *MAT_PLASTICITY_WITH_DAMAGE with a strain-rate
+    *DEFINE_TABLE, the profile's flanges tied to the sheet across a 2 mm gap
+    (*CONTACT_TIED_SHELL_EDGE_TO_SURFACE_BEAM_OFFSET), part-based contact
+    thickness (*PART_CONTACT OPTT 2 mm), *CONTACT_AUTOMATIC_SINGLE_SURFACE
+    of every part with SOFT 1, the impactor placed by *PART_MOVE and given
+    its speed by *INITIAL_VELOCITY_RIGID_BODY and its mass by
+    *ELEMENT_MASS_PART; kg, mm, ms, GPa. Its binout holds LS-DYNA's elout of
+    21 history shells (every 0.1 ms with the cycle); its d3plot holds the
+    set-up geometry only (the states' file is not in the repository)."""
+    case = Case(
+        "mesh2vec-hat",
+        HAT_REPO,
+        HAT_COMMIT,
+        "data/hat/Hatprofile.k",
+        None,
+        {},
+        "data/hat/{HAT.binout0000 (elout), HAT.d3plot (geometry)}",
+        measure=measure_hat,
+        bounds=dict(HAT_BOUNDS),
+        warned=("CONTROL_ACCURACY", "CONTROL_SOLUTION", "CONTACT_TIED_SHELL_EDGE_TO_SURFACE"),
+    )
+    if available(case):
+        case.reference = lsdyna_hat(repo_dir(case) / "data" / "hat")
+        case.reference.pop("history_shells")
     return case

@@ -17,3 +17,4 @@ fetch() {  # owner/name commit
 fetch dbrizard/GSA-car-crash 477fb0578b764fb8dd630608b18d0b808b1fc12a
 fetch scheckmate/test_fe_simulation c68038116845f02a3ba27f8d9bd378396140174d
 fetch chiaraf10/uqpy_test 46f7206dd52c1d60e83e1abc8d81b9a2193bb3f4
+fetch Renumics/mesh2vec 01f717ea5896da09dc6078d24e697e2836dfc315

@@ -100,6 +100,32 @@ PASSED_OVER = {
 }
 
 
+def _solution(rec) -> str | None:
+    """*CONTROL_SOLUTION: SOLN 0 (structural) is what crashlite runs; a thermal analysis is refused."""
+    soln = int(rec.get("soln") or 0)
+    if soln != 0:
+        return f"SOLN {soln} (a thermal or coupled analysis) is not run by crashlite: only SOLN 0, structural"
+    return None
+
+
+# typed cards run with one warning (the text) unless the check (None: none) names a setting crashlite does
+# not run: then they are refused with its text
+RUN_WITH_WARNING = {
+    "CONTROL_SOLUTION": (
+        _solution,
+        "SOLN 0 is crashlite's analysis; NLQ (vector length), ISNAN (NaN check) and LCINT (LS-DYNA resamples "
+        "curves to LCINT points, crashlite uses them as given) cannot change the solution",
+    ),
+    "CONTROL_ACCURACY": (
+        None,
+        "crashlite's shells take their corotational frame from the side 1-2 (INN 1) and update stresses "
+        "incrementally in it (OSU 0): the invariant frame (INN 2-4) follows the diagonals instead, which changes "
+        "the stresses only in elements sheared in their plane (by the order of the shear angle), and the "
+        "second-order objective update (OSU 1) matters only for rotations that are large within one step",
+    ),
+}
+
+
 def _name(rec) -> str:
     name = getattr(rec, "keyword", None)
     if name is None:  # raw card kept as read: "*NAME_OPTION ..." line
@@ -136,6 +162,15 @@ def unsupported_cards(model: Model, extra_run: tuple[str, ...] = (), warnings: l
         if name.startswith(NEUTRAL + READ_VERBATIM if raw else known) or (file, line, name) in seen:
             continue
         seen.add((file, line, name))
+        if name in RUN_WITH_WARNING and not raw:
+            check, why = RUN_WITH_WARNING[name]
+            refused = check(rec) if check else None
+            if refused:
+                problems.append(Problem(file or model.source or "", line, name, None, refused))
+            elif warnings is not None and name not in warned:
+                warned.add(name)
+                warnings.append(Problem(file or model.source or "", line, name, None, f"run as crashlite runs: {why}"))
+            continue
         if name.startswith(passed):
             warn(file, line, name, next(v for k, v in PASSED_OVER.items() if name.startswith(k)))
             continue

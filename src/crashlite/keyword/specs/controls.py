@@ -40,6 +40,16 @@ _control(
     card("psstupd:i=0 sidt4tu:i=0 cntco:i=0 itsflg:i=0 irquad:i=0 w_mode:f=0 stretch:f=0 icrq:i=0", optional=True),
     doc="Shell defaults: warping angle, thickness update ISTUPD, default formulation THEORY.",
 )
+_control(
+    "CONTROL_ACCURACY",
+    card("osu:i=0 inn:i~1 pidosu:i=0@set_part iacc:i=0 exacc:f=0"),
+    doc="Accuracy options: second-order objective stress update OSU, invariant node numbering INN.",
+)
+_control(
+    "CONTROL_SOLUTION",
+    card("soln:i=0 nlq:i=0 isnan:i=0 lcint:i~100 lcacc:i=0 ncdcf:i~1 nocop:i=0"),
+    doc="Analysis type SOLN (0 structural), NaN check, curve discretisation LCINT.",
+)
 
 for _db in ("GLSTAT", "MATSUM", "NODOUT", "RWFORC", "SECFORC", "DEFORC", "RCFORC", "SPCFORC"):
     _control(
