@@ -95,13 +95,81 @@ def _number(text: str) -> float:
         return float(t[:k] + "E" + t[k:])
 
 
+def _assemble(cols: dict, form: dict) -> dict:
+    """name -> (dofs, matrix) from per-matrix arrays (column grid, column
+    component, row grid, row component, value) and the column DOFs listed."""
+    out = {}
+    for name, (cg, cc, rg, rc, val, listed) in cols.items():
+        # one integer per DOF, ordered as the (grid, component) pairs (components 0-6)
+        ckey, rkey = cg * 10 + cc, rg * 10 + rc
+        keys = np.unique(np.concatenate([listed, rkey]))
+        ci, ri = np.searchsorted(keys, ckey), np.searchsorted(keys, rkey)
+        mat = np.zeros((len(keys), len(keys)))
+        mat[ri, ci] = val
+        if form[name] == 6:
+            mat[ci, ri] = val
+        out[name] = (np.stack([keys // 10, keys % 10], axis=1).astype(np.int64), mat)
+    return out
+
+
+def _read_large_field(lines: list[str]) -> dict | None:
+    """The matrices of a file written as ``write_dmig`` writes them (large
+    field, one (G, C, A) row per continuation line), parsed column-wise at
+    NumPy's speed; None for any other layout or anything it cannot parse
+    (the general reader then reads it, and names the line at fault)."""
+    is_d = np.fromiter((ln.startswith("DMIG*") for ln in lines), bool, len(lines))
+    is_c = np.fromiter((ln.startswith("*") for ln in lines), bool, len(lines))
+    if not len(lines) or not is_d[0] or not (is_d | is_c).all():
+        return None
+    entry = np.cumsum(is_d) - 1
+    names, form, col_g, col_c, header = [], {}, [], [], []
+    for i in np.flatnonzero(is_d):
+        f = _fields(lines[i])
+        names.append(f[1])
+        header.append(f[2] == "0")
+        if header[-1]:
+            form[f[1]] = int(f[3])
+            if form[f[1]] not in (1, 6):
+                return None
+            col_g.append(0), col_c.append(0)
+        else:
+            col_g.append(int(f[2])), col_c.append(int(f[3] or 1))
+    if any(n not in form for n, h in zip(names, header) if not h):
+        return None
+    rows = np.flatnonzero(is_c & ~np.array(header)[entry])
+    # the row lines' four 16-character fields (G, C, A, B), as one fixed-width byte array
+    body = "".join([lines[i][8:72].ljust(64) for i in rows]).encode("ascii")
+    f = np.frombuffer(body, dtype="S16").reshape(-1, 4)
+    blank = b" " * 16
+    keep = f[:, 0] != blank
+    if (f[keep, 1] == blank).any() or (f[keep, 2] == blank).any():
+        return None  # defaults (C = 1, A = 0): the general reader
+    rows, e = rows[keep], entry[rows[keep]]
+    g, c, a = f[keep, 0].astype(np.int64), f[keep, 1].astype(np.int64), f[keep, 2].astype(float)
+    col_g, col_c, names = np.array(col_g, np.int64), np.array(col_c, np.int64), np.array(names)
+    cols = {}
+    for name in form:
+        mine = names[e] == name
+        listed = np.flatnonzero((names == name) & ~np.array(header))
+        cols[name] = (col_g[e[mine]], col_c[e[mine]], g[mine], c[mine], a[mine], col_g[listed] * 10 + col_c[listed])
+    return _assemble(cols, form)
+
+
 def read_dmig(path) -> dict:
     """name -> (dofs (k, 2) [grid, component], (k, k) matrix) of every DMIG
     in ``path``; symmetric matrices (IFO 6) filled from the triangle given.
     Errors name the file and line."""
     path = Path(path)
+    text = path.read_text()
+    if "," not in text:
+        try:
+            fast = _read_large_field([ln for ln in text.splitlines() if ln.strip() and not ln.startswith("$")])
+        except (ValueError, IndexError):
+            fast = None
+        if fast is not None:
+            return fast
     entries: list = []  # (line number, [fields]) per entry, continuations joined
-    for no, line in enumerate(path.read_text().splitlines(), start=1):
+    for no, line in enumerate(text.splitlines(), start=1):
         if not line.strip() or line.startswith("$"):
             continue
         f = _fields(line)
