@@ -2,9 +2,7 @@
 _NODES_TO_SURFACE and _SURFACE_TO_SURFACE as time-loop groups
 (contact.ContactGroup), one per interface.
 
-Segments are the shells of the surface's parts (both sides, contact
-thickness = shell thickness, at most 40 % of the shortest edge in
-single-surface contact unless SSTHK = 1, or SST/MST) and the exterior faces
+Segments are the shells of the surface's parts (both sides) and the exterior faces
 of their solids (faces used by one element of the surface, outward normals,
 zero thickness); where solids may be deleted (*CONTROL_TIMESTEP ERODE = 1, a
 material failure strain) also every inner face, once for each of its two
@@ -18,12 +16,24 @@ Slave entries are nodes facing segments:
 - surface to surface: both passes, slave nodes against master segments and
   master nodes against slave segments (symmetric treatment).
 
+Shell contact thickness (LS-DYNA's order): the shell thickness scaled by
+the part's SFT (*PART_CONTACT) where given, else by SFST/SFMT, at most 40 %
+of the shortest edge in single-surface contact unless SSTHK = 1; replaced
+by SST/MST where given, and by the part's OPTT over both (the 40 % limit
+then does not apply). Rigid parts are surface like any other part: a
+single surface with SSID 0 takes every part, rigid solids by their
+exterior faces.
+
 Penalty stiffness (LS-DYNA, SOFT = 0): k = SLSFAC·SF·K·A/min(diagonal)
 for shells, SLSFAC·SF·K·A²/V for solid faces (K the bulk modulus
 E/(3(1−2ν)) of the segment's material, SF = SFS for slave, SFM for master
 segments), and for a pair the smaller of the segment's and the slave node's
-(the largest of its own segments; none for nodes without segments). SOFT = 1
-and friction: see ``contact``. Options that would change the physics and are
+(the largest of its own segments; none for nodes without segments); the
+slave side's segments also scaled by their part's SSF (*PART_CONTACT, "the
+default slave penalty stiffness"; in a single surface every segment is
+slave). SOFT = 1 and friction: see ``contact``; FS = −1 takes FS FD DC VC
+of the interface's parts (*PART_CONTACT, 0 for a part without it), run
+where they are the same for every part of the interface. Options that would change the physics and are
 not run are refused with a Problem naming the field.
 """
 
@@ -156,6 +166,34 @@ def _shell_thickness(model: Model, sel: np.ndarray, conn: np.ndarray, problems: 
     return np.where(tri, tn[:, :3].mean(axis=1), tn.mean(axis=1))
 
 
+def part_contact(model: Model) -> dict[int, dict[str, float]]:
+    """Part ID -> the *PART_CONTACT fields (FS FD DC VC OPTT SFT SSF, SSF 0
+    read as 1) of the parts that have them."""
+    out = {}
+    for pid, part in model.parts.items():
+        if "CONTACT" in getattr(part, "options", ()):
+            out[int(pid)] = {f: _num(part, f) for f in ("fs", "fd", "dc", "vc", "optt", "sft")}
+            out[int(pid)]["ssf"] = _num(part, "ssf", 1.0) or 1.0
+    return out
+
+
+def _per_part(pc: dict, pids: np.ndarray, fld: str, default: float) -> np.ndarray:
+    """(k,) the *PART_CONTACT field of each entry's part (``default`` for parts without one)."""
+    return np.array([pc[int(p)][fld] if int(p) in pc else default for p in pids], float).reshape(len(pids))
+
+
+def _contact_thickness(model: Model, sel, conn, problems: list, rec, sst: float, sfst: float):
+    """(contact thickness (k,), given (k,)) of the shells ``sel``: the shell
+    thickness scaled by the part's SFT (else SFST), replaced by SST > 0 and
+    over both by the part's OPTT > 0 (``given``: SST or OPTT set it)."""
+    pc = part_contact(model)
+    pids = model.shells.pid[sel]
+    optt, sft = _per_part(pc, pids, "optt", 0.0), _per_part(pc, pids, "sft", 0.0)
+    base = np.where(sft > 0, sft, sfst) * _shell_thickness(model, sel, conn, problems, rec)
+    t = np.where(optt > 0, optt, sst if sst > 0 else base)
+    return t, (optt > 0) | (sst > 0)
+
+
 def _bulk(model: Model, pid: int, problems: list, rec) -> float:
     part = model.parts.get(int(pid))
     mat = model.materials.get(part.get("mid")) if part is not None else None
@@ -184,15 +222,17 @@ def _solid_conn(model: Model, sel: np.ndarray) -> np.ndarray:
     return conn
 
 
-def _node_shell_thickness(model: Model, nodes: np.ndarray, problems: list, rec) -> np.ndarray:
-    """(k,) the largest thickness of the shells holding each node (0: none)."""
+def _node_shell_thickness(
+    model: Model, nodes: np.ndarray, problems: list, rec, sst: float = 0.0, sfst: float = 1.0
+) -> np.ndarray:
+    """(k,) the largest contact thickness of the shells holding each node (0: none)."""
     sh = model.shells
     sel = np.isin(sh.nodes, nodes).any(axis=1) if len(sh) else np.zeros(0, bool)
     t = np.zeros(len(model.nodes))
     if sel.any():
         conn = sh.nodes[sel].astype(np.int64)
         conn[:, 3] = np.where(conn[:, 3] < 0, conn[:, 2], conn[:, 3])
-        te = _shell_thickness(model, sel, conn, problems, rec)
+        te, _ = _contact_thickness(model, sel, conn, problems, rec, sst, sfst)
         for a in range(4):
             np.maximum.at(t, conn[:, a], te)
     return t[nodes]
@@ -263,20 +303,26 @@ def build_surface(
     thick_scale: float,
     problems: list,
     rec: Record | None,
+    slave: bool = False,
+    limit: bool = False,
 ) -> Surface:
     """Segments of the parts ``pids``: shells and exterior solid faces, with
-    their thickness (``thick`` > 0 replaces the shells'; else scaled by
-    ``thick_scale``) and SOFT = 0 penalty stiffness scaled by slsfac·sf."""
+    their contact thickness (``thick`` > 0 replaces the shells'; else
+    scaled by ``thick_scale``; the parts' SFT and OPTT: see the module;
+    ``limit``: the single-surface 40 % rule) and SOFT = 0 penalty stiffness
+    scaled by slsfac·sf (``slave``: also by the parts' SSF)."""
     x = model.nodes.xyz
     pids = np.asarray(pids, np.int64)
+    pc = part_contact(model) if slave else {}
     out = []
     sh = model.shells
     sel = np.isin(sh.pid, pids)
     if sel.any():
         conn = sh.nodes[sel].astype(np.int64)
         conn[:, 3] = np.where(conn[:, 3] < 0, conn[:, 2], conn[:, 3])
-        t = thick if thick > 0 else thick_scale * _shell_thickness(model, sel, conn, problems, rec)
-        t = np.broadcast_to(t, (len(conn),)).astype(float)
+        t, given = _contact_thickness(model, sel, conn, problems, rec, thick, thick_scale)
+        if limit:
+            t = np.where(given, t, np.minimum(t, 0.4 * _shortest_edge(x, conn)))
         pids_sel = sh.pid[sel]
         upids = np.unique(pids_sel)
         bulk = np.array([_bulk(model, p, problems, rec) for p in upids])[np.searchsorted(upids, pids_sel)]
@@ -291,7 +337,7 @@ def build_surface(
                 np.linalg.norm(x[conn[:, 3]] - x[conn[:, 1]], axis=1),
             ),
         )
-        k = slsfac * sf * bulk * area / np.where(diag > 0, diag, 1.0)
+        k = slsfac * sf * _per_part(pc, pids_sel, "ssf", 1.0) * bulk * area / np.where(diag > 0, diag, 1.0)
         out.append(
             Surface(
                 conn,
@@ -320,7 +366,7 @@ def build_surface(
             Surface(
                 faces,
                 np.zeros(len(faces)),
-                slsfac * sf * kb * area**2 / v,
+                slsfac * sf * _per_part(pc, so.pid[sel][owner], "ssf", 1.0) * kb * area**2 / v,
                 np.ones(len(faces), np.int8),
                 0.5 * v / np.maximum(area, 1e-300),
                 np.sqrt(area),
@@ -411,7 +457,14 @@ def _options(rec, problems: list) -> dict | None:
     if soft not in (0, 1):
         problems.append(_problem(rec, "soft", f"SOFT {soft} is not supported (0 penalty, 1 soft constraint)"))
         ok = False
-    for fld in ("fs", "fd", "dc", "vdc", "sst", "mst"):
+    if _num(rec, "fs") < 0 and _num(rec, "fs") != -1:
+        problems.append(
+            _problem(
+                rec, "fs", f"FS = {_num(rec, 'fs'):g} is not supported (FS = -1: the parts' *PART_CONTACT friction)"
+            )
+        )
+        ok = False
+    for fld in ("fd", "dc", "vdc", "sst", "mst"):
         if _num(rec, fld) < 0:
             problems.append(
                 _problem(rec, fld, f"{fld.upper()} < 0 (friction or thickness from other cards) is not supported")
@@ -448,14 +501,53 @@ def _options(rec, problems: list) -> dict | None:
     )
 
 
-def _limit_thickness(surf: Surface, x: np.ndarray) -> None:
-    """LS-DYNA's single-surface rule (*CONTROL_CONTACT SSTHK = 0, no SST):
-    a shell segment's contact thickness is at most 40 % of its shortest edge."""
-    seg = surf.seg
+def _shortest_edge(x: np.ndarray, seg: np.ndarray) -> np.ndarray:
+    """(k,) the shortest edge of each segment (LS-DYNA's single-surface rule,
+    *CONTROL_CONTACT SSTHK = 0: a shell's contact thickness is at most 40 %
+    of it unless SST or OPTT give the thickness)."""
     edge = np.stack([np.linalg.norm(x[seg[:, (j + 1) % 4]] - x[seg[:, j]], axis=1) for j in range(4)], axis=1)
-    shortest = np.where(edge > 0, edge, np.inf).min(axis=1)  # a triangle's n3 = n4 edge is no edge
-    shell = surf.solid == 0
-    surf.thick[shell] = np.minimum(surf.thick[shell], 0.4 * shortest[shell])
+    return np.where(edge > 0, edge, np.inf).min(axis=1)  # a triangle's n3 = n4 edge is no edge
+
+
+def _part_friction(model: Model, rec, o: dict, slave, master, problems: list) -> bool:
+    """FS = −1: FS FD DC of the interface's parts (*PART_CONTACT; 0 for a
+    part without it) into ``o``, where every part gives the same (which
+    part's values LS-DYNA takes for a pair is then moot); False with a
+    Problem where they differ or a part's VC (viscous friction) is set."""
+    pids = set()
+    for side in (slave, master):
+        if side is None:
+            continue
+        if side[0] == "parts":
+            pids.update(int(p) for p in side[1])
+        else:  # a node set: the parts of the elements holding its nodes
+            for t in (model.shells, model.solids):
+                if len(t):
+                    pids.update(int(p) for p in np.unique(t.pid[np.isin(t.nodes, side[1]).any(axis=1)]))
+    pc = part_contact(model)
+    zero = dict.fromkeys(("fs", "fd", "dc", "vc"), 0.0)
+    values = {p: tuple(pc.get(p, zero)[f] for f in ("fs", "fd", "dc", "vc")) for p in sorted(pids)}
+    if len(set(values.values())) > 1:
+        first = min(values)
+        other = next(p for p in values if values[p] != values[first])
+        problems.append(
+            _problem(
+                rec,
+                "fs",
+                "FS = -1 with part-based friction that differs between the parts of the interface is not "
+                f"supported: FS FD DC VC of part {first} {values[first]}, of part {other} {values[other]} "
+                "(*PART_CONTACT)",
+            )
+        )
+        return False
+    fs, fd, dc, vc = next(iter(values.values()), (0.0, 0.0, 0.0, 0.0))
+    if vc != 0:
+        problems.append(
+            _problem(rec, "fs", f"viscous friction limit VC = {vc:g} of the parts' *PART_CONTACT is not supported")
+        )
+        return False
+    o.update(fs=fs, fd=fd, dc=dc)
+    return True
 
 
 def _interface(
@@ -484,14 +576,25 @@ def _interface(
     if slave is None or o is None:
         return None
     before = len(problems)
+    if o["fs"] == -1 and not _part_friction(model, rec, o, slave, master, problems):
+        return None
     s_surf = (
-        build_surface(model, slave[1], slsfac, o["sfs"], o["sst"], o["sfst"], problems, rec)
+        build_surface(
+            model,
+            slave[1],
+            slsfac,
+            o["sfs"],
+            o["sst"],
+            o["sfst"],
+            problems,
+            rec,
+            slave=True,
+            limit=kind == KINDS[0] and not ssthk,
+        )
         if slave[0] == "parts"
         else Surface.empty()
     )
     if kind == KINDS[0]:
-        if o["sst"] <= 0 and not ssthk:
-            _limit_thickness(s_surf, model.nodes.xyz)
         nodes = s_surf.nodes()
         t, k = s_surf.node_values(nodes, n)
         side = np.full(len(nodes), -1, np.int64)
@@ -502,11 +605,9 @@ def _interface(
         if kind == KINDS[1]:
             if slave[0] == "nodes":  # thickness of the shells on the nodes; stiffness from the master
                 nodes = slave[1]
-                t = (
-                    np.full(len(nodes), o["sst"])
-                    if o["sst"] > 0
-                    else o["sfst"] * _node_shell_thickness(model, nodes, problems, rec)
-                )
+                t = _node_shell_thickness(model, nodes, problems, rec, o["sst"], o["sfst"])
+                if o["sst"] > 0:  # SST also for nodes without shells (OPTT still first where a part gives it)
+                    t = np.where(t > 0, t, o["sst"])
                 k = np.full(len(nodes), np.inf)
             else:
                 nodes = _element_nodes(model, slave[1])

@@ -1,5 +1,6 @@
 """Tied contacts as kinematic constraints: *CONTACT_TIED_NODES_TO_SURFACE
-and *CONTACT_TIED_SHELL_EDGE_TO_SURFACE (each also _OFFSET).
+and *CONTACT_TIED_SHELL_EDGE_TO_SURFACE (each also _OFFSET; the shell edge
+also _BEAM_OFFSET).
 
 At set-up every slave node is projected on the nearest master segment;
 nodes farther than the search distance stay free and are listed
@@ -10,8 +11,10 @@ set-up) goes to those nodes with the same weights, so momentum is kept and
 the time step stays that of the elements.
 
 Search distance: the larger of 0.6·(t_slave + t_master) and 5 % of the
-segment's longest diagonal, t the shell thickness at the nodes (or
-|SST|·SFST, |MST|·SFMT when given), as LS-DYNA's tied contacts.
+segment's longest diagonal, t the contact thickness at the nodes, as
+LS-DYNA's tied contacts: the shell thickness (scaled by the part's SFT,
+*PART_CONTACT), |SST|·SFST, |MST|·SFMT when given, the part's OPTT over
+both.
 
 _OFFSET keeps the initial gap r as a rigid offset: v_s = v_m + ω × r, with
 ω the master nodes' angular velocity where they have rotational DOFs, else
@@ -22,6 +25,13 @@ go to the segment) and always carries the gap as a rigid offset. Without
 _OFFSET, NODES_TO_SURFACE carries the gap as a translation (the slave is
 not moved onto the surface as LS-DYNA does; the gap is within the search
 distance) and leaves the slave rotations free.
+
+SHELL_EDGE_TO_SURFACE_BEAM_OFFSET: LS-DYNA ties by penalty, with beams
+across the gap whose stiffness follows the shells' and which carry the
+moments. crashlite runs it as the shell-edge tie above, the gap kept as a
+rigid offset and the rotations tied: the limit of infinitely stiff beams
+(the penalty's compliance, small beside the shells', is left out), with
+one warning per card saying so.
 """
 
 from __future__ import annotations
@@ -34,6 +44,7 @@ from numba import njit
 from ..keyword.errors import Problem
 from ..model.contacts import interface_numbers
 from ..model.model import Model
+from .contact_build import part_contact
 from .state import State
 
 # hexahedron faces (LS-DYNA node order) for the exterior of solid parts
@@ -303,17 +314,29 @@ def shell_thickness(model: Model) -> np.ndarray:
     return out
 
 
-def _node_thickness(model: Model) -> np.ndarray:
-    """(n,) largest thickness of the shells at each node [length]."""
+def _node_thickness(model: Model) -> tuple[np.ndarray, np.ndarray]:
+    """((n,) largest contact thickness of the shells at each node: the
+    shell thickness scaled by the part's SFT, its OPTT where given
+    (*PART_CONTACT) [length]; (n,) the node's thickness is an OPTT)."""
     t = np.zeros(len(model.nodes))
+    optt = np.zeros(len(model.nodes), bool)
     sh = model.shells
     if len(sh):
+        pc = part_contact(model)
         te = shell_thickness(model)
+        given = np.zeros(len(sh), bool)
+        for pid, v in pc.items():
+            on = sh.pid == pid
+            if v["optt"] > 0:
+                te[on], given[on] = v["optt"], True
+            elif v["sft"] > 0:
+                te[on] *= v["sft"]
         conn = sh.nodes.astype(np.int64)
         for a in range(4):
             ok = conn[:, a] >= 0
             np.maximum.at(t, conn[ok, a], te[ok])
-    return t
+            optt[conn[ok & given, a]] = True
+    return t, optt
 
 
 def exterior_faces(conn: np.ndarray) -> np.ndarray:
@@ -543,12 +566,15 @@ def build_tied(model: Model, problems: list, warnings: list | None = None) -> li
     numbers = interface_numbers(model)  # as rcforc numbers the deck's contacts (model.contacts)
     for rec in model.find("CONTACT_TIED_"):
         kw = rec.keyword
-        if kw not in ("CONTACT_TIED_NODES_TO_SURFACE", "CONTACT_TIED_SHELL_EDGE_TO_SURFACE"):
+        if kw not in ("CONTACT_TIED_NODES_TO_SURFACE", "CONTACT_TIED_SHELL_EDGE_TO_SURFACE") or (
+            "BEAM" in rec.options and "OFFSET" not in rec.options
+        ):
             problems.append(
                 _problem(
                     rec,
                     None,
-                    f"*{kw} is not supported (TIED_NODES_TO_SURFACE and TIED_SHELL_EDGE_TO_SURFACE, with _OFFSET, are)",
+                    f"*{rec.name} is not supported (TIED_NODES_TO_SURFACE and TIED_SHELL_EDGE_TO_SURFACE, with "
+                    "_OFFSET, and TIED_SHELL_EDGE_TO_SURFACE_BEAM_OFFSET are)",
                 )
             )
             continue
@@ -556,12 +582,15 @@ def build_tied(model: Model, problems: list, warnings: list | None = None) -> li
         if slaves is None or seg is None:
             continue
         if node_t is None:
-            node_t = _node_thickness(model)
+            node_t, node_optt = _node_thickness(model)
         sst, mst = abs(float(rec.get("sst") or 0.0)), abs(float(rec.get("mst") or 0.0))
         on_master = np.isin(slaves, seg)  # already joined to the surface by a shared node
         cand = slaves[~on_master]
-        t_s = np.full(len(cand), sst * float(rec.get("sfst") or 1.0)) if sst else node_t[cand]
-        t_m = np.full(len(seg), mst * float(rec.get("sfmt") or 1.0)) if mst else node_t[seg].max(axis=1)
+        # SST/MST replace the shells' thickness, a part's OPTT replaces both (LS-DYNA's order)
+        t_s = np.where(node_optt[cand] | (sst == 0), node_t[cand], sst * float(rec.get("sfst") or 1.0))
+        t_m = np.where(
+            node_optt[seg].any(axis=1) | (mst == 0), node_t[seg].max(axis=1), mst * float(rec.get("sfmt") or 1.0)
+        )
         xs = x[seg]
         diag = np.maximum(np.linalg.norm(xs[:, 2] - xs[:, 0], axis=1), np.linalg.norm(xs[:, 3] - xs[:, 1], axis=1))
         reach = np.maximum(0.6 * (t_s.max(initial=0.0) + t_m), 0.05 * diag)
@@ -591,6 +620,16 @@ def build_tied(model: Model, problems: list, warnings: list | None = None) -> li
             rotations=kw == "CONTACT_TIED_SHELL_EDGE_TO_SURFACE",
             untied=untied,
         )
+        if "BEAM" in rec.options:
+            tie.warnings.append(
+                _problem(
+                    rec,
+                    None,
+                    "BEAM_OFFSET: LS-DYNA ties by penalty beams across the gap; crashlite ties the shell edge "
+                    "kinematically, the gap kept as a rigid offset and the rotations tied (the limit of stiff "
+                    f"beams): {len(tie)} slave node(s) tied",
+                )
+            )
         if len(untied):
             more = f" and {len(untied) - 10} more" if len(untied) > 10 else ""
             tie.warnings.append(

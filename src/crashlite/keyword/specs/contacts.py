@@ -34,14 +34,25 @@ for _name in (
     "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE",
 ):
     register(Spec(_name, _layout, options=("ID", "TITLE"), id_field="cid", title_option=False, doc=_DOC))
-for _name in ("CONTACT_TIED_NODES_TO_SURFACE", "CONTACT_TIED_SHELL_EDGE_TO_SURFACE"):
-    register(
-        Spec(
-            _name,
-            _layout,
-            options=("ID", "TITLE", "OFFSET"),
-            id_field="cid",
-            title_option=False,
-            doc=_DOC + " _OFFSET ties with the initial gap kept.",
-        )
+register(
+    Spec(
+        "CONTACT_TIED_NODES_TO_SURFACE",
+        _layout,
+        options=("OFFSET", "ID", "TITLE"),
+        id_field="cid",
+        title_option=False,
+        doc=_DOC + " _OFFSET ties with the initial gap kept.",
     )
+)
+# _BEAM_OFFSET (the words BEAM and OFFSET): LS-DYNA's penalty tie whose beams carry moments across the gap
+register(
+    Spec(
+        "CONTACT_TIED_SHELL_EDGE_TO_SURFACE",
+        _layout,
+        options=("BEAM", "OFFSET", "ID", "TITLE"),
+        id_field="cid",
+        title_option=False,
+        doc=_DOC + " _OFFSET ties with the initial gap kept; _BEAM_OFFSET ties across the gap by beams "
+        "that carry moments.",
+    )
+)
