@@ -97,14 +97,14 @@ def _element_groups(model: Model, rigid: np.ndarray, n: int, problems: list, war
     return groups + build_contacts(model, groups, problems)  # after the elements: they add to their forces
 
 
-def _constraint_objects(model: Model, mass, rot_inertia, v0, w0, in_body, problems: list) -> list:
+def _constraint_objects(model: Model, mass, rot_inertia, v0, w0, in_body, problems: list, warnings: list) -> list:
     """Tied contacts and spot welds (Setup.constraints): the tied slaves'
     masses (and rotary inertias) go to their masters and the initial
     velocities are made consistent with the ties, momentum kept."""
     from .spotwelds import build_spotwelds
     from .tied import build_tied
 
-    ties = build_tied(model, problems)
+    ties = build_tied(model, problems, warnings)
     welds = build_spotwelds(model, problems)
     x = model.nodes.xyz
     for t in ties:
@@ -269,7 +269,7 @@ def _build(model: Model) -> Setup:
     moved = remove_initial_penetrations(contacts, x0, ~fixed.all(axis=1) & ~driven) if contacts else []
     warnings += report(moved, {g.cid: g.name for g in contacts}, model.nodes.ids, model.source or "")
     w0 = _initial_rotation(model, n)
-    constraints = _constraint_objects(model, mass, rot_inertia, v0, w0, in_body, problems)
+    constraints = _constraint_objects(model, mass, rot_inertia, v0, w0, in_body, problems, warnings)
     term = model.find("CONTROL_TERMINATION")
     ts = model.find("CONTROL_TIMESTEP")
     t_end = end_time(model)

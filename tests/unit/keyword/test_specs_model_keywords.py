@@ -55,7 +55,7 @@ EXPECTED = {
     "CONTACT_AUTOMATIC_NODES_TO_SURFACE": (CONTACT_OPTS, False, "keywords", "cid"),
     "CONTACT_AUTOMATIC_SURFACE_TO_SURFACE": (CONTACT_OPTS, False, "keywords", "cid"),
     "CONTACT_TIED_NODES_TO_SURFACE": (CONTACT_OPTS + ("OFFSET",), False, "keywords", "cid"),
-    "CONTACT_TIED_SHELL_EDGE_TO_SURFACE": (CONTACT_OPTS + ("OFFSET",), False, "keywords", "cid"),
+    "CONTACT_TIED_SHELL_EDGE_TO_SURFACE": (CONTACT_OPTS + ("OFFSET", "BEAM"), False, "keywords", "cid"),
     # constraints
     "CONSTRAINED_NODAL_RIGID_BODY": (("INERTIA", "SPC"), True, "keywords", "pid"),
     "CONSTRAINED_EXTRA_NODES": (("NODE", "SET"), False, "keywords", None),
