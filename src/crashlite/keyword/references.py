@@ -52,6 +52,8 @@ def defined_ids(model: Model) -> dict[str, set]:
     for kind, sid in model.sets:
         d.setdefault("set_" + kind.lower(), set()).add(sid)
     for k in model.keywords:
+        if isinstance(k, Record) and k.keyword == "DEFINE_TABLE" and k.id is not None:
+            d["curve"].add(k.id)  # a table shares the curves' IDs: a LCSS names either
         if isinstance(k, RawKeyword):
             for prefix, kind in _RAW_DEFINES:
                 if k.keyword.startswith(prefix):

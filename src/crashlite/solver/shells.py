@@ -34,11 +34,15 @@ from numpy.typing import ArrayLike
 
 from ..keyword.errors import Problem
 from ..model.model import Model
+from .curve_store import CurveStore
 from .groups import ElementGroup
 from .kernels import plane_stress as ps
 from .kernels.shell import scratch, shell_forces, shell_timestep
 from .kernels.shell_full import full_forces
 from .kernels.solid import corner_incidence, gather_corner_pair
+from .shell_materials import num as _num
+from .shell_materials import problem as _problem
+from .shell_materials import shell_material
 from .state import State
 
 _AS_BT = (0, 1, 2, 4, 6, 7, 8, 10, 11, 17, 18, 20)
@@ -56,7 +60,7 @@ class ShellSet:
     tri: np.ndarray  # (n,) int8 1: triangle
     mat_of: np.ndarray  # (n,) int64 row of the material tables
     mat_ids: np.ndarray  # (n_mat,) int64 deck material IDs
-    mtype: np.ndarray  # (n_mat,) int64 plane_stress.ELASTIC, KINEMATIC, PIECEWISE
+    mtype: np.ndarray  # (n_mat,) int64 plane_stress.ELASTIC, KINEMATIC, PIECEWISE, DAMAGE
     props: np.ndarray  # (n_mat, N_PROPS) float64 (plane_stress P_*)
     mcurve: np.ndarray  # (n_mat, N_CURVES) int64 curve slots (-1: none)
     curve_start: np.ndarray  # (n_curves,) int64
@@ -124,6 +128,10 @@ def new_state(s: ShellSet, n_nodes: int) -> ShellState:
     ptr, corner_of = corner_incidence(n_nodes, s.conn)
     idx = np.flatnonzero(s.full) if s.full is not None else np.zeros(0, np.int64)
     nf = len(idx)
+    back4 = np.zeros((nf, 4 * k, 5))
+    # MAT_081 counts NUMINT failed points per in-plane point: the layers' in-plane point (plane_stress)
+    dmg = s.mtype[s.mat_of[idx]] == ps.DAMAGE if nf else np.zeros(0, bool)
+    back4[dmg, :, 1] = np.repeat(np.arange(4.0), k)
     return ShellState(
         np.zeros((n, k, 5)),
         np.zeros((n, k, 5)),
@@ -142,7 +150,7 @@ def new_state(s: ShellSet, n_nodes: int) -> ShellState:
         corner_of,
         idx.astype(np.int64),
         np.zeros((nf, 4 * k, 5)),
-        np.zeros((nf, 4 * k, 5)),
+        back4,
         np.zeros((nf, 4 * k)),
         np.zeros((nf, 4 * k), np.int8),
     )
@@ -274,151 +282,6 @@ def element_dt(s: ShellSet, x: np.ndarray, alive: np.ndarray | None = None) -> n
 
 
 # --- from the Model -------------------------------------------------------------------------------
-
-
-def _problem(rec, fld, msg) -> Problem:
-    f, line = rec.where(fld) if rec is not None and hasattr(rec, "where") else ("", 0)
-    return Problem(f, line, getattr(rec, "name", ""), fld.upper() if fld else None, msg)
-
-
-class _Curves:
-    """Curve store (CSR), each *DEFINE_CURVE once."""
-
-    def __init__(self, model: Model):
-        self.model = model
-        self.slot: dict = {}
-        self.xs: list[np.ndarray] = []
-        self.ys: list[np.ndarray] = []
-
-    def get(self, lcid: int) -> int:
-        if lcid not in self.slot:
-            c = self.model.curves[lcid]
-            a = np.asarray(c.rows["a1"], float) * float(c.get("sfa", 1.0) or 1.0) + float(c.get("offa", 0.0))
-            o = np.asarray(c.rows["o1"], float) * float(c.get("sfo", 1.0) or 1.0) + float(c.get("offo", 0.0))
-            self.add(a, o, lcid)
-        return self.slot[lcid]
-
-    def add(self, a, o, key) -> int:
-        self.slot[key] = len(self.xs)
-        self.xs.append(np.asarray(a, float))
-        self.ys.append(np.asarray(o, float))
-        return self.slot[key]
-
-    def arrays(self):
-        sizes = np.array([len(a) for a in self.xs], np.int64)
-        stop = np.cumsum(sizes)
-        cat = lambda xs: np.concatenate(xs) if xs else np.zeros(0)  # noqa: E731
-        return stop - sizes, stop, cat(self.xs), cat(self.ys)
-
-
-def _num(rec, fld, default=0.0) -> float:
-    v = rec.get(fld)
-    return default if v is None else float(v)
-
-
-def _curve(model, mat, fld, curves, problems):
-    """Curve slot of field ``fld`` (-1: none), None if refused."""
-    lc = int(_num(mat, fld))
-    if lc == 0:
-        return -1
-    if lc not in model.curves:
-        problems.append(
-            _problem(
-                mat, fld, f"curve {lc} is not defined (a *DEFINE_CURVE is needed; tables are not supported for shells)"
-            )
-        )
-        return None
-    return curves.get(lc)
-
-
-def _material(model: Model, mat, curves: _Curves, problems: list):
-    """(kind, props row, curve slots) of one material, or None if refused."""
-    kw = mat.keyword
-    if kw not in ("MAT_ELASTIC", "MAT_PLASTIC_KINEMATIC", "MAT_PIECEWISE_LINEAR_PLASTICITY"):
-        problems.append(
-            _problem(
-                mat, None, f"*{kw} is not supported for shells (supported: MAT_001, MAT_003, MAT_024, MAT_020 rigid)"
-            )
-        )
-        return None
-    e, nu, ro = _num(mat, "e"), _num(mat, "pr"), _num(mat, "ro")
-    if e <= 0 or ro <= 0 or not 0.0 <= nu < 0.5:
-        bad = "ro" if ro <= 0 else "e" if e <= 0 else "pr"
-        problems.append(
-            _problem(
-                mat,
-                bad,
-                f"material {mat.get('mid')}: RO > 0, E > 0 and 0 <= PR < 0.5 are "
-                f"needed for shells ({bad.upper()} = {_num(mat, bad):g})",
-            )
-        )
-        return None
-    row = np.zeros(ps.N_PROPS)
-    mc = np.full(ps.N_CURVES, -1, np.int64)
-    row[ps.P_RO], row[ps.P_E], row[ps.P_PR] = ro, e, nu
-    row[ps.P_G], row[ps.P_C1] = e / (2.0 * (1.0 + nu)), e / (1.0 - nu * nu)
-    row[ps.P_WAVE] = e / (ro * (1.0 - nu * nu))
-    row[ps.P_FAIL] = 1e21
-    row[ps.P_BETA] = 1.0
-    if kw == "MAT_ELASTIC":
-        return ps.ELASTIC, row, mc
-    ok = True
-    etan = _num(mat, "etan")
-    if not 0.0 <= etan < e:
-        problems.append(_problem(mat, "etan", "ETAN must lie in [0, E)"))
-        ok = False
-    row[ps.P_SIGY] = _num(mat, "sigy")
-    row[ps.P_EP] = e * etan / (e - etan) if 0.0 <= etan < e else 0.0
-    if _num(mat, "vp") != 0.0:
-        problems.append(_problem(mat, "vp", "VP = 1 (viscoplastic rate formulation) is not supported yet"))
-        ok = False
-    if kw == "MAT_PLASTIC_KINEMATIC":
-        beta = _num(mat, "beta")
-        if not 0.0 <= beta <= 1.0:
-            problems.append(_problem(mat, "beta", "BETA must lie in [0, 1]"))
-            ok = False
-        row[ps.P_BETA] = beta
-        row[ps.P_CS_C], row[ps.P_CS_P] = _num(mat, "src"), _num(mat, "srp")
-        fs = _num(mat, "fs", 1e20)
-        row[ps.P_FAIL] = fs if fs > 0 else 1e21
-        if row[ps.P_SIGY] <= 0:
-            problems.append(_problem(mat, "sigy", "SIGY > 0 is needed"))
-            ok = False
-        return (ps.KINEMATIC, row, mc) if ok else None
-    # MAT_024
-    for fld, what in (("lcf", "LCF"), ("tdel", "TDEL (deletion by time step)")):
-        if _num(mat, fld) != 0:
-            problems.append(_problem(mat, fld, f"{what} is not supported for shells yet"))
-            ok = False
-    fail = _num(mat, "fail", 1e21)
-    if fail < 0:
-        problems.append(_problem(mat, "fail", "FAIL < 0 (user failure subroutine) is not supported"))
-        ok = False
-    row[ps.P_FAIL] = fail if fail > 0 else 1e21
-    row[ps.P_CS_C], row[ps.P_CS_P] = _num(mat, "c"), _num(mat, "p")
-    lcsr = _curve(model, mat, "lcsr", curves, problems)
-    lcss = _curve(model, mat, "lcss", curves, problems)
-    if lcsr is None or lcss is None:
-        return None
-    mc[ps.C_LCSR] = lcsr
-    if lcss >= 0:
-        mc[ps.C_LCSS] = lcss
-    else:
-        es = np.array([_num(mat, f"es{i}") for i in range(1, 9)])
-        eps = np.array([_num(mat, f"eps{i}") for i in range(1, 9)])
-        if np.any(es > 0):
-            n = int(np.flatnonzero(es > 0)[-1]) + 1
-            if n < 2 or np.any(np.diff(eps[:n]) <= 0):
-                problems.append(
-                    _problem(mat, "eps1", "EPS1-EPS8 / ES1-ES8 need at least two points with rising strains")
-                )
-                ok = False
-            else:
-                mc[ps.C_LCSS] = curves.add(eps[:n], es[:n], ("mat", mat.get("mid")))
-        elif row[ps.P_SIGY] <= 0:
-            problems.append(_problem(mat, "sigy", "SIGY > 0 (or a curve LCSS / EPS-ES points) is needed"))
-            ok = False
-    return (ps.PIECEWISE, row, mc) if ok else None
 
 
 def _control_shell(model: Model, problems: list, warns: list) -> tuple[int, int, int, float]:
@@ -566,7 +429,7 @@ def build_shell_set(
     ihq0 = int(ctrl[0].get("ihq", 1) or 1) if ctrl else 1
     qh0 = _num(ctrl[0], "qh", 0.1) if ctrl else 0.1
     istupd, bwc, intgrd, rotascl = _control_shell(model, problems, warns)
-    curves = _Curves(model)
+    curves = CurveStore(model)
     mat_rows: dict[int, int] = {}
     mtypes, props, mcurves, mat_ids = [], [], [], []
     mat_of = np.zeros(n, np.int64)
@@ -597,7 +460,7 @@ def build_shell_set(
         hg = _hourglass(model, part, int(p), ihq0, qh0, problems, warns)
         mid = int(mat.get("mid"))
         if mid not in mat_rows:
-            mm = _material(model, mat, curves, problems)
+            mm = shell_material(model, mat, curves, problems, warns)
             if mm is not None:
                 mat_rows[mid] = len(mtypes)
                 mtypes.append(mm[0])

@@ -16,6 +16,15 @@ register(
 )
 register(
     Spec(
+        "DEFINE_TABLE",
+        fixed(card("tbid:i@curve sfa:f~1 offa:f=0"), row=[card("value:f20=0 lcid:i20@curve")]),
+        id_field="tbid",
+        doc="Table: one curve LCID per VALUE (scaled by SFA, offset by OFFA), e.g. the yield "
+        "curve of each strain rate of a MAT_024 or MAT_081 LCSS; the curves follow the table.",
+    )
+)
+register(
+    Spec(
         "DEFINE_VECTOR",
         fixed(card("vid:i@vector xt:f=0 yt:f=0 zt:f=0 xh:f=0 yh:f=0 zh:f=0 cid:i=0@coord")),
         group="vectors",

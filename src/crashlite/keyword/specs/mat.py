@@ -35,6 +35,16 @@ _mat(
     doc="Elasto-plastic with a stress-strain curve (LCSS) or 8 points, strain rate, failure.",
 )
 _mat(
+    "MAT_PLASTICITY_WITH_DAMAGE",
+    "MAT_081",
+    card("mid:i@mat ro:f e:f pr:f=0 sigy:f etan:f=0 eppf:f~1e12 tdel:f=0"),
+    card("c:f=0 p:f=0 lcss:i=0@curve lcsr:i=0@curve eppfr:f~1e14 vp:f=0 lcdm:i=0@curve numint:i=0"),
+    card(" ".join(f"eps{i}:f=0" for i in range(1, 9)), optional=True),
+    card(" ".join(f"es{i}:f=0" for i in range(1, 9)), optional=True),
+    doc="MAT_024's plasticity with damage: the stress scaled by 1 - D from EPPF (softening begins) "
+    "to EPPFR (rupture), D linear or the curve LCDM; NUMINT failed points delete a shell (0: all).",
+)
+_mat(
     "MAT_HONEYCOMB",
     "MAT_026",
     card("mid:i@mat ro:f e:f pr:f=0 sigy:f vf:f mu:f~0.05 bulk:f=0"),

@@ -2,9 +2,30 @@
 
 Materials: MAT_001 (elastic), MAT_003 (PLASTIC_KINEMATIC: bilinear with
 mixed kinematic/isotropic hardening BETA, Cowper–Symonds SRC/SRP, failure
-strain FS) and MAT_024 (PIECEWISE_LINEAR_PLASTICITY: SIGY + ETAN or a curve
+strain FS), MAT_024 (PIECEWISE_LINEAR_PLASTICITY: SIGY + ETAN or a curve
 LCSS of yield stress vs effective plastic strain, Cowper–Symonds C/P or a
-rate-scaling curve LCSR, failure strain FAIL).
+rate-scaling curve LCSR, failure strain FAIL) and MAT_081
+(PLASTICITY_WITH_DAMAGE: MAT_024's plasticity with damage, below).
+
+LCSS may name a *DEFINE_TABLE (slot C_TABLE): a yield curve per strain rate,
+the yield stress and its slope interpolated linearly between the two curves
+whose rates bracket the point's effective strain rate, the first or last
+curve outside them (LS-DYNA does not extrapolate); rates in ln(ε̇) where the
+first value is negative. C, P and LCSR do not apply then.
+
+MAT_081: the stored stress is σ = (1 − D)·σ̃, σ̃ the plasticity's effective
+stress, with D(ε̄p) = (ε̄p − EPPF)/(EPPFR − EPPF) between EPPF and EPPFR
+(or the curve LCDM of D vs ε̄p − EPPF); D is a function of ε̄p, so σ̃ is
+recovered from σ and ε̄p and no other history is kept. A point ruptures
+(stress zero, failed) at ε̄p = EPPFR (P_FAIL) or D = 1. The work ½(σn + σn+1)·Δε
+the shell kernels integrate is that of the damaged stress: the elastic
+energy of the stress removed by D stays in the internal energy (dissipated,
+never returned). The back stress is not used by the isotropic MAT_081:
+back[e, k, 0] is 1 once point k ruptured, back[e, k, 1] the in-plane point
+its layer belongs to (0 for the one-point shells; 0-3 for ELFORM 16, set
+by the caller); with NUMINT > 0 a point fails once NUMINT points of its
+in-plane point have, so that the shell kernels' rule (all points failed:
+deleted) deletes the element one step later at most.
 
 The return mapping is the Simo–Taylor projected algorithm: with the
 elastic plane-stress trial state σ* and ξ = σ − β (β the back stress in its
@@ -44,9 +65,9 @@ from numba import njit, prange
 from .discrete import curve_value
 
 # material kinds (LS-DYNA numbers)
-ELASTIC, KINEMATIC, PIECEWISE = 1, 3, 24
+ELASTIC, KINEMATIC, PIECEWISE, DAMAGE = 1, 3, 24, 81
 
-N_PROPS = 12
+N_PROPS = 15
 P_RO, P_E, P_PR, P_G, P_C1 = 0, 1, 2, 3, 4  # P_C1 = E/(1 − ν²), plane-stress modulus
 P_SIGY = 5  # initial yield stress
 P_EP = 6  # plastic hardening modulus E·Et/(E − Et)
@@ -54,9 +75,14 @@ P_BETA = 7  # share of isotropic hardening (MAT_003 BETA; 1 for MAT_024)
 P_CS_C, P_CS_P = 8, 9  # Cowper–Symonds C [1/time] and P (0: no rate effect)
 P_FAIL = 10  # effective plastic strain at failure (1e21: none)
 P_WAVE = 11  # plate wave speed² E/(ρ(1 − ν²)) [length²/time²]
+P_EPPF, P_EPPFR = 12, 13  # MAT_081: ε̄p where softening begins, where the material ruptures (also P_FAIL)
+P_NUMINT = 14  # MAT_081: failed points of an in-plane point that fail it (0: all)
 
-N_CURVES = 2
+N_CURVES = 4
 C_LCSS, C_LCSR = 0, 1  # yield stress vs ε̄p; yield scale factor vs strain rate
+# a table of yield curves by strain rate (x: rates, y: slots of the curves); MAT_081's damage vs ε̄p − EPPF.
+# A narrower mcurve (callers with two slots) has neither.
+C_TABLE, C_LCDM = 2, 3
 
 _TOL = 1e-10  # relative tolerance of the consistency condition
 # a Halley step that changes the stress by less than this fraction (|ΔΔγ|·k2) is the last: what is left
@@ -76,10 +102,60 @@ def curve_slope(xs, ys, start, stop, x):
     return (ys[i + 1] - ys[i]) / dx if dx != 0.0 else 0.0
 
 
+@njit(cache=True, inline="always")
+def slot(mc, m, c):
+    """Curve slot c of material row m, -1 where mcurve has no such column."""
+    return mc[m, c] if c < mc.shape[1] else -1
+
+
 @njit(cache=True)
-def _yield(props, m, mc, cs, ce, cx, cy, ep):
+def table_yield(cs, ce, cx, cy, t, rate, ep):
+    """Yield stress and slope at ε̄p of the table in slot t at the strain
+    rate: linear between the curves whose rates bracket it, the first or
+    the last curve outside them; the rates are ln(ε̇) if the first is < 0."""
+    a, b = cs[t], ce[t]
+    r = rate
+    if cx[a] < 0.0:
+        r = math.log(rate) if rate > 0.0 else -math.inf
+    i, w = a, 0.0
+    if r >= cx[b - 1]:
+        i = b - 1
+    elif r > cx[a]:
+        while cx[i + 1] <= r:
+            i += 1
+        w = (r - cx[i]) / (cx[i + 1] - cx[i])
+    c0 = int(cy[i])
+    y = curve_value(cx, cy, cs[c0], ce[c0], ep)
+    h = curve_slope(cx, cy, cs[c0], ce[c0], ep)
+    if w > 0.0:
+        c1 = int(cy[i + 1])
+        y += w * (curve_value(cx, cy, cs[c1], ce[c1], ep) - y)
+        h += w * (curve_slope(cx, cy, cs[c1], ce[c1], ep) - h)
+    return y, h
+
+
+@njit(cache=True)
+def damage(props, m, mc, cs, ce, cx, cy, ep):
+    """MAT_081's damage D in [0, 1] at ε̄p (0 for the other materials)."""
+    f = props[m, P_EPPF]
+    if ep <= f:
+        return 0.0
+    c = slot(mc, m, C_LCDM)
+    if c >= 0:
+        d = curve_value(cx, cy, cs[c], ce[c], ep - f)
+    else:
+        span = props[m, P_EPPFR] - f
+        d = (ep - f) / span if span > 0.0 else 1.0
+    return min(max(d, 0.0), 1.0)
+
+
+@njit(cache=True)
+def _yield(props, m, mc, cs, ce, cx, cy, ep, rate):
     """Static yield stress and its isotropic hardening slope at ε̄p
-    (material row m)."""
+    (material row m), at the strain rate where LCSS is a table."""
+    t = slot(mc, m, C_TABLE)
+    if t >= 0:
+        return table_yield(cs, ce, cx, cy, t, rate, ep)
     c = mc[m, C_LCSS]
     if c >= 0:
         return curve_value(cx, cy, cs[c], ce[c], ep), curve_slope(cx, cy, cs[c], ce[c], ep)
@@ -126,6 +202,29 @@ def _shrunk(dg, k1, k2, a1, a2, sh):
     return r1, r2, aa1, aa2, math.sqrt(0.25 * aa1 * aa1 + 0.75 * aa2 * aa2 + 3.0 * sh * r2 * r2)
 
 
+@njit(cache=True)
+def _rupture(sig, back, e, k):
+    """A MAT_081 point fails: no stress, marked for NUMINT (back[e, k, 0])."""
+    for i in range(5):
+        sig[e, k, i] = 0.0
+    back[e, k, 0] = 1.0
+    return True
+
+
+@njit(cache=True)
+def _numint_reached(props, m, back, e, k):
+    """Whether NUMINT (> 0) points of point k's in-plane point (back[., ., 1])
+    have ruptured."""
+    need = props[m, P_NUMINT]
+    if need <= 0.0:
+        return False
+    n = 0
+    for j in range(back.shape[1]):
+        if back[e, j, 1] == back[e, k, 1] and back[e, j, 0] != 0.0:
+            n += 1
+    return n >= need
+
+
 @njit(cache=True, inline="always")  # inlined: the shell loop keeps its registers
 def update_point(mtype, props, m, mc, cs, ce, cx, cy, sig, back, e, k, ep, d0, d1, d2, d3, d4, dt):
     """Stress update of integration point k of element e.
@@ -138,18 +237,24 @@ def update_point(mtype, props, m, mc, cs, ce, cx, cy, sig, back, e, k, ep, d0, d
     reference-count its parent (atomics shared by every thread).
 
     Returns (ε̄p after the step, Δε_zz, failed): failed when ε̄p reached
-    the failure strain (the stresses are then zero).
+    the failure strain (the stresses are then zero), or a MAT_081 point
+    ruptured or its in-plane point reached NUMINT failed points.
     """
     e_mod = props[m, P_E]
     nu = props[m, P_PR]
     g = props[m, P_G]
     c1 = props[m, P_C1]
-    o0, o1 = sig[e, k, 0], sig[e, k, 1]
+    keep = 1.0  # 1 − D of MAT_081 at the step's start: the effective stress is sig/keep
+    if mtype == DAMAGE:
+        keep = 1.0 - damage(props, m, mc, cs, ce, cx, cy, ep)
+        if keep <= 0.0 or back[e, k, 0] != 0.0 or _numint_reached(props, m, back, e, k):
+            return ep, 0.0, _rupture(sig, back, e, k)
+    o0, o1 = sig[e, k, 0] / keep, sig[e, k, 1] / keep
     t0 = o0 + c1 * (d0 + nu * d1)
     t1 = o1 + c1 * (d1 + nu * d0)
-    t2 = sig[e, k, 2] + g * d2
-    t3 = sig[e, k, 3] + g * d3
-    t4 = sig[e, k, 4] + g * d4
+    t2 = sig[e, k, 2] / keep + g * d2
+    t3 = sig[e, k, 3] / keep + g * d3
+    t4 = sig[e, k, 4] / keep + g * d4
     if mtype == ELASTIC:
         sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4] = t0, t1, t2, t3, t4
         return ep, -nu / e_mod * (t0 - o0 + t1 - o1), False
@@ -160,11 +265,16 @@ def update_point(mtype, props, m, mc, cs, ce, cx, cy, sig, back, e, k, ep, d0, d
     x0, x1, x2, x3, x4 = t0 - b0, t1 - b1, t2 - b2, t3 - b3, t4 - b4
     q_tr = math.sqrt(max(x0 * x0 - x0 * x1 + x1 * x1 + 3.0 * (x2 * x2 + x3 * x3 + x4 * x4), 0.0))
     rf = 1.0
-    if mc[m, C_LCSR] >= 0 or (props[m, P_CS_C] > 0.0 and props[m, P_CS_P] > 0.0):
-        rf = rate_factor(props, m, mc, cs, ce, cx, cy, effective_rate(d0, d1, d2, d3, d4, dt))
-    y0, h0 = _yield(props, m, mc, cs, ce, cx, cy, ep)
+    rate = 0.0
+    table = slot(mc, m, C_TABLE) >= 0
+    if table or mc[m, C_LCSR] >= 0 or (props[m, P_CS_C] > 0.0 and props[m, P_CS_P] > 0.0):
+        rate = effective_rate(d0, d1, d2, d3, d4, dt)
+        if not table:  # a table's curves hold the rate effect
+            rf = rate_factor(props, m, mc, cs, ce, cx, cy, rate)
+    y0, h0 = _yield(props, m, mc, cs, ce, cx, cy, ep, rate)
     if q_tr <= rf * y0 or q_tr == 0.0:
-        sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4] = t0, t1, t2, t3, t4
+        sig[e, k, 0], sig[e, k, 1], sig[e, k, 2] = keep * t0, keep * t1, keep * t2
+        sig[e, k, 3], sig[e, k, 4] = keep * t3, keep * t4
         return ep, -nu / e_mod * (t0 - o0 + t1 - o1), False
     hk = (1.0 - props[m, P_BETA]) * props[m, P_EP] if kinematic else 0.0
     k1 = e_mod / (3.0 * (1.0 - nu)) + 2.0 / 3.0 * hk  # eigenvalue of C·P + ⅔H_k on ξx + ξy
@@ -188,7 +298,7 @@ def update_point(mtype, props, m, mc, cs, ce, cx, cy, sig, back, e, k, ep, d0, d
     r1 = r2 = aa1 = aa2 = q = 0.0
     for _it in range(200):
         r1, r2, aa1, aa2, q = _shrunk(dg, k1, k2, a1, a2, sh)
-        y, h = _yield(props, m, mc, cs, ce, cx, cy, ep + 2.0 / 3.0 * dg * q)
+        y, h = _yield(props, m, mc, cs, ce, cx, cy, ep + 2.0 / 3.0 * dg * q, rate)
         f = q - rf * y
         if abs(f) <= _TOL * rf * max(y, y0):
             at_dg = True
@@ -243,13 +353,18 @@ def update_point(mtype, props, m, mc, cs, ce, cx, cy, sig, back, e, k, ep, d0, d
     ep_new = ep + dep
     # Δε_zz: elastic −ν/E (Δσx + Δσy), plastic −(Δεp_x + Δεp_y) = −Δγ (ξx + ξy)/3
     dez = -nu / e_mod * (s0 - o0 + s1 - o1) - dg * (n0 + n1) / 3.0
+    if mtype == DAMAGE:
+        keep = 1.0 - damage(props, m, mc, cs, ce, cx, cy, ep_new)
+        if keep <= 0.0 or ep_new >= props[m, P_FAIL]:
+            return ep_new, dez, _rupture(sig, back, e, k)
     if ep_new >= props[m, P_FAIL]:
         for i in range(5):
             sig[e, k, i] = 0.0
             if kinematic:
                 back[e, k, i] = 0.0
         return ep_new, dez, True
-    sig[e, k, 0], sig[e, k, 1], sig[e, k, 2], sig[e, k, 3], sig[e, k, 4] = s0, s1, b2 + n2, b3 + n3, b4 + n4
+    sig[e, k, 0], sig[e, k, 1], sig[e, k, 2] = keep * s0, keep * s1, keep * (b2 + n2)
+    sig[e, k, 3], sig[e, k, 4] = keep * (b3 + n3), keep * (b4 + n4)
     if kinematic:
         back[e, k, 0], back[e, k, 1], back[e, k, 2], back[e, k, 3], back[e, k, 4] = b0, b1, b2, b3, b4
     return ep_new, dez, False
@@ -552,6 +667,10 @@ def update_block(n, P, kk, nk, sig, back, epsp, ipfail, base, mtype, props, m, m
     or failed are skipped. Material row m (mc and the curve store as
     update_point), shear factor ks, the step dt (rates)."""
     kind = mtype[m]
+    if kind == DAMAGE or slot(mc, m, C_TABLE) >= 0:  # the rate table and the damage: update_point's
+        for p in range(n):
+            P[R_OK * W + p] = 0.0
+        return
     kinematic = kind == KINEMATIC
     e_mod, nu, g, c1 = props[m, P_E], props[m, P_PR], props[m, P_G], props[m, P_C1]
     hk = (1.0 - props[m, P_BETA]) * props[m, P_EP] if kinematic else 0.0
