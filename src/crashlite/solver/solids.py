@@ -21,6 +21,7 @@ from numpy.typing import ArrayLike
 from ..keyword.errors import Problem
 from ..keyword.schema import RawKeyword
 from ..model.model import Model
+from .curve_store import CurveStore
 from .groups import ElementGroup
 from .kernels import solid_materials as sm
 from .kernels.solid import (
@@ -203,36 +204,6 @@ def _problem(rec, fld, msg) -> Problem:
     return Problem(f, line, getattr(rec, "name", ""), fld.upper() if fld else None, msg)
 
 
-class _Curves:
-    """Curve store (CSR) filled on demand, each *DEFINE_CURVE once."""
-
-    def __init__(self, model: Model):
-        self.model = model
-        self.slot: dict[int, int] = {}
-        self.xs: list[np.ndarray] = []
-        self.ys: list[np.ndarray] = []
-
-    def get(self, lcid: int) -> int:
-        if lcid not in self.slot:
-            c = self.model.curves[lcid]
-            a = np.asarray(c.rows["a1"], float) * float(c.get("sfa", 1.0) or 1.0) + float(c.get("offa", 0.0))
-            o = np.asarray(c.rows["o1"], float) * float(c.get("sfo", 1.0) or 1.0) + float(c.get("offo", 0.0))
-            self.add(a, o, lcid)
-        return self.slot[lcid]
-
-    def add(self, a, o, key) -> int:
-        self.slot[key] = len(self.xs)
-        self.xs.append(np.asarray(a, float))
-        self.ys.append(np.asarray(o, float))
-        return self.slot[key]
-
-    def arrays(self):
-        sizes = np.array([len(a) for a in self.xs], np.int64)
-        stop = np.cumsum(sizes)
-        cat = lambda xs: np.concatenate(xs) if xs else np.zeros(0)  # noqa: E731
-        return stop - sizes, stop, cat(self.xs), cat(self.ys)
-
-
 def _elastic_constants(mat, row, problems) -> bool:
     e, nu, ro = float(mat.get("e", 0.0)), float(mat.get("pr", 0.0)), float(mat.get("ro", 0.0))
     if e <= 0 or ro <= 0 or not -1.0 < nu < 0.5:
@@ -263,7 +234,7 @@ def _curve_ok(model, mat, fld, problems, required=True) -> bool:
     return True
 
 
-def _material(model: Model, mat, curves: _Curves, problems: list):
+def _material(model: Model, mat, curves: CurveStore, problems: list):
     """(kind, props row, curve slots) of one material, or None if refused."""
     row = np.zeros(sm.N_PROPS)
     mc = np.full(sm.N_CURVES, -1, np.int64)
@@ -297,14 +268,17 @@ def _material(model: Model, mat, curves: _Curves, problems: list):
         row[sm.P_HARD] = e * etan / (e - etan) if etan < e else 0.0
         row[sm.P_FAIL] = fail if fail > 0 else 1e21
         row[sm.P_CS_C], row[sm.P_CS_P] = float(mat.get("c", 0.0) or 0.0), float(mat.get("p", 0.0) or 0.0)
-        lcss = int(mat.get("lcss", 0) or 0)
         eps = np.array([float(mat.get(f"eps{i}", 0.0) or 0.0) for i in range(1, 9)])
         es = np.array([float(mat.get(f"es{i}", 0.0) or 0.0) for i in range(1, 9)])
-        if lcss:
-            if _curve_ok(model, mat, "lcss", problems):
-                mc[sm.C_LCSS] = curves.get(lcss)
-            else:
-                ok = False
+        lcss, table, why = curves.yield_slots(mat, "lcss")
+        if why is not None:
+            problems.append(_problem(mat, "lcss", why))
+            ok = False
+        elif table >= 0:  # yield curves by strain rate: C and P do not apply
+            mc[sm.C_TABLE] = table
+            row[sm.P_CS_C] = row[sm.P_CS_P] = 0.0
+        elif lcss >= 0:
+            mc[sm.C_LCSS] = lcss
         elif np.any(es > 0):
             n = int(np.flatnonzero(es > 0)[-1]) + 1
             if n < 2:
@@ -440,7 +414,7 @@ def build_solids(model: Model, rigid_pids: ArrayLike, problems: list, warnings: 
     ihq0 = int(ctrl[0].get("ihq", 1) or 1) if ctrl else 1
     qh0 = float(ctrl[0].get("qh", 0.1)) if ctrl else 0.1
     bq1, bq2 = _bulk_viscosity(model)
-    curves = _Curves(model)
+    curves = CurveStore(model)
     mat_rows: dict[int, int] = {}
     mtypes, props, mcurves, mat_ids = [], [], [], []
     mat_of = np.zeros(n, np.int64)

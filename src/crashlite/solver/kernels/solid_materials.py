@@ -21,6 +21,7 @@ import math
 from numba import njit
 
 from .discrete import curve_value
+from .plane_stress import table_yield
 
 # material kinds
 ELASTIC, PLASTIC, HONEYCOMB, FOAM = 1, 24, 26, 63
@@ -37,8 +38,9 @@ P_SIGY, P_HARD, P_FAIL, P_CS_C, P_CS_P = 8, 9, 10, 11, 12
 P_VF, P_EAAU, P_EBBU, P_ECCU, P_GABU, P_GBCU, P_GCAU, P_TSEF, P_SSEF = 9, 10, 11, 12, 13, 14, 15, 16, 17
 # MAT_063
 P_TSC = 8
-# curve slots: MAT_024 yield curve; MAT_026 a, b, c, ab, bc, ca; MAT_063 yield curve
-C_LCSS = 0
+# curve slots: MAT_024 yield curve, or a *DEFINE_TABLE of them by strain rate (x: rates, y: curve slots);
+# MAT_026 a, b, c, ab, bc, ca; MAT_063 yield curve
+C_LCSS, C_TABLE = 0, 1
 C_A, C_B, C_C, C_AB, C_BC, C_CA = 0, 1, 2, 3, 4, 5
 C_FOAM = 0
 
@@ -90,8 +92,11 @@ def update_elastic(p, s, w, do):
 
 
 @njit(cache=True)
-def _yield(p, curve, cs, ce, cx, cy, ep):
-    """Yield stress and hardening slope at plastic strain ep."""
+def _yield(p, curve, table, cs, ce, cx, cy, ep, rate):
+    """Yield stress and hardening slope at plastic strain ep (and, for a
+    table, at the strain rate: kernels.plane_stress.table_yield)."""
+    if table >= 0:
+        return table_yield(cs, ce, cx, cy, table, rate, ep)
     if curve >= 0:
         return (curve_value(cx, cy, cs[curve], ce[curve], ep), curve_slope(cx, cy, cs[curve], ce[curve], ep))
     return p[P_SIGY] + p[P_HARD] * ep, p[P_HARD]
@@ -100,8 +105,9 @@ def _yield(p, curve, cs, ce, cx, cy, ep):
 @njit(cache=True)
 def update_plastic(p, mc, cs, ce, cx, cy, s, w, do, epsp, e, dt):
     """MAT_024: J2 plasticity, isotropic hardening (SIGY + ETAN or LCSS
-    curve of yield stress vs effective plastic strain), radial return, with
-    Cowper–Symonds scaling of the yield stress (C, P) when given.
+    curve of yield stress vs effective plastic strain, or a table of such
+    curves by strain rate), radial return, with Cowper–Symonds scaling of
+    the yield stress (C, P) when given and LCSS is no table.
 
     Returns (wave modulus, failed): failed when the effective plastic
     strain reaches FAIL.
@@ -111,21 +117,25 @@ def update_plastic(p, mc, cs, ce, cx, cy, s, w, do, epsp, e, dt):
     pm, q = _mises(s)
     ep = epsp[e]
     curve = mc[C_LCSS]
+    table = mc[C_TABLE]
     factor = 1.0
-    if p[P_CS_C] > 0.0 and p[P_CS_P] > 0.0 and dt > 0.0:
+    rate = 0.0
+    cowper = p[P_CS_C] > 0.0 and p[P_CS_P] > 0.0 and table < 0
+    if (cowper or table >= 0) and dt > 0.0:
         tr = (w[do] + w[do + 1] + w[do + 2]) / 3.0
         dd = 0.0
         for i in range(3):
             dd += (w[do + i] - tr) ** 2 + 2.0 * w[do + i + 3] ** 2
         rate = math.sqrt(2.0 / 3.0 * dd) / dt
-        factor = 1.0 + (rate / p[P_CS_C]) ** (1.0 / p[P_CS_P])
-    y, h = _yield(p, curve, cs, ce, cx, cy, ep)
+        if cowper:
+            factor = 1.0 + (rate / p[P_CS_C]) ** (1.0 / p[P_CS_P])
+    y, h = _yield(p, curve, table, cs, ce, cx, cy, ep, rate)
     if q > factor * y:
         # q - 3G·Δλ = factor·σy(ep + Δλ): Newton, kept inside its bracket
         lo, hi = 0.0, q / (3.0 * g)
         dl = 0.0
         for _ in range(60):
-            y, h = _yield(p, curve, cs, ce, cx, cy, ep + dl)
+            y, h = _yield(p, curve, table, cs, ce, cx, cy, ep + dl, rate)
             f = q - 3.0 * g * dl - factor * y
             if abs(f) <= 1e-12 * q:
                 break
