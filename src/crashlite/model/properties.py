@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import NamedTuple
 
 import numpy as np
 
@@ -82,6 +84,67 @@ def _scaled(mo, f: float):
     return mk.Moments(mo.mass * f, mo.first * f, mo.second * f)
 
 
+class MassPartRow(NamedTuple):
+    """One row of *ELEMENT_MASS_PART(_SET): the parts it names, their mass
+    before it (earlier rows included) and the mass it adds."""
+
+    rec: object  # the card
+    row: int  # its row
+    pids: list  # parts (of the set, with _SET) that exist
+    current: float  # their mass before this row [mass]
+    added: float  # FINMASS - current when FINMASS > 0, else ADDMASS [mass]
+
+
+def _given_inertia(part) -> bool:
+    return "INERTIA" in part.options and float(part.get("tm", 0.0) or 0.0) > 0
+
+
+def element_mass(model, pid: int) -> float:
+    """Mass of a part's shells, solids and beams (ρ·t·A, ρ·V, ρ·A·L)."""
+    return float(sum(x.mass.sum() for x in _part_moments(model, np.array([int(pid)]))))
+
+
+def mass_part_rows(model, part_mass: Callable[[int], float] | None = None) -> list[MassPartRow]:
+    """*ELEMENT_MASS_PART rows in deck order. A _SET row acts on its parts
+    as a whole (FINMASS is the set's final mass) and scales each by the same
+    factor, so the mass goes to every node in proportion to its mass and the
+    CoG stays; a later row sees the mass earlier rows added. ``part_mass``:
+    a part's own mass (default: its elements' mass). Parts given by
+    *PART_INERTIA keep their TM and are left out."""
+    part_mass = part_mass or (lambda p: element_mass(model, p))
+    factor: dict[int, float] = {}
+    out = []
+    for rec in model.find("ELEMENT_MASS_PART"):
+        rows = rec.rows or {}
+        for k, ident in enumerate(rows.get("pid", [])):
+            if "SET" in rec.options:
+                try:
+                    named = [int(p) for p in model.set_members("PART", int(ident))]
+                except KeyError:
+                    named = []
+            else:
+                named = [int(ident)]
+            pids = [p for p in named if p in model.parts and not _given_inertia(model.parts[p])]
+            current = sum(part_mass(p) * factor.get(p, 1.0) for p in pids)
+            fm, am = float(rows["finmass"][k]), float(rows["addmass"][k])
+            added = fm - current if fm > 0 else am
+            if current > 0:
+                for p in pids:
+                    factor[p] = factor.get(p, 1.0) * (current + added) / current
+            out.append(MassPartRow(rec, k, pids, current, added))
+    return out
+
+
+def mass_part_factors(model) -> dict[int, float]:
+    """Part ID -> the factor *ELEMENT_MASS_PART scales its element mass by."""
+    factor: dict[int, float] = {}
+    for r in mass_part_rows(model):
+        if r.current > 0:
+            for p in r.pids:
+                factor[p] = factor.get(p, 1.0) * (r.current + r.added) / r.current
+    return factor
+
+
 def mass_properties(model, parts=None) -> mk.MassProperties:
     """Mass, CoG and inertia about the CoG of the whole model or of parts.
 
@@ -89,22 +152,16 @@ def mass_properties(model, parts=None) -> mk.MassProperties:
     T1..T4), solids ρ over the volume, beams ρ·A along the axis; *ELEMENT_MASS
     and *ELEMENT_INERTIA add point masses; a part with *PART_INERTIA (TM > 0)
     counts with its given mass, CoG and tensor; *ELEMENT_MASS_PART adds mass
-    to a part in proportion to its element mass (CoG unchanged).
+    to a part in proportion to its element mass (CoG unchanged; see
+    ``mass_part_rows``).
     """
     pids = model.part_ids_of(parts)
     whole = parts is None
-    add = {}
-    for rec in model.find("ELEMENT_MASS_PART"):
-        if "SET" in rec.options:
-            targets = [int(p) for pset in rec.rows["pid"] for p in model.set_members("PART", int(pset))]
-        else:
-            targets = [int(p) for p in rec.rows["pid"]]
-        for p, am, fm in zip(targets, rec.rows["addmass"], rec.rows["finmass"]):
-            add[p] = (am, fm)
+    factor = mass_part_factors(model) if model.find("ELEMENT_MASS_PART") else {}
     moments = []
     for pid in pids:
         part = model.parts[int(pid)]
-        if "INERTIA" in part.options and float(part.get("tm", 0.0)) > 0:
+        if _given_inertia(part):
             c = np.array([part.get("xc", 0.0), part.get("yc", 0.0), part.get("zc", 0.0)], float)
             tensor = np.array(
                 [
@@ -117,11 +174,8 @@ def mass_properties(model, parts=None) -> mk.MassProperties:
             moments.append(mk.point_moments(c[None], np.array([part.get("tm")], float), tensor[None]))
             continue
         pm = _part_moments(model, np.array([pid]))
-        if int(pid) in add and pm:
-            total = sum(float(x.mass.sum()) for x in pm)
-            am, fm = add[int(pid)]
-            f = (fm / total) if fm > 0 else (total + am) / total if total > 0 else 1.0
-            pm = [_scaled(x, f) for x in pm]
+        if int(pid) in factor:
+            pm = [_scaled(x, factor[int(pid)]) for x in pm]
         moments += pm
     ms = model.masses
     sel = np.ones(len(ms), bool) if whole else np.isin(ms.pid, pids)

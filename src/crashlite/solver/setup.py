@@ -24,8 +24,10 @@ from .boundary import Motion, Wall, build_constraints, build_motions, build_wall
 from .discretes import Discrete, build_discrete
 from .initial import _initial_rotation, _initial_velocity
 from .loads import build_nodal_loads
+from .mass_parts import add_part_masses
 from .massless import massless_cards
 from .nodal_bodies import build_nodal_bodies
+from .part_moves import moved_model
 from .records import _curve, _problem
 
 
@@ -140,11 +142,13 @@ def build(model: Model) -> Setup:
 
 def _build(model: Model) -> Setup:
     from .rigid_parts import part_bodies, rigid_part_ids
+    from .rigid_velocity import start_rigid_bodies
     from .sections import build_sections
     from .support import unsupported_cards
 
     warnings: list[Problem] = []
     problems: list[Problem] = unsupported_cards(model, warnings=warnings)
+    model = moved_model(model, problems, warnings)  # *PART_MOVE: before anything reads a coordinate
     rigid = np.array(sorted(rigid_part_ids(model)), np.int64)
     massless = massless_cards(model, rigid)
     if massless:  # nodes without mass follow from these: name the cards, not the nodes
@@ -179,6 +183,8 @@ def _build(model: Model) -> Setup:
         m_g, j_g = g.lumped(n)
         mass += m_g
         rot_inertia += j_g
+    beam_pid = model.beams.pid[~np.isin(model.beams.pid, rigid)].astype(np.int64)
+    add_part_masses(model, groups, beams, beam_pid, rigid, mass, problems)  # before bodies take the masses
     v0 = np.zeros((n, 3))
     _initial_velocity(model, v0, problems)
     fixed, fixed_rot, skew = build_constraints(model, problems)
@@ -194,7 +200,9 @@ def _build(model: Model) -> Setup:
         conn = g.conn if refused is None else g.conn[~refused]
         used[conn[conn >= 0]] = True
     bodies = build_nodal_bodies(model, model.nodes.xyz, v0, mass, problems, used, rot_inertia)
-    bodies += part_bodies(model, model.nodes.xyz, v0, mass, problems)
+    rigid_bodies = part_bodies(model, model.nodes.xyz, v0, mass, problems)
+    start_rigid_bodies(model, rigid_bodies, model.nodes.xyz, v0, problems)
+    bodies += rigid_bodies
     body_of = {b.body_id: b for b in bodies}
     for mo in motions:
         if mo.body_pid and mo.body_pid not in body_of:
@@ -353,7 +361,7 @@ def _build(model: Model) -> Setup:
         constraints=constraints,
         discrete_pid=model.discretes.pid.astype(np.int64),
         sections=sections,
-        beam_pid=model.beams.pid[~np.isin(model.beams.pid, rigid)].astype(np.int64),
+        beam_pid=beam_pid,
         state_dt=float(model.find("DATABASE_BINARY_D3PLOT")[0].get("dt", 0.0) or 0.0)
         if model.find("DATABASE_BINARY_D3PLOT")
         else 0.0,

@@ -58,6 +58,9 @@ RUN = (
     "CONSTRAINED_SPOTWELD",
     "CONSTRAINED_GENERALIZED_WELD",
     "ELEMENT_DIRECT_MATRIX_INPUT",
+    "PART_MOVE",
+    "INITIAL_VELOCITY_RIGID_BODY",
+    "ELEMENT_MASS_PART",
 )
 # bookkeeping and the outputs crashlite writes: accepted without a word
 NEUTRAL = (

@@ -105,6 +105,15 @@ register(
         "STYP 1 part set, 2 part, 3 node set.",
     )
 )
+register(
+    Spec(
+        "INITIAL_VELOCITY_RIGID_BODY",
+        lambda o: Layout(row=(card("pid:i@part vx:f=0 vy:f=0 vz:f=0 vxr:f=0 vyr:f=0 vzr:f=0 lcid:i=0@coord"),)),
+        title_option=False,
+        doc="Initial translational (VX, VY, VZ) and angular velocity (VXR, VYR, VZR, about the centre of "
+        "mass) of a rigid part; LCID: the local system they are given in.",
+    )
+)
 for _axis in "XYZ":
     register(
         Spec(

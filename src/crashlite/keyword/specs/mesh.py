@@ -137,14 +137,31 @@ register(
     )
 )
 
+_MASS_PART = card("pid:i8@part addmass:f16=0 finmass:f16=0 lcid:i8=0@curve")
+_MASS_PART_SET = card("pid:i8@set_part addmass:f16=0 finmass:f16=0 lcid:i8=0@curve")
+
 register(
     Spec(
         "ELEMENT_MASS_PART",
-        fixed(row=[card("pid:i8@part addmass:f16=0 finmass:f16=0")]),
+        lambda o: Layout(row=(_MASS_PART_SET if "SET" in o else _MASS_PART,)),
         options=("SET",),
         group="keywords",
         title_option=False,
-        doc="Mass added to (or final mass of) a part or part set.",
+        doc="Translational mass ADDMASS added to a part (_SET: a part set), or the part(s) brought to the final "
+        "mass FINMASS (> 0: ADDMASS is then ignored), spread over the nodes in proportion to their mass; "
+        "LCID: a load curve making the added mass vary in time.",
+    )
+)
+
+# PID names a part (IFSET 0) or a part set (IFSET 1): a reference kind cannot follow another field,
+# so the reader leaves it unchecked and the solver names a missing part or set
+register(
+    Spec(
+        "PART_MOVE",
+        fixed(row=[card("pid:i8 xmov:f16=0 ymov:f16=0 zmov:f16=0 cid:i8=0@coord ifset:i8=0")]),
+        title_option=False,
+        doc="Translate every node of a part (IFSET 1: of the parts of a part set) by (XMOV, YMOV, ZMOV), "
+        "in the local system CID when given, before the run starts.",
     )
 )
 
