@@ -13,9 +13,10 @@ from .keyword.errors import DeckError
 def _info(args) -> int:
     from . import read_deck
     from .model.summary import format_summary, summary
+    from .solver.part_moves import moved_model
 
     model = read_deck(args.deck, strict=args.strict)
-    s = summary(model)
+    s = summary(model, moved_model(model, []))  # a *PART_MOVE card that cannot apply is the run's to refuse
     print(json.dumps(s, indent=2) if args.json else format_summary(s))
     return 0
 

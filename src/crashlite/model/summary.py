@@ -34,14 +34,17 @@ def keyword_counts(model: Model) -> dict[str, int]:
     return {k: v for k, v in sorted(c.items()) if v}
 
 
-def summary(model: Model) -> dict:
-    """Everything ``crashlite info`` prints, as JSON-ready data."""
+def summary(model: Model, placed: Model | None = None) -> dict:
+    """Everything ``crashlite info`` prints, as JSON-ready data; masses,
+    centres of gravity and the bounding box from ``placed`` when given (the
+    Model with its *PART_MOVE cards applied, as the run sets it up)."""
+    geo = model if placed is None else placed
     parts = []
     for pid, rec in sorted(model.parts.items()):
         n_el = {
             t: int(np.count_nonzero(getattr(model, t).pid == pid)) for t in ("shells", "solids", "beams", "discretes")
         }
-        mp = model.mass_properties([pid])
+        mp = geo.mass_properties([pid])
         parts.append(
             {
                 "id": pid,
@@ -53,8 +56,8 @@ def summary(model: Model) -> dict:
                 "cog": mp.cog.tolist(),
             }
         )
-    total = model.mass_properties()
-    xyz = model.nodes.xyz
+    total = geo.mass_properties()
+    xyz = geo.nodes.xyz
     bbox = [xyz.min(0).tolist(), xyz.max(0).tolist()] if len(xyz) else None
     return {
         "deck": model.source,

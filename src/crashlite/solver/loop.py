@@ -616,19 +616,21 @@ def run(
                 write_csv(Path(out) / "initial_penetrations.csv", s.moved, model.nodes.ids)
             if len(res.states_time):
                 from ..results.vtk import element_field, write_states
+                from .part_moves import moved_model
 
+                placed = moved_model(model, [])  # the geometry the run set up (*PART_MOVE applied)
                 eps = element_field(
-                    model,
+                    placed,
                     {"shells": res.shell_ids, "solids": res.solid_ids},
                     {"shells": res.shell_plastic_strain, "solids": res.solid_plastic_strain},
                 )
-                write_states(Path(out) / "states", model, res.states_time, res.states_x, {"plastic_strain": eps})
+                write_states(Path(out) / "states", placed, res.states_time, res.states_x, {"plastic_strain": eps})
                 if fields is None:
                     res.info["warnings"].append(d3plot.MISSING)
                 else:
                     d3plot.write(
                         Path(out) / "d3plot",
-                        model,
+                        placed,
                         res.states_time,
                         res.states_x,
                         fields,

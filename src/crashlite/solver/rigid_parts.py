@@ -84,6 +84,15 @@ def part_bodies(model: Model, x: np.ndarray, v: np.ndarray, mass: np.ndarray, pr
         mat = model.materials[lead_part["mid"]]
         given = {"tm": props.mass, "cog": props.cog, "inertia": props.inertia}
         if "INERTIA" in lead_part.options:  # the given initial velocities
+            if int(lead_part.get("ircs", 0) or 0):  # the tensor would be taken in the wrong axes
+                problems.append(
+                    Problem(
+                        *lead_part.where("ircs"),
+                        lead_part.keyword,
+                        "IRCS",
+                        f"part {pid_lead}: an inertia tensor in a local system (IRCS = 1) is not supported yet",
+                    )
+                )
             given["v"] = [lead_part.get(k, 0.0) for k in ("vtx", "vty", "vtz")]
             given["w"] = [lead_part.get(k, 0.0) for k in ("vrx", "vry", "vrz")]
         body = build_body(pid_lead, nodes, x, v, mass, given)

@@ -9,8 +9,8 @@ act on (other output requests, parallel and memory settings, sensors that no
 them.
 
 A card the reader keeps verbatim (a keyword or option it does not type,
-e.g. *BOUNDARY_SPC_NODE_BIRTH_DEATH, *PART_MOVE, *INITIAL_VELOCITY_RIGID_BODY)
-is never taken as run, whatever its prefix: the solver reads typed cards
+e.g. *PART_ADAPTIVE_FAILURE, *INITIAL_VELOCITY_GENERATION_START_TIME) is
+never taken as run, whatever its prefix: the solver reads typed cards
 only. Definitions that other cards name by ID (materials, sections, curves,
 tables, boxes, sets …) are passed over with a warning while nothing the
 solver runs names them; a part naming an unread material, section,

@@ -188,3 +188,23 @@ def test_cards_that_cannot_be_run_are_refused(tmp_path, extra, field, words):
         build(m)
     found = [p for p in e.value.problems if p.field == field]
     assert found and words in found[0].message, e.value.problems
+
+
+def test_a_rigid_part_inertia_in_a_local_system_is_refused_naming_ircs(tmp_path):
+    """*PART_INERTIA with IRCS = 1 gives the tensor in a local system that
+    rigid parts do not turn yet: refused by name, never taken as global."""
+    model = _deck(tmp_path)
+    text = (
+        open(model.source)
+        .read()
+        .replace(
+            "*PART\nbrick\n1,1,1\n",
+            "*PART_INERTIA\nbrick\n1,1,1\n0,0,0,0.5,1,0\n1.0,0.0,0.0,1.0,0.0,1.0\n0,0,0,0,0,0\n1,0,0,0,1,0,0\n",
+        )
+    )
+    p = tmp_path / "ircs.k"
+    p.write_text(text)
+    with pytest.raises(SetupError) as e:
+        build(read_deck(p))
+    (pr,) = [pr for pr in e.value.problems if pr.field == "IRCS"]
+    assert "local system" in pr.message and pr.keyword.startswith("PART")

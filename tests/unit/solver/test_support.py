@@ -112,8 +112,8 @@ def test_a_card_read_verbatim_is_never_taken_as_run(tmp_path):
     # crashlite does not read): accepting it on the prefix would drop a constraint, a move or a velocity silently
     extra = (
         "*BOUNDARY_SPC_NODE_FOO\n1,0,1,1,1\n"
-        "*PART_MOVE\n1,100.0\n"
-        "*INITIAL_VELOCITY_RIGID_BODY\n1,1000.0\n"
+        "*PART_ADAPTIVE_FAILURE\n1,100.0\n"
+        "*INITIAL_VELOCITY_GENERATION_START_TIME\n1,1000.0\n"
         "*LOAD_BODY_PARTS\n1\n"
     )
     p = tmp_path / "d.k"
@@ -122,25 +122,25 @@ def test_a_card_read_verbatim_is_never_taken_as_run(tmp_path):
         build(read_deck(p))
     assert [(pr.keyword, pr.line) for pr in e.value.problems] == [
         ("BOUNDARY_SPC_NODE_FOO", 21),
-        ("PART_MOVE", 23),
-        ("INITIAL_VELOCITY_RIGID_BODY", 25),
+        ("PART_ADAPTIVE_FAILURE", 23),
+        ("INITIAL_VELOCITY_GENERATION_START_TIME", 25),
         ("LOAD_BODY_PARTS", 27),
     ]
 
 
 def test_an_unread_definition_is_refused_only_where_a_part_names_it(tmp_path):
-    unused = "*MAT_PLASTICITY_WITH_DAMAGE_TITLE\nnot used\n99,7.85e-9,210000.0,0.3\n*DEFINE_BOX\n5,0,1,0,1,0,1\n"
+    unused = "*MAT_MODIFIED_PIECEWISE_LINEAR_PLASTICITY_TITLE\nnot used\n99,7.85e-9,210000.0,0.3\n*DEFINE_BOX\n5,0,1,0,1,0,1\n"
     p = tmp_path / "d.k"
     p.write_text(DECK.format(extra=unused))
     model = read_deck(p)
     sim = build(model)  # runs: nothing names material 99 or box 5
     said = [w for w in sim.warnings if "passed over" in w.message]
-    assert {w.keyword for w in said} >= {"MAT_PLASTICITY_WITH_DAMAGE_TITLE", "DEFINE_BOX"}
+    assert {w.keyword for w in said} >= {"MAT_MODIFIED_PIECEWISE_LINEAR_PLASTICITY_TITLE", "DEFINE_BOX"}
     used = DECK.replace("1,1,1\n*SECTION_DISCRETE", "1,1,99\n*SECTION_DISCRETE")
     p.write_text(used.format(extra=unused))
     with pytest.raises(SetupError) as e:
         build(read_deck(p))
-    msg = [pr.message for pr in e.value.problems if pr.keyword.startswith("MAT_PLASTICITY")]
+    msg = [pr.message for pr in e.value.problems if pr.keyword.startswith("MAT_MODIFIED")]
     assert msg and "part(s) 1 use it" in msg[0]
 
 
