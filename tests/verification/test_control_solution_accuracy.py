@@ -43,3 +43,20 @@ def test_a_thermal_solution_is_refused_naming_the_field(tmp_path):
         build(read_deck(deck))
     (p,) = [p for p in e.value.problems if p.keyword == "CONTROL_SOLUTION"]
     assert p.file == deck and "SOLN 2" in p.message and "thermal" in p.message
+
+
+def test_bulk_viscosity_zeros_read_as_lsdyna_defaults_and_shell_type_is_said(tmp_path):
+    """*CONTROL_BULK_VISCOSITY: Q1 = Q2 = 0 read as LS-DYNA's 1.5 and 0.06
+    (blank and 0 are one value in a fixed field: a tiny value turns it off);
+    TYPE −2 (shells too) runs with a warning that crashlite's shells take none."""
+    from crashlite.solver.solids import _bulk_viscosity
+
+    deck = _with(tmp_path, "*CONTROL_BULK_VISCOSITY\n       0.0       0.0        -2\n")
+    model = read_deck(deck)
+    assert _bulk_viscosity(model) == (1.5, 0.06)
+    (w,) = [w for w in build(model).warnings if w.keyword == "CONTROL_BULK_VISCOSITY"]
+    assert w.field == "TYPE" and "TYPE -2" in w.message and "solids only" in w.message
+    assert _bulk_viscosity(read_deck(_with(tmp_path, "*CONTROL_BULK_VISCOSITY\n1e-9,2e-9\n"))) == (1e-9, 2e-9)
+    assert not [
+        w for w in build(read_deck(_with(tmp_path, "*CONTROL_BULK_VISCOSITY\n1.2\n"))).warnings if "BULK" in w.keyword
+    ]

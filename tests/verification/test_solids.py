@@ -147,7 +147,7 @@ def _bar_deck(tmp_path, n=20, h=5.0, v0=1000.0, end=6e-5, bq0=False):
             "*CONTROL_TERMINATION",
             f"{end}",
         ]
-        + (["*CONTROL_BULK_VISCOSITY", "0.0,0.0"] if bq0 else [])
+        + (["*CONTROL_BULK_VISCOSITY", "1e-12,1e-12"] if bq0 else [])  # a 0 reads as the default
         + ["*END"]
     )
     p = tmp_path / "bar.k"

@@ -19,7 +19,6 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..keyword.errors import Problem
-from ..keyword.schema import RawKeyword
 from ..model.model import Model
 from .curve_store import CurveStore
 from .groups import ElementGroup
@@ -356,19 +355,11 @@ def _honeycomb(model, mat, curves, row, mc, problems):
 
 
 def _bulk_viscosity(model: Model) -> tuple[float, float]:
-    """Q1, Q2 of *CONTROL_BULK_VISCOSITY (LS-DYNA defaults 1.5, 0.06)."""
-    for rec in model.keywords:
-        if isinstance(rec, RawKeyword) and rec.keyword == "CONTROL_BULK_VISCOSITY":
-            lines = [ln for ln in rec.lines if ln.strip() and not ln.lstrip().startswith("$")]
-            if not lines:
-                break
-            ln = lines[0]
-            fields = ln.split(",") if "," in ln else [ln[i : i + 10] for i in range(0, 30, 10)]
-            vals = [float(f) if f.strip() else None for f in fields[:2]] + [None, None]
-            return (vals[0] if vals[0] is not None else 1.5), (vals[1] if vals[1] is not None else 0.06)
-        if getattr(rec, "keyword", "") == "CONTROL_BULK_VISCOSITY" and hasattr(rec, "get"):
-            return float(rec.get("q1", 1.5)), float(rec.get("q2", 0.06))
-    return 1.5, 0.06
+    """Q1, Q2 of *CONTROL_BULK_VISCOSITY (LS-DYNA defaults 1.5, 0.06, also for a 0)."""
+    recs = model.find("CONTROL_BULK_VISCOSITY")
+    if not recs:
+        return 1.5, 0.06
+    return float(recs[-1].get("q1", 1.5)), float(recs[-1].get("q2", 0.06))
 
 
 def _axes(x, conn, aopt, a_vec, d_vec):

@@ -29,7 +29,6 @@ RUN = (
     "CONTROL_TERMINATION",
     "CONTROL_TIMESTEP",
     "CONTROL_HOURGLASS",
-    "CONTROL_BULK_VISCOSITY",
     "CONTROL_SHELL",
     "BOUNDARY_SPC",
     "BOUNDARY_PRESCRIBED_MOTION",
@@ -82,9 +81,8 @@ NEUTRAL = (
     "DATABASE_BINARY_D3PLOT",
     "DATABASE_CROSS_SECTION",
 )
-# run although the reader keeps them verbatim: the reader resolves parameters and includes, the solids read
-# *CONTROL_BULK_VISCOSITY's fields themselves
-READ_VERBATIM = ("CONTROL_BULK_VISCOSITY", "PARAMETER", "INCLUDE")
+# run although the reader keeps them verbatim: the reader resolves parameters and includes
+READ_VERBATIM = ("PARAMETER", "INCLUDE")
 # definitions that act only through a card naming them (see the module text); the PART field naming each kind
 DEFINITIONS = {"MAT_": "mid", "SECTION_": "secid", "EOS_": "eosid", "HOURGLASS": "hgid", "DEFINE_": None, "SET_": None}
 PASSED = "passed over"  # how a passed-over card's warning begins (run() names each card once)
@@ -111,9 +109,20 @@ def _solution(rec) -> str | None:
     return None
 
 
-# typed cards run with one warning (the text) unless the check (None: none) names a setting crashlite does
-# not run: then they are refused with its text
+def _shell_bulk_viscosity(rec) -> str | None:
+    """The warning of a *CONTROL_BULK_VISCOSITY whose TYPE asks for it on shells too."""
+    if int(rec.get("type") or 1) < 0:
+        return (
+            f"TYPE {int(rec.get('type'))}: LS-DYNA also damps the shells' membrane compression with Q1, Q2; "
+            "crashlite applies the bulk viscosity to solids only"
+        )
+    return None
+
+
+# typed cards run with one warning (the text, or what the function returns: None, no warning) unless the
+# check (None: none) names a setting crashlite does not run: then they are refused with its text
 RUN_WITH_WARNING = {
+    "CONTROL_BULK_VISCOSITY": (None, _shell_bulk_viscosity),
     "CONTROL_SOLUTION": (
         _solution,
         "SOLN 0 is crashlite's analysis; NLQ (vector length), ISNAN (NaN check) and LCINT (LS-DYNA resamples "
@@ -170,6 +179,10 @@ def unsupported_cards(model: Model, extra_run: tuple[str, ...] = (), warnings: l
             refused = check(rec) if check else None
             if refused:
                 problems.append(Problem(file or model.source or "", line, name, None, refused))
+            elif callable(why):
+                said = why(rec)
+                if said and warnings is not None:
+                    warnings.append(Problem(file or model.source or "", line, name, "TYPE", said))
             elif warnings is not None and name not in warned:
                 warned.add(name)
                 warnings.append(Problem(file or model.source or "", line, name, None, f"run as crashlite runs: {why}"))

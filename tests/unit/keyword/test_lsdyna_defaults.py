@@ -63,6 +63,7 @@ ZERO_READS: dict[str, dict] = {
     "CONTROL_ENERGY": {"hgen": 1, "rwen": 2, "slnten": 1, "rylen": 1, "irgen": 2, "maten": 1, "drlen": 1, "disen": 1},
     "CONTROL_HOURGLASS": {"ihq": 1, "qh": 0.1},
     "CONTROL_ACCURACY": {"inn": 1},  # 0 and 1: off
+    "CONTROL_BULK_VISCOSITY": {"q1": 1.5, "q2": 0.06, "type": 1},
     "DEFINE_TABLE": {"sfa": 1.0},
     "MAT_PLASTICITY_WITH_DAMAGE": {"eppf": 1e12, "eppfr": 1e14},  # 0: no softening, no rupture
     "CONTROL_SOLUTION": {"lcint": 100, "ncdcf": 1},

@@ -41,6 +41,12 @@ _control(
     doc="Shell defaults: warping angle, thickness update ISTUPD, default formulation THEORY.",
 )
 _control(
+    "CONTROL_BULK_VISCOSITY",
+    card("q1:f~1.5 q2:f~0.06 type:i~1 btype:i=0 tstype:i=0"),
+    doc="Bulk viscosity: quadratic Q1 and linear Q2 (0 reads as the default: a tiny value turns it off), "
+    "TYPE < 0 also on shells.",
+)
+_control(
     "CONTROL_ACCURACY",
     card("osu:i=0 inn:i~1 pidosu:i=0@set_part iacc:i=0 exacc:f=0"),
     doc="Accuracy options: second-order objective stress update OSU, invariant node numbering INN.",
