@@ -360,8 +360,9 @@ def _section(sec, part, p, intgrd, problems, warns):
     return (nip, rule, shrf, np.array(t), _num(sec, "marea"), elform in FULL) if ok else None
 
 
-def _hourglass(model, part, p, ihq0, qh0, problems, warns):
-    """(kind, QM, QB, QW) of a part, or None."""
+def _hourglass(model, part, p, ihq0, qh0, problems, warns, full=False):
+    """(kind, QM, QB, QW) of a part, or None; ``full``: its shells are fully
+    integrated (no hourglass modes: only IHQ 8's warping stiffness would act)."""
     hgid = int(part.get("hgid", 0) or 0)
     hg = model.hourglasses.get(hgid) if hgid else None
     if hgid and hg is None:
@@ -371,7 +372,17 @@ def _hourglass(model, part, p, ihq0, qh0, problems, warns):
     qm = _num(hg, "qm", 0.1) if hg is not None else qh0
     qb = _num(hg, "qb", 0.0) if hg is not None else 0.0
     qw = _num(hg, "qw", 0.0) if hg is not None else 0.0
-    if ihq in (6, 8):
+    if full and ihq == 8:
+        warns.append(
+            _problem(
+                hg if hg is not None else part,
+                "ihq",
+                f"IHQ 8 of part {p}: LS-DYNA adds warping stiffness to its fully integrated shells; crashlite's "
+                "ELFORM 16 has no warping terms (its other hourglass settings do not act on it)",
+            )
+        )
+        ihq = 4
+    elif ihq in (6, 8):
         warns.append(
             _problem(
                 hg if hg is not None else part,
@@ -457,7 +468,7 @@ def build_shell_set(
             refused[m] = True
             continue
         got = _section(sec, part, int(p), intgrd, problems, warns)
-        hg = _hourglass(model, part, int(p), ihq0, qh0, problems, warns)
+        hg = _hourglass(model, part, int(p), ihq0, qh0, problems, warns, full=got is not None and got[5])
         mid = int(mat.get("mid"))
         if mid not in mat_rows:
             mm = shell_material(model, mat, curves, problems, warns)
