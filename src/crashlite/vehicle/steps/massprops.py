@@ -26,7 +26,7 @@ from numpy.typing import ArrayLike
 from ...model import mass as mk
 from ...model.mass import MassProperties
 from ...model.model import Model
-from ...model.properties import section_area
+from ...model.properties import mass_part_factors, section_area
 from .cut import Cut
 
 # a selection of nodes (``node_indices``): node indices, ("set", SID) or a *SET_NODE title
@@ -125,23 +125,12 @@ def element_moments(model: Model) -> dict:
 
 
 def _scale_parts(model, moments: dict) -> None:
-    """*ELEMENT_MASS_PART: ADDMASS added, or the part brought to FINMASS, in
-    proportion to the element masses (CoG unchanged)."""
-    add = {}
-    for rec in model.find("ELEMENT_MASS_PART"):
-        if "SET" in rec.options:
-            targets = [[int(p) for p in model.set_members("PART", int(s))] for s in rec.rows["pid"]]
-        else:
-            targets = [[int(p)] for p in rec.rows["pid"]]
-        for ps, am, fm in zip(targets, rec.rows["addmass"], rec.rows["finmass"]):
-            for p in ps:
-                add[p] = (float(am), float(fm))
-    for pid, (am, fm) in add.items():
-        total = sum(float(mo.mass[getattr(model, t).pid == pid].sum()) for t, mo in moments.items())
-        if total <= 0:
-            continue
-        f = fm / total if fm > 0 else (total + am) / total
-        for t, mo in list(moments.items()):
+    """*ELEMENT_MASS_PART: each part's element moments scaled by the factor
+    the solver gives it (``model.properties.mass_part_factors``: ADDMASS
+    added, or FINMASS reached, in proportion to the element masses, so the
+    CoG stays; a _SET row acts on its parts as a whole)."""
+    for pid, f in mass_part_factors(model).items():
+        for t, mo in moments.items():
             sel = getattr(model, t).pid == pid
             mo.mass[sel] *= f
             mo.first[sel] *= f
