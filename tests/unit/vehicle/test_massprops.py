@@ -113,3 +113,26 @@ def test_generic_car_replaced_and_kept_make_the_whole_car():
     assert all(len(nodes) for nodes in iface.values())  # every sectioned assembly crosses the cut
     flat = np.concatenate(list(iface.values()))
     assert len(flat) == len(np.unique(flat))
+
+
+def test_mass_part_set_row_brings_its_parts_together_to_finmass():
+    """*ELEMENT_MASS_PART_SET: FINMASS is the set's final mass, reached by
+    scaling its parts alike (the solver's and the model's rule), so the
+    replaced structure of a box of two parts weighs FINMASS with its CoG
+    where it was."""
+    a, b, c, t = 400.0, 250.0, 150.0, 2.0
+    xyz, q = box_mesh(a, b, c, 8)
+    centres = xyz[np.asarray(q)].mean(axis=1)
+    model = shell_model(xyz, q, thickness=t, pids=np.where(centres[:, 2] > 0.0, 1, 2))
+    model.sets[("PART", 7)] = id_list("SET_PART_LIST", 7, [1, 2])
+    mass, _ = _box_inertia(a, b, c, t, RHO)
+    fin = 3.0 * mass
+    model.keywords.append(
+        record(
+            "ELEMENT_MASS_PART_SET", rows={"pid": np.array([7]), "addmass": np.array([0.0]), "finmass": np.array([fin])}
+        )
+    )
+    rm = replaced_mass(cut_behind(model, x=a + 1.0))
+    assert rm.structure.mass == pytest.approx(fin, rel=1e-12)
+    assert model.mass_properties().mass == pytest.approx(fin, rel=1e-12)
+    np.testing.assert_allclose(rm.structure.cog, model.mass_properties().cog, atol=1e-9)
