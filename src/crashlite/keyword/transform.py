@@ -15,6 +15,22 @@ from .errors import Collector
 from .lexer import _KINDS, _OFFSET_FIELDS, Block, IncludeContext, include_context  # noqa: F401
 from .schema import INT, Record
 
+# row fields whose ID kind another field of the row decides (so the layout gives them none):
+# keyword -> (ID field, switch field, {switch value: kind})
+_SWITCHED = {"PART_MOVE": ("pid", "ifset", {0: "part", 1: "set_part"})}
+
+
+def _switched_offsets(rec: Record, ctx: IncludeContext) -> None:
+    """The include's offsets on a row ID whose kind is chosen by another field (a *PART_MOVE row
+    names a part, or with IFSET 1 a part set)."""
+    field, switch, kinds = _SWITCHED[rec.name]
+    if not rec.rows or field not in rec.rows:
+        return
+    ids = np.asarray(rec.rows[field], dtype=np.int64)
+    which = np.asarray(rec.rows.get(switch, np.zeros(len(ids))), dtype=np.int64)
+    off = np.array([ctx.offsets.get(kinds.get(int(w), ""), 0) for w in which], dtype=np.int64)
+    rec.rows[field] = np.where(ids > 0, ids + off, ids)
+
 
 def apply_offsets(rec: Record, ctx: IncludeContext, problems: Collector | None = None) -> None:
     """Add the include's ID offsets to every ID field of a record; an ID
@@ -40,6 +56,8 @@ def apply_offsets(rec: Record, ctx: IncludeContext, problems: Collector | None =
                     too_large(f.name, v, off)
                     continue
                 rec.values[f.name] = v + off
+    if rec.name in _SWITCHED:
+        _switched_offsets(rec, ctx)
     if rec.rows:
         for f in lay.row_fields:
             off = ctx.offsets.get(f.ref, 0) if f.ref else 0

@@ -212,3 +212,33 @@ def test_include_transform_rotate_and_scale(deck):
     m = read_deck(main)
     assert m.nodes.ids.tolist() == [101]
     np.testing.assert_allclose(m.nodes.xyz[0], [20.0, 10.0, 5.0], atol=1e-12)
+
+
+def test_include_transform_offsets_a_part_move_by_what_ifset_names(deck):
+    """*PART_MOVE names a part (IFSET 0) or a part set (IFSET 1): an
+    included one takes the part offset or the set offset accordingly."""
+    deck(
+        "moved.k",
+        """
+        *KEYWORD
+        *PART_MOVE
+               1             0.0             0.0            30.0       0       0
+               2             5.0             0.0             0.0       0       1
+        *END
+        """,
+    )
+    main = deck(
+        "main.k",
+        """
+        *KEYWORD
+        *INCLUDE_TRANSFORM
+        moved.k
+               100       100       300       100        70         0         0
+                 0
+               1.0       1.0       1.0
+                 0
+        *END
+        """,
+    )
+    (rec,) = read_deck(main).find("PART_MOVE")
+    assert rec.rows["pid"].tolist() == [301, 72]
