@@ -179,7 +179,6 @@ def read_dmig(path) -> dict:
             entries[-1][1].extend(f[1:])
         else:
             raise ValueError(f"{path}:{no}: not a DMIG entry or continuation: {line.strip()[:40]!r}")
-    out: dict = {}
     cols: dict = {}
     form: dict = {}
     for no, f in entries:
@@ -202,14 +201,10 @@ def read_dmig(path) -> dict:
                 col[(int(rest[i]), int(rest[i + 1] or 1))] = _number(rest[i + 2])
         except (ValueError, IndexError) as e:
             raise ValueError(f"{path}:{no}: DMIG {name}: {e}") from None
+    arrays = {}
     for name, c in cols.items():
-        keys = sorted(set(c) | {r for col in c.values() for r in col})
-        at = {k: i for i, k in enumerate(keys)}
-        mat = np.zeros((len(keys), len(keys)))
-        for cj, col in c.items():
-            for ri, v in col.items():
-                mat[at[ri], at[cj]] = v
-                if form[name] == 6:
-                    mat[at[cj], at[ri]] = v
-        out[name] = (np.array(keys, np.int64).reshape(-1, 2), mat)
-    return out
+        rows = [(gj, cj, g, comp, v) for (gj, cj), col in c.items() for (g, comp), v in col.items()]
+        cg, cc, rg, rc = (np.array([r[i] for r in rows], np.int64) for i in range(4))
+        listed = np.array([gj * 10 + cj for gj, cj in c], np.int64)
+        arrays[name] = (cg, cc, rg, rc, np.array([r[4] for r in rows], float), listed)
+    return _assemble(arrays, form)

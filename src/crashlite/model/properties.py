@@ -104,14 +104,8 @@ def element_mass(model, pid: int) -> float:
     return float(sum(x.mass.sum() for x in _part_moments(model, np.array([int(pid)]))))
 
 
-def mass_part_rows(model, part_mass: Callable[[int], float] | None = None) -> list[MassPartRow]:
-    """*ELEMENT_MASS_PART rows in deck order. A _SET row acts on its parts
-    as a whole (FINMASS is the set's final mass) and scales each by the same
-    factor, so the mass goes to every node in proportion to its mass and the
-    CoG stays; a later row sees the mass earlier rows added. ``part_mass``:
-    a part's own mass (default: its elements' mass). Parts given by
-    *PART_INERTIA keep their TM and are left out."""
-    part_mass = part_mass or (lambda p: element_mass(model, p))
+def _mass_part_scaling(model, part_mass) -> tuple[list[MassPartRow], dict[int, float]]:
+    """The rows of ``mass_part_rows`` and the factor each part ends with."""
     factor: dict[int, float] = {}
     out = []
     for rec in model.find("ELEMENT_MASS_PART"):
@@ -132,17 +126,23 @@ def mass_part_rows(model, part_mass: Callable[[int], float] | None = None) -> li
                 for p in pids:
                     factor[p] = factor.get(p, 1.0) * (current + added) / current
             out.append(MassPartRow(rec, k, pids, current, added))
-    return out
+    return out, factor
 
 
-def mass_part_factors(model) -> dict[int, float]:
-    """Part ID -> the factor *ELEMENT_MASS_PART scales its element mass by."""
-    factor: dict[int, float] = {}
-    for r in mass_part_rows(model):
-        if r.current > 0:
-            for p in r.pids:
-                factor[p] = factor.get(p, 1.0) * (r.current + r.added) / r.current
-    return factor
+def mass_part_rows(model, part_mass: Callable[[int], float] | None = None) -> list[MassPartRow]:
+    """*ELEMENT_MASS_PART rows in deck order. A _SET row acts on its parts
+    as a whole (FINMASS is the set's final mass) and scales each by the same
+    factor, so the mass goes to every node in proportion to its mass and the
+    CoG stays; a later row sees the mass earlier rows added. ``part_mass``:
+    a part's own mass (default: its elements' mass). Parts given by
+    *PART_INERTIA keep their TM and are left out."""
+    return _mass_part_scaling(model, part_mass or (lambda p: element_mass(model, p)))[0]
+
+
+def mass_part_factors(model, part_mass: Callable[[int], float] | None = None) -> dict[int, float]:
+    """Part ID -> the factor *ELEMENT_MASS_PART scales its own mass by
+    (``part_mass`` as in ``mass_part_rows``)."""
+    return _mass_part_scaling(model, part_mass or (lambda p: element_mass(model, p)))[1]
 
 
 def mass_properties(model, parts=None) -> mk.MassProperties:

@@ -17,7 +17,7 @@ import numpy as np
 from scipy import sparse
 
 from ..model.model import Model
-from ..model.properties import element_mass, mass_part_rows
+from ..model.properties import element_mass, mass_part_factors, mass_part_rows
 from .records import _problem
 
 
@@ -56,12 +56,12 @@ def part_node_masses(groups: list, beams, beam_pid: np.ndarray, n: int) -> tuple
 
 def add_part_masses(
     model: Model, groups: list, beams, beam_pid: np.ndarray, rigid: np.ndarray, mass: np.ndarray, problems: list
-) -> dict[int, float]:
+) -> None:
     """Add every *ELEMENT_MASS_PART row's mass to the nodes of its deformable
-    parts in ``mass`` (n,), in place; returns part ID -> mass added (rigid
-    parts included, their bodies take it through ``model.mass_properties``)."""
+    parts in ``mass`` (n,), in place (rigid parts' bodies take theirs
+    through ``model.mass_properties``)."""
     if not model.find("ELEMENT_MASS_PART"):
-        return {}
+        return
     ids, per_node = part_node_masses(groups, beams, beam_pid, len(mass))
     rigid_set = {int(p) for p in rigid}
 
@@ -71,38 +71,31 @@ def add_part_masses(
         k = np.searchsorted(ids, p)
         return float(per_node[k].sum()) if k < len(ids) and ids[k] == p else 0.0
 
-    factor: dict[int, float] = {}
-    added_to: dict[int, float] = {}
+    before = len(problems)
     for r in mass_part_rows(model, own):
         rows, k = r.rec.rows, r.row
         ident, fm, am = int(rows["pid"][k]), float(rows["finmass"][k]), float(rows["addmass"][k])
         what = f"part set {ident}" if "SET" in r.rec.options else f"part {ident}"
         if int(rows["lcid"][k]):
             problems.append(_problem(r.rec, "lcid", f"{what}: a mass varying in time (LCID) is not supported yet"))
-            continue
-        if not r.pids:
+        elif not r.pids:
             problems.append(
                 _problem(r.rec, "pid", f"{what} is not defined, or its parts take their mass from *PART_INERTIA")
             )
-            continue
-        if r.current <= 0:
+        elif r.current <= 0:
             problems.append(_problem(r.rec, "pid", f"{what} has no element mass to spread the added mass over"))
-            continue
-        if fm > 0 and r.added < 0:
+        elif fm > 0 and r.added < 0:
             problems.append(
                 _problem(
                     r.rec, "finmass", f"{what}: FINMASS {fm:g} is below its mass {r.current:g}; mass can only be added"
                 )
             )
-            continue
-        if fm <= 0 and am < 0:
+        elif fm <= 0 and am < 0:
             problems.append(_problem(r.rec, "addmass", f"{what}: ADDMASS {am:g} < 0; mass can only be added"))
-            continue
-        ratio = r.added / r.current
-        for p in r.pids:
-            f = factor.get(p, 1.0)
-            added_to[p] = added_to.get(p, 0.0) + ratio * f * own(p)
-            if p not in rigid_set and own(p) > 0:
-                mass += ratio * f * per_node[np.searchsorted(ids, p)].toarray().ravel()
-            factor[p] = f * (1.0 + ratio)
-    return added_to
+    if len(problems) > before:  # the set-up fails: nothing to add
+        return
+    # rows that scale a part by 1 + r_i in turn scale it by their product: its nodes take (product - 1) of
+    # the mass its elements lumped there
+    for p, f in mass_part_factors(model, own).items():
+        if p not in rigid_set and own(p) > 0:
+            mass += (f - 1.0) * per_node[np.searchsorted(ids, p)].toarray().ravel()

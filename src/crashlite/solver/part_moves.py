@@ -76,7 +76,8 @@ def moved_model(model: Model, problems: list, warnings: list | None = None) -> M
                 problems.append(_problem(rec, "pid", f"part(s) {pids} have no elements: there is nothing to move"))
                 continue
             xyz[nodes] += d
-            others = [p for p in model.parts if p not in set(pids)]
+            moved = set(pids)
+            others = [p for p in model.parts if p not in moved]
             shared = np.intersect1d(nodes, _elements_nodes(model, others)) if others else []
             if len(shared) and warnings is not None:
                 ids = ", ".join(str(int(i)) for i in model.nodes.ids[shared[:5]])
