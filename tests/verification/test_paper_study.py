@@ -93,3 +93,18 @@ def test_summary_pairs_the_runs_and_reports_their_time_reductions(study):
     page = (study.out / "index.html").read_text()
     for href in ("reduction.html", "verify/us_ncap/index.html", "verify/euro_ncap_odb/index.html"):
         assert f'href="{href}"' in page and (study.out / href).is_file()
+
+
+@pytest.mark.slow
+def test_summary_and_page_give_each_runs_hourglass_share(study):
+    s = json.loads((study.out / "summary.json").read_text())
+    for name, run in study.runs.items():
+        r = Results.load(run["results"])
+        hg = s["runs"][name]["hourglass_percent"]
+        assert hg["end_percent"] == pytest.approx(100.0 * r.hourglass[-1] / r.internal[-1], rel=1e-9), name
+        assert hg["max_percent"] >= hg["end_percent"] - 1e-9
+        assert hg["part"]["hourglass"] == pytest.approx(r.part_hourglass[-1].max(), rel=1e-9)
+    page = (study.out / "index.html").read_text()
+    assert "Hourglass energy" in page
+    detailed = s["runs"]["odb full car, detailed barrier"]["hourglass_percent"]
+    assert f"{detailed['end_percent']:.1f} %" in page

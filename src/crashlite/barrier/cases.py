@@ -36,6 +36,7 @@ class Case:
     energy_ratio: float = 0.0  # total / initial energy at the end
     absorbed: float = 0.0  # energy in the barrier at the end [mJ]
     lost: float = 0.0  # impactor kinetic energy lost [mJ]
+    hourglass: dict = field(default_factory=dict)  # hourglass share of the internal energy (verify.hourglass)
 
     @property
     def name(self) -> str:
@@ -55,6 +56,7 @@ class Case:
             "barrier_energy_kJ": self.absorbed / 1e6,
             "peak_force_kN_cfc60": float(_cfc(self.time, self.force).max() / 1e3),
             "max_travel_mm": float(self.travel.max()),
+            "hourglass_percent": self.hourglass,
         }
 
 
@@ -100,6 +102,7 @@ def run_case(
 
 def _run(case: Case, impactor: Impactor, progress: bool, save: bool = True) -> None:
     from ..solver import run
+    from ..verify.hourglass import results_share
 
     r = run(case.deck, out=case.folder / "out" if save else None, quiet=not progress, output_dt=1e-4)
     case.time = r.time
@@ -112,6 +115,7 @@ def _run(case: Case, impactor: Impactor, progress: bool, save: bool = True) -> N
     case.lost = e0 - 0.5 * impactor.mass * float(v[-1]) ** 2
     case.absorbed = float(r.internal[-1] + (r.hourglass[-1] if r.recorded("hourglass") else 0.0))
     case.energy_ratio = float(r.energy_ratio[-1])
+    case.hourglass = results_share(r)
 
 
 def solid_force(spec: ODBSpec, overlap: float = 1.0) -> float:

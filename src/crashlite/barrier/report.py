@@ -94,7 +94,13 @@ def write_index(out: Path, summary: dict, cases: dict) -> Path:
     body.append(
         table(
             ["", *[f"{c['barrier']} {num(c['overlap_percent'])} %" for c in cs]],
-            [[label, *[num(c[k]) for c in cs]] for k, label in keys],
+            [[label, *[num(c[k]) for c in cs]] for k, label in keys]
+            + [
+                [
+                    "hourglass / internal energy at end [%]",
+                    *[num((c.get("hourglass_percent") or {}).get("end_percent")) for c in cs],
+                ]
+            ],
         )
     )
     body.append("<h2>Impactor force, simplified against detailed</h2>")

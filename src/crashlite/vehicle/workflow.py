@@ -222,6 +222,7 @@ def paper_study(
        surrogate's (``us_ncap_study``).
     """
     from ..solver import run
+    from ..verify.hourglass import results_share
     from ..verify.timing import reduction as time_reduction
     from .car.generic import generic_vehicle
     from .car.loadcases import odb_deck, usncap_deck
@@ -247,8 +248,11 @@ def paper_study(
             "loop_time": r.loop_time,
             "cycles": r.cycles,
             "elements": int(sum((r.info.get("elements") or {}).values())),
+            "hourglass": results_share(r),
         }
-        say(f"  {name}: {r.cycles} cycles, time loop {r.loop_time:.1f} s")
+        hg = runs[name]["hourglass"]
+        share = f", hourglass {hg['end_percent']:.1f} % of the internal energy" if hg.get("end_percent") else ""
+        say(f"  {name}: {r.cycles} cycles, time loop {r.loop_time:.1f} s{share}")
         return folder
 
     def odb(vehicle_deck: Path, barrier: str, name: str) -> Path:
@@ -359,7 +363,12 @@ def paper_study(
         "shares": s["shares_used"],
         "time": times,
         "runs": {
-            k: {"loop_time_s": r["loop_time"], "cycles": r["cycles"], "elements": r["elements"]}
+            k: {
+                "loop_time_s": r["loop_time"],
+                "cycles": r["cycles"],
+                "elements": r["elements"],
+                "hourglass_percent": r["hourglass"],
+            }
             for k, r in runs.items()
         },
         "verification": {k: vv.figures for k, vv in ver.items()},

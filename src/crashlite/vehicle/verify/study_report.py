@@ -29,6 +29,32 @@ def time_plot(runs: dict) -> bytes:
     return png(fig)
 
 
+HOURGLASS_LIMIT = 10.0  # percent of the internal energy
+
+
+def hourglass_rows(runs: dict) -> list[list[str]]:
+    """One row per run: hourglass share at the end and at its largest, with
+    the part holding most (its own share), over the limit marked."""
+    rows = []
+    for name, r in runs.items():
+        hg = r.get("hourglass_percent") or {}
+        if not hg:
+            rows.append([name, "–", "–", "", ""])
+            continue
+        over = " (over)" if (hg.get("max_percent") or 0.0) > HOURGLASS_LIMIT else ""
+        part = hg.get("part") or {}
+        rows.append(
+            [
+                name,
+                _pct(hg.get("end_percent")),
+                _pct(hg.get("max_percent")) + over,
+                num(1e3 * hg["max_time"], 3),
+                f"{part['id']} ({_pct(part.get('percent_of_its_internal'))})" if part else "",
+            ]
+        )
+    return rows
+
+
 def _pct(value) -> str:
     return "–" if value is None else f"{value:.1f} %"
 
@@ -52,6 +78,10 @@ def study_page(summary: dict, links: dict) -> str:
         "<h2>Computational time</h2>",
         table(["simplification", "time-loop reduction", "paper"], rows),
         image(time_plot(summary["runs"]), "time loop of every run"),
+        "<h2>Hourglass energy</h2>",
+        f"<p>Hourglass energy as a share of the internal energy (the usual limit {HOURGLASS_LIMIT:g} %), at the "
+        "end and at its largest once the internal energy has reached a tenth of its own largest.</p>",
+        table(["run", "at the end", "largest", "at [ms]", "part with most"], hourglass_rows(summary["runs"])),
     ]
     rows = []
     for case, f in summary["verification"].items():
