@@ -578,3 +578,43 @@ def test_honeycomb_axes_follow_the_cell_walls_in_simple_shear(tmp_path):
     assert abs(s[5]) == pytest.approx(HC_WEAK, rel=1e-6)
     assert np.abs(s[:5]).max() < 1e-9
     assert max(abs(e) for e, scale in errs) <= 0.01 * max(scale for _, scale in errs)
+
+
+def test_stiffness_hourglass_gives_back_no_more_than_it_stored_when_the_modulus_falls(tmp_path):
+    """One honeycomb element (IHQ 4): crushed past full compaction (the
+    hourglass stiffness follows the compacted modulus), pushed along an
+    hourglass mode, released to a fifth of its crush (the modulus falls back
+    towards the uncompacted one) and brought back along the mode. The
+    stored hourglass forces are scaled down with the stiffness, so the
+    hourglass energy never goes negative and the way back returns at most
+    what the way out stored. (Kept at the old stiffness, the forces gave
+    back more work than the loading took: energy from nothing.)"""
+    x, conn = brick_mesh(1, 1, 1, 10.0, 10.0, 10.0)
+    mat, curves = _honeycomb()
+    g, _, _ = group_from_deck(tmp_path, deck_text(x, conn, mat, hourglass="1,4,0.1", extra=curves))
+    xi = 2.0 * x / 10.0 - 1.0
+    mode = np.zeros_like(x)
+    mode[:, 1] = xi[:, 1] * xi[:, 2]  # y-velocity ∝ ηζ: an hourglass mode of the one-point element
+    squeeze = np.zeros_like(x)
+    squeeze[:, 0] = -x[:, 0] / 10.0  # uniform crush along a = x, no hourglass content
+    dt, steps = 2e-7, 200
+    xn = x.copy()
+    energies = []
+
+    def move(vel):
+        nonlocal xn
+        for _ in range(steps):
+            xn = xn + dt * vel
+            g.forces(SimpleNamespace(x=xn, v=vel, dt=dt, t=0.0, f=np.zeros_like(x)))
+            energies.append(g.hourglass[0])
+
+    move(2.125e5 * squeeze)  # 8.5 of 10 mm: 85 % volumetric strain, past VF = 0.2
+    high = g.st.cmod[0]
+    move(1e3 * mode)
+    stored = g.hourglass[0]
+    move(-1.75e5 * squeeze)  # back to 15 % crush: the modulus falls
+    assert g.st.cmod[0] < 0.2 * high
+    move(-1e3 * mode)
+    assert stored > 0.0
+    assert min(energies) >= -1e-12 * stored
+    assert g.hourglass[0] >= 0.0

@@ -80,6 +80,7 @@ class SolidState:
     hist: np.ndarray  # (n, N_HIST) float64
     axes: np.ndarray  # (n, 3, 3) float64 material axes
     hgq: np.ndarray  # (n, 3, 4) float64 hourglass generalized forces [force]
+    hg_kappa: np.ndarray  # (n,) float64 hourglass stiffness of the last step (kernels.solid) [force/length]
     alive: np.ndarray  # (n,) int8 1 active, 0 eroded, -1 inverted
     vol: np.ndarray  # (n,) float64 [length³]
     rate: np.ndarray  # (n,) float64 volumetric strain rate [1/time]
@@ -102,6 +103,7 @@ def new_state(s: SolidSet, n_nodes: int) -> SolidState:
         np.zeros((n, sm.N_HIST)),
         s.axes0.copy(),
         np.zeros((n, 3, 4)),
+        np.zeros(n),
         np.ones(n, np.int8),
         s.vol0.copy(),
         np.zeros(n),
@@ -142,6 +144,7 @@ def compute_forces(s: SolidSet, st: SolidState, x: np.ndarray, v: np.ndarray, dt
         st.hist,
         st.axes,
         st.hgq,
+        st.hg_kappa,
         st.alive,
         st.vol,
         st.rate,

@@ -36,6 +36,7 @@ Arrays (n = number of elements; units of the model, e.g. mm, t, s, N, MPa):
   epsp (n,) float64 effective plastic strain; hist (n, N_HIST) float64 history
   axes (n, 3, 3) float64 material axes a, b, c as columns (rotate with the element)
   hgq (n, 3, 4) float64 hourglass generalized forces [force]
+  hg_kappa (n,) float64 hourglass stiffness of the last step (stiffness forms) [force/length]
   alive (n,) int8 1 active, 0 eroded (material failure), -1 inverted (V ≤ 0)
   vol (n,) float64 volume at t(n+1) [length³]
   rate (n,) float64 volumetric strain rate tr D [1/time]
@@ -212,6 +213,7 @@ def _element(
     hist,
     axes,
     hgq,
+    hg_kappa,
     alive,
     vol,
     rate,
@@ -351,11 +353,11 @@ def _element(
         fe[e, a, 0] = -(t0 * b0 + t3 * b1 + t5 * b2)
         fe[e, a, 1] = -(t3 * b0 + t1 * b1 + t4 * b2)
         fe[e, a, 2] = -(t5 * b0 + t4 * b1 + t2 * b2)
-    _hourglass(e, w, vn, rho, c, wave, dt, hg_type[e], hg_qm[e], hgq, hg_energy, fe)
+    _hourglass(e, w, vn, rho, c, wave, dt, hg_type[e], hg_qm[e], hgq, hg_kappa, hg_energy, fe)
 
 
 @njit(cache=True)
-def _hourglass(e, w, vn, rho, c, wave, dt, ihq, qm, hgq, hg_energy, fe):
+def _hourglass(e, w, vn, rho, c, wave, dt, ihq, qm, hgq, hg_kappa, hg_energy, fe):
     """Hourglass resistance on the current geometry (w: coordinates, b and
     velocities). IHQ 1: LS-DYNA standard viscous on the base vectors Γ;
     2, 3: Flanagan–Belytschko viscous on γ = Γ − (Γ·x) b / V, orthogonal
@@ -373,8 +375,13 @@ def _hourglass(e, w, vn, rho, c, wave, dt, ihq, qm, hgq, hg_energy, fe):
     # hence 1/64 on the unnormalized γ used here (a cube's mode then gets ≈ QM × its physical stiffness)
     kappa = qm * wave * bb / (192.0 * vn)
     if not visc:  # stored stiffness forces turn with the element, as the stress does (objective)
+        # a stiffness that fell (the modulus of a honeycomb springing back, the element's shape) scales the
+        # stored forces with it: unloading along the new stiffness gives back at most what was stored, where
+        # the stored forces alone would return more work than loading took (energy from nothing)
+        shrink = kappa / hg_kappa[e] if 0.0 < kappa < hg_kappa[e] else 1.0
+        hg_kappa[e] = kappa
         for al in range(4):
-            g0, g1, g2 = hgq[e, 0, al], hgq[e, 1, al], hgq[e, 2, al]
+            g0, g1, g2 = shrink * hgq[e, 0, al], shrink * hgq[e, 1, al], shrink * hgq[e, 2, al]
             for i in range(3):
                 hgq[e, i, al] = w[_R + 3 * i] * g0 + w[_R + 3 * i + 1] * g1 + w[_R + 3 * i + 2] * g2
     for al in range(4):
@@ -427,6 +434,7 @@ def solid_forces(
     hist,
     axes,
     hgq,
+    hg_kappa,
     alive,
     vol,
     rate,
@@ -469,6 +477,7 @@ def solid_forces(
                 hist,
                 axes,
                 hgq,
+                hg_kappa,
                 alive,
                 vol,
                 rate,
