@@ -11,7 +11,7 @@ block), the hourglass energy as a share of the internal energy (at the end
 and its largest, ``verify.hourglass``; the usual limit is 10 %), cycles and
 time loop; then each figure against the finest size's. Usage::
 
-    python bench/barrier_convergence.py [--sizes 100 50 25] [--overlaps 100 40] [--end-ms 45]
+    python bench/barrier_convergence.py [--sizes 100 75 50] [--overlaps 100 40] [--end-ms 45] [--elform 1]
 """
 
 from __future__ import annotations
@@ -50,9 +50,10 @@ def _phase(case, t1: float) -> dict:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--sizes", type=float, nargs="+", default=[100.0, 50.0, 25.0], help="element sizes [mm]")
+    ap.add_argument("--sizes", type=float, nargs="+", default=[100.0, 75.0, 50.0], help="element sizes [mm]")
     ap.add_argument("--overlaps", type=float, nargs="+", default=[100.0, 40.0], help="impactor overlaps [%%]")
     ap.add_argument("--end-ms", type=float, default=45.0, help="simulated time [ms]")
+    ap.add_argument("--elform", type=int, default=1, help="*SECTION_SOLID ELFORM of the honeycomb (1 or 2)")
     args = ap.parse_args()
     spec, imp, pl = ODBSpec(), Impactor(), Placement()
     sizes = sorted(args.sizes, reverse=True)
@@ -60,7 +61,7 @@ def main() -> None:
         for ov in args.overlaps:
             cases = {}
             for size in sizes:
-                b = detailed_barrier(spec, pl, element_size=size)
+                b = detailed_barrier(spec, pl, element_size=size, elform=args.elform)
                 cases[size] = run_case(
                     f"detailed {size:g}", ov / 100.0, Path(tmp) / f"{ov:g}-{size:g}", b, spec, imp, args.end_ms / 1e3
                 )

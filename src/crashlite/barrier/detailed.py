@@ -95,6 +95,7 @@ def detailed_barrier(
     shear_failure: float = 1.5,
     cladding: bool = False,
     title: str = "detailed ODB",
+    elform: int = 1,
 ) -> SimplifiedBarrier:
     """Solid honeycomb barrier (mm–t–s spec, written in ``units``):
     elements of about ``element_size`` mm; ``compacted_modulus`` [MPa] of
@@ -107,7 +108,10 @@ def detailed_barrier(
     nodes, MAT_024 failing at SHEET_FAIL). Off by default: at 50 mm the
     coarse sheets do not tear where the impactor's edge cuts them, as the
     real ones do (paper section 2.1), and at 40 % overlap they drag the
-    honeycomb beside the impactor along, +40 % over the crush plateau."""
+    honeycomb beside the impactor along, +40 % over the crush plateau.
+    ``elform``: the honeycomb's *SECTION_SOLID formulation (1: one point
+    with stiffness hourglass control IHQ 4; 2: fully integrated, no
+    hourglass modes)."""
     spec = spec or ODBSpec()
     spec.check()
     pl = placement or Placement()
@@ -175,7 +179,7 @@ def detailed_barrier(
     for k, b in enumerate(blocks):
         p = pid[b.name]
         dk.kw("PART", [f"{title} {b.name}"], [p, p, p, 0, p])
-        dk.kw("SECTION_SOLID", [p, 1])
+        dk.kw("SECTION_SOLID", [p, elform])
         dk.kw("HOURGLASS", [p, 4, 0.1])
         _honeycomb(
             dk, p, o + 1 + 3 * k, b, u, d, compacted_modulus, lateral, shear_modulus, shear_strength, shear_failure
