@@ -19,6 +19,7 @@ def _generic(args) -> int:
         interface_x=args.interface_x,
         engine_mass=args.engine_mass,
         axle_mass=args.axle_mass,
+        front=args.front,
     )
     t1 = time.perf_counter()
     path = v.write(args.output, fmt=args.format)
@@ -274,6 +275,12 @@ def add_commands(sub) -> None:
     g.add_argument("--interface-x", type=float, default=-600.0, help="x of the interface cross sections [mm]")
     g.add_argument("--engine-mass", type=float, default=170.0, help="rigid engine and gearbox [kg]")
     g.add_argument("--axle-mass", type=float, default=73.0, help="rigid rear axle [kg]")
+    g.add_argument(
+        "--front",
+        choices=("generic", "stiff"),
+        default="generic",
+        help="bumper beam: 'stiff' is a second front (2.5 mm, 45 mm deep instead of 1.6 mm, 70 mm)",
+    )
     g.add_argument("--format", choices=("fixed", "long", "i10", "free"), default="fixed")
     g.set_defaults(func=_generic)
     lc = vsub.add_parser("loadcase", help="a frontal load case deck that includes a vehicle deck")

@@ -210,3 +210,28 @@ def test_crash_boxes_are_closed_tubes_with_a_trigger(car):
     y = m.nodes.xyz[np.unique(q), 1]
     assert y.min() > 410.0 - 1.01 and y.max() < 490.0 + 1.01
     assert ((y > 410.0) & (y < 411.0)).any()  # the side walls are dented inwards
+
+
+def test_stiff_front_is_a_thicker_shallower_bumper_on_longer_crash_boxes():
+    """The second front (``front="stiff"``, what a barrier is checked
+    under besides the generic car): the bumper beam 2.5 mm instead of
+    1.6 mm and 45 mm deep instead of 70 mm, its face where it was; the crash
+    boxes reach its back and share their end nodes with it; the car keeps
+    its mass and CoG targets."""
+    v = generic_vehicle(COARSE, front="stiff")
+    m = v.model
+    pid = v.part_ids["bumper beam"]
+    assert m.sections[m.parts[pid]["secid"]]["t1"] == 2.5
+    bumper = np.unique(m.shells.nodes[m.shells.pid == pid].astype(np.int64))
+    xb = m.nodes.xyz[bumper, 0]
+    assert xb.min() == pytest.approx(785.0) and xb.max() == pytest.approx(830.0)
+    box = np.unique(m.shells.nodes[m.shells.pid == v.part_ids["crash box left"]].astype(np.int64))
+    xc = m.nodes.xyz[box, 0]
+    assert xc.min() == pytest.approx(610.0) and xc.max() == pytest.approx(785.0)
+    shared = np.intersect1d(box, bumper)
+    assert len(shared) >= 4 and np.allclose(m.nodes.xyz[shared, 0], 785.0)
+    p = m.mass_properties()
+    assert p.mass * 1e3 == pytest.approx(1263.0, rel=1e-6)
+    assert p.cog == pytest.approx([-1100.0, 0.0, 500.0], abs=0.01)
+    with pytest.raises(ValueError, match="front must be one of"):
+        generic_vehicle(COARSE, front="flat")

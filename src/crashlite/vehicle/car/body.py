@@ -120,18 +120,27 @@ A_LENGTH = hypot(820.0, 550.0)  # cowl top rear edge (x −330, z 850) to roof f
 C_LENGTH = hypot(400.0, 450.0)  # rear header (x −2600, z 1300) to tail member (x −3000, z 850)
 
 
-def parts(engine_mass: float = 170.0, axle_mass: float = 73.0) -> list[PartDef]:
-    """The parts of the car, front to back (rigid masses in kg)."""
+# bumper beams: sheet thickness [mm] and the x of its back (its face at x = 830); "stiff" is the second front
+# a barrier is checked under (a thicker, shallower beam), so that it is not tuned to one car
+FRONTS = {"generic": (1.6, 760.0), "stiff": (2.5, 785.0)}
+
+
+def parts(engine_mass: float = 170.0, axle_mass: float = 73.0, front: str = "generic") -> list[PartDef]:
+    """The parts of the car, front to back (rigid masses in kg); ``front``
+    one of FRONTS (the crash boxes reach the bumper beam's back)."""
+    if front not in FRONTS:
+        raise ValueError(f"front must be one of {', '.join(FRONTS)}, got {front!r}")
+    t_bumper, x_back = FRONTS[front]
     P = []
 
     def add(*a, **k):
         P.append(PartDef(*a, **k))
 
     # --- front structure ----------------------------------------------------------------------
-    add("bumper beam", "bumper beam", "MS1200", 1.6, (_by(-680.0, 680.0, 760.0, 830.0, 390.0, 500.0),))
+    add("bumper beam", "bumper beam", "MS1200", t_bumper, (_by(-680.0, 680.0, x_back, 830.0, 390.0, 500.0),))
     for side, s in _sides():
         y0, y1 = _y(s, 410.0, 490.0)
-        add(f"crash box {side}", f"crash box {side}", "DP600", 1.2, (_bx(610.0, 760.0, y0, y1, 390.0, 500.0),))
+        add(f"crash box {side}", f"crash box {side}", "DP600", 1.2, (_bx(610.0, x_back, y0, y1, 390.0, 500.0),))
         add(f"front rail {side}", f"front rail {side}", "DP600", 1.6, (_bx(-250.0, 610.0, y0, y1, 390.0, 500.0),))
         # behind the firewall the rail goes on as a tall hat on the floor (the toe-board box), stiffer than
         # the rail so that the rail folds in front of it

@@ -74,6 +74,7 @@ def generic_vehicle(
     axle_mass: float = 73.0,
     trigger: float = 1.0,
     friction: float = 0.2,
+    front: str = "generic",
 ) -> GenericVehicle:
     """The generic compact car with elements of about ``mesh_size`` mm,
     total ``mass`` [kg] with its CoG at (``cog_x``, 0, ``cog_z``) [mm]
@@ -81,8 +82,10 @@ def generic_vehicle(
     ``interface_x`` [mm] (moved to the middle of the element row behind it
     where it falls on a row of nodes: ``GenericVehicle.interface_x``);
     rigid engine-gearbox and rear-axle masses [kg];
-    crash-box bead depth ``trigger`` [mm]; contact friction."""
-    parts = body.parts(engine_mass, axle_mass)
+    crash-box bead depth ``trigger`` [mm]; contact friction; ``front``:
+    "generic" or "stiff", a second front with a thicker, shallower bumper
+    beam (``body.FRONTS``)."""
+    parts = body.parts(engine_mass, axle_mass, front)
     mesh = build_mesh(parts, mesh_size, trigger)
     xyz = np.round(mesh.xyz, 5)  # short, exact texts in the deck; moves nodes < 1e-5 mm
     interface_x = _between_rows(xyz[:, 0], float(interface_x))
