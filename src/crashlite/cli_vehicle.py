@@ -226,6 +226,7 @@ def _study(args) -> int:
         variants=not args.no_variants,
         quiet=not args.progress,
         twin=args.twin,
+        front=args.front,
     )
     t = st.summary["time"]
     print(
@@ -484,6 +485,9 @@ def add_commands(sub) -> None:
         action="store_true",
         help="also run the full car's elastic twin in US NCAP: splits that verification's deviations "
         "into the elastic premise's and the surrogate's",
+    )
+    y.add_argument(
+        "--front", choices=("generic", "stiff"), default="generic", help="the car's bumper beam (vehicle generic)"
     )
     y.add_argument("--progress", action="store_true", help="show each run's progress")
     y.set_defaults(func=_study)

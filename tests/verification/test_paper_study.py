@@ -80,6 +80,7 @@ def test_summary_pairs_the_runs_and_reports_their_time_reductions(study):
         100.0 * (1.0 - loop["odb simplified car, simplified barrier"] / loop["odb full car, detailed barrier"])
     )
     assert "barrier_reduction_percent" not in t["odb"]  # no single-simplification runs asked for
+    assert s["front"] == "generic"
     odb = s["verification"]["Euro NCAP ODB"]
     assert odb["names"] == ["full + detailed barrier", "simplified + simplified barrier"]
     assert odb["time"]["full"]["cycles"] == s["runs"]["odb full car, detailed barrier"]["cycles"]

@@ -198,6 +198,7 @@ def paper_study(
     quiet: bool = True,
     say: Callable[[str], None] = print,
     twin: bool = False,
+    front: str = "generic",
     **reduce_options,
 ) -> PaperStudy:
     """The paper's whole verification on the generic car, in one folder:
@@ -220,6 +221,9 @@ def paper_study(
     5. with ``twin``, the full car's elastic twin in US NCAP, which splits
        that verification's deviations into the elastic premise's and the
        surrogate's (``us_ncap_study``).
+
+    ``front``: the generic car's bumper beam ("stiff": the second front a
+    barrier is checked under, ``car.body.FRONTS``).
     """
     from ..solver import run
     from ..verify.hourglass import results_share
@@ -231,7 +235,7 @@ def paper_study(
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    v = generic_vehicle(mesh_size, interface_x=interface_x)
+    v = generic_vehicle(mesh_size, interface_x=interface_x, front=front)
     car = v.write(out / "car.k")
     say(
         f"  generic car: {v.shells} shells, {v.mass:.0f} kg at {mesh_size:g} mm; detailed barrier "
@@ -358,6 +362,7 @@ def paper_study(
         )
     summary = {
         "mesh_size": mesh_size,
+        "front": front,
         "barrier_element_size": barrier_size,
         "interface_x": v.interface_x,
         "shares": s["shares_used"],
