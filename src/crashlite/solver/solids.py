@@ -1,14 +1,22 @@
-"""Solid elements from the Model: 8-node hexahedra (LS-DYNA ELFORM 1).
+"""Solid elements from the Model: 8-node hexahedra (LS-DYNA ELFORM 1 and 2).
 
-Builds the struct-of-arrays set the kernels in ``kernels.solid`` run:
-element connectivity, material tables and curves, hourglass and bulk
-viscosity settings per element, initial volumes and material axes; plus
-lumped masses, the element time step and the state arrays.
+Builds the struct-of-arrays set the kernels in ``kernels.solid`` (one
+point) and ``kernels.solid_full`` (fully integrated) run: element
+connectivity, material tables and curves, hourglass and bulk viscosity
+settings per element, initial volumes and material axes; plus lumped
+masses, the element time step and the state arrays.
 
-Section formulations: ELFORM 1 runs as is; 0, 2, -1 and -2 (one-point
-corotational and fully integrated variants) run as ELFORM 1 with a
-warning; any other ELFORM is refused. Hourglass types IHQ 1–5 run; IHQ 6
-runs as 5 with a warning; others are refused.
+Section formulations: ELFORM 1 (one point, hourglass control) and 2 (fully
+integrated, selectively reduced: 2×2×2 points, B-bar volumetric strain, no
+hourglass modes) run as they are; -1 and -2 (LS-DYNA's fully integrated
+variants for poor aspect ratios) run as 2, 0 (one-point corotational) as
+1, each with a warning; any other ELFORM is refused. The elements of both
+formulations live in one set, in the deck's order: ``full`` marks those of
+ELFORM 2, whose per-point state sits in the ``*8`` arrays of SolidState and
+whose element values (stress, plastic strain: mean of the points; energy:
+their sum) fill the element arrays as the one-point ones do. Hourglass
+types IHQ 1–5 run; IHQ 6 runs as 5 with a warning; others are refused
+(ELFORM 2 parts have no hourglass control: their IHQ is not used).
 """
 
 from __future__ import annotations
@@ -32,9 +40,11 @@ from .kernels.solid import (
     solid_timestep,
     solid_volumes,
 )
+from .kernels.solid_full import N_WORK_FULL, point_jacobians, solid_full_forces
 from .state import State
 
-_AS_ONE_POINT = (0, 2, -1, -2)
+_AS_ONE_POINT = (0,)  # one-point corotational: runs as ELFORM 1
+_AS_FULL = (-1, -2)  # fully integrated for poor aspect ratios: run as ELFORM 2
 
 
 @dataclass
@@ -65,6 +75,8 @@ class SolidSet:
     # *CONTROL_TERMINATION) x the solids' first step, is deleted instead of stopping the run
     erode: bool = False
     erode_dtmin: float = 0.0
+    full: np.ndarray | None = None  # (n,) int8 1: fully integrated (ELFORM 2); None: none
+    detj0: np.ndarray | None = None  # (nf, 8) float64 det J at the Gauss points of those, at t = 0 [length³]
 
     def __len__(self) -> int:
         return len(self.ids)
@@ -91,11 +103,22 @@ class SolidState:
     work: np.ndarray  # (N_CHUNKS, N_WORK) float64 scratch
     node_ptr: np.ndarray  # (n_nodes + 1,) int64 CSR node -> corners
     corner_of: np.ndarray  # (8n,) int64
+    # the fully integrated elements (kernels.solid_full): their rows, and their state at the 8 Gauss
+    # points (sig, sv, epsp above then hold the mean of the points, energy their sum)
+    full_idx: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (nf,) int64
+    sig8: np.ndarray = field(default_factory=lambda: np.zeros((0, 8, 6)))  # (nf, 8, 6) [stress]
+    sv8: np.ndarray = field(default_factory=lambda: np.zeros((0, 8, 6)))  # (nf, 8, 6) viscous [stress]
+    epsp8: np.ndarray = field(default_factory=lambda: np.zeros((0, 8)))  # (nf, 8)
+    hist8: np.ndarray = field(default_factory=lambda: np.zeros((0, 8, sm.N_HIST)))  # (nf, 8, N_HIST)
+    axes8: np.ndarray = field(default_factory=lambda: np.zeros((0, 8, 3, 3)))  # (nf, 8, 3, 3)
+    work8: np.ndarray = field(default_factory=lambda: np.zeros((N_CHUNKS, N_WORK_FULL)))  # scratch
 
 
 def new_state(s: SolidSet, n_nodes: int) -> SolidState:
     n = len(s)
     ptr, corner_of = corner_incidence(n_nodes, s.conn)
+    idx = np.flatnonzero(s.full).astype(np.int64) if s.full is not None else np.zeros(0, np.int64)
+    nf = len(idx)
     return SolidState(
         np.zeros((n, 6)),
         np.zeros((n, 6)),
@@ -114,11 +137,64 @@ def new_state(s: SolidSet, n_nodes: int) -> SolidState:
         np.zeros((N_CHUNKS, N_WORK)),
         ptr,
         corner_of,
+        idx,
+        np.zeros((nf, 8, 6)),
+        np.zeros((nf, 8, 6)),
+        np.zeros((nf, 8)),
+        np.zeros((nf, 8, sm.N_HIST)),
+        np.repeat(s.axes0[idx][:, None], 8, axis=1),
     )
 
 
 def compute_forces(s: SolidSet, st: SolidState, x: np.ndarray, v: np.ndarray, dt: float) -> None:
-    """Advance the solids' state to t(n+1) and fill st.fe (see kernels.solid)."""
+    """Advance the solids' state to t(n+1) and fill st.fe: the one-point
+    elements (kernels.solid), then the fully integrated ones
+    (kernels.solid_full)."""
+    idx = st.full_idx
+    if len(idx) < len(s):
+        keep = st.alive[idx].copy()
+        st.alive[idx] = 2  # not the one-point kernel's: it zeroes their rows, the full kernel fills them
+        _one_point(s, st, x, v, dt)
+        st.alive[idx] = keep
+    if len(idx):
+        solid_full_forces(
+            x,
+            v,
+            float(dt),
+            idx,
+            s.conn,
+            s.mat_of,
+            s.mtype,
+            s.props,
+            s.mcurve,
+            s.curve_start,
+            s.curve_stop,
+            s.curve_x,
+            s.curve_y,
+            s.rho0,
+            s.vol0,
+            s.q1,
+            s.q2,
+            s.detj0,
+            st.sig8,
+            st.sv8,
+            st.epsp8,
+            st.hist8,
+            st.axes8,
+            st.alive,
+            st.vol,
+            st.rate,
+            st.cmod,
+            st.energy,
+            st.sig,
+            st.sv,
+            st.epsp,
+            st.work8,
+            st.fe,
+        )
+
+
+def _one_point(s: SolidSet, st: SolidState, x: np.ndarray, v: np.ndarray, dt: float) -> None:
     solid_forces(
         x,
         v,
@@ -415,6 +491,7 @@ def build_solids(model: Model, rigid_pids: ArrayLike, problems: list, warnings: 
     rho0 = np.zeros(n)
     hg_type, hg_qm = np.zeros(n, np.int64), np.zeros(n)
     q1, q2 = np.full(n, bq1), np.full(n, bq2)
+    full = np.zeros(n, np.int8)
     axes = np.zeros((n, 3, 3))
     axes[:] = np.eye(3)
     for p in np.unique(pid):
@@ -442,11 +519,24 @@ def build_solids(model: Model, rigid_pids: ArrayLike, problems: list, warnings: 
                     f"ELFORM {elform} of part {int(p)} runs as ELFORM 1 (one-point integration with hourglass control)",
                 )
             )
-        elif elform != 1:
+        elif elform in _AS_FULL:
+            warns.append(
+                _problem(
+                    sec,
+                    "elform",
+                    f"ELFORM {elform} of part {int(p)} runs as ELFORM 2 (fully integrated, selectively reduced; "
+                    "no correction for poor aspect ratios)",
+                )
+            )
+        elif elform not in (1, 2):
             problems.append(
-                _problem(sec, "elform", f"solid formulation {elform} is not supported (1; 0, 2, -1, -2 run as 1)")
+                _problem(
+                    sec, "elform", f"solid formulation {elform} is not supported (1, 2; 0 runs as 1, -1 and -2 as 2)"
+                )
             )
             continue
+        is_full = elform == 2 or elform in _AS_FULL
+        full[m] = is_full
         mid = int(mat.get("mid"))
         if mid not in mat_rows:
             got = _material(model, mat, curves, problems)
@@ -487,7 +577,7 @@ def build_solids(model: Model, rigid_pids: ArrayLike, problems: list, warnings: 
         ihq = int(hg.get("ihq", 0) or 0) if hg is not None else 0
         ihq = ihq or ihq0
         qm = float(hg.get("qm", 0.1)) if hg is not None else qh0
-        if ihq == 6:
+        if ihq == 6 and not is_full:
             warns.append(
                 _problem(
                     hg if hg is not None else part,
@@ -496,7 +586,7 @@ def build_solids(model: Model, rigid_pids: ArrayLike, problems: list, warnings: 
                 )
             )
             ihq = 5
-        elif not 1 <= ihq <= 5:
+        elif not 1 <= ihq <= 5 and not is_full:
             problems.append(
                 _problem(
                     hg if hg is not None else part,
@@ -505,7 +595,7 @@ def build_solids(model: Model, rigid_pids: ArrayLike, problems: list, warnings: 
                 )
             )
             continue
-        hg_type[m], hg_qm[m] = ihq, qm
+        hg_type[m], hg_qm[m] = (0, 0.0) if is_full else (ihq, qm)
         if hg is not None:
             q1[m], q2[m] = float(hg.get("q1", 1.5)), float(hg.get("q2", 0.06))
     if not mtypes:
@@ -521,6 +611,20 @@ def build_solids(model: Model, rigid_pids: ArrayLike, problems: list, warnings: 
                 "ELEMENT_SOLID",
                 None,
                 f"solid {int(ids[i])} has volume {vol0[i]:.4g} <= 0 (inverted node order?)",
+            )
+        )
+    fidx = np.flatnonzero(full)
+    detj0 = np.empty((len(fidx), 8))
+    point_jacobians(x, fidx, conn, np.zeros((1, N_WORK_FULL)), detj0)
+    for k in np.flatnonzero((detj0 <= 0).any(axis=1) & (vol0[fidx] > 0))[:10]:
+        problems.append(
+            Problem(
+                src,
+                0,
+                "ELEMENT_SOLID",
+                None,
+                f"solid {int(ids[fidx[k]])} (ELFORM 2) has a Jacobian <= 0 at an integration point "
+                "(too distorted for full integration)",
             )
         )
     cs, ce, cx, cy = curves.arrays()
@@ -552,6 +656,8 @@ def build_solids(model: Model, rigid_pids: ArrayLike, problems: list, warnings: 
         warns,
         erode,
         dtmin if erode else 0.0,
+        full if fidx.size else None,
+        detj0 if fidx.size else None,
     )
 
 
@@ -569,7 +675,7 @@ class SolidGroup(ElementGroup):
         self.ids, self.pid, self.conn = s.ids, s.pid, s.conn
         self.energy = self.st.energy  # internal energy, viscous work included [energy]
         self.hourglass = self.st.hg_energy
-        self.warnings = s.warnings  # Problem: options run in an approximated way (ELFORM, IHQ 6)
+        self.warnings = s.warnings  # Problem: options run in an approximated way (ELFORM 0, -1, -2, IHQ 6)
         self._rows = self.st.fe.reshape(-1, 3)
         self._dt = np.empty(len(s))
         self._dt_first = 0.0
