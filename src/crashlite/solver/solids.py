@@ -112,6 +112,7 @@ class SolidState:
     hist8: np.ndarray = field(default_factory=lambda: np.zeros((0, 8, sm.N_HIST)))  # (nf, 8, N_HIST)
     axes8: np.ndarray = field(default_factory=lambda: np.zeros((0, 8, 3, 3)))  # (nf, 8, 3, 3)
     work8: np.ndarray = field(default_factory=lambda: np.zeros((N_CHUNKS, N_WORK_FULL)))  # scratch
+    full_alive: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int8))  # (nf,) scratch
 
 
 def new_state(s: SolidSet, n_nodes: int) -> SolidState:
@@ -143,6 +144,8 @@ def new_state(s: SolidSet, n_nodes: int) -> SolidState:
         np.zeros((nf, 8)),
         np.zeros((nf, 8, sm.N_HIST)),
         np.repeat(s.axes0[idx][:, None], 8, axis=1),
+        np.zeros((N_CHUNKS, N_WORK_FULL)),
+        np.zeros(nf, np.int8),
     )
 
 
@@ -152,10 +155,11 @@ def compute_forces(s: SolidSet, st: SolidState, x: np.ndarray, v: np.ndarray, dt
     (kernels.solid_full)."""
     idx = st.full_idx
     if len(idx) < len(s):
-        keep = st.alive[idx].copy()
-        st.alive[idx] = 2  # not the one-point kernel's: it zeroes their rows, the full kernel fills them
+        keep = st.full_alive
+        np.take(st.alive, idx, out=keep)
+        np.put(st.alive, idx, 2)  # not the one-point kernel's: it zeroes their rows, the full kernel fills them
         _one_point(s, st, x, v, dt)
-        st.alive[idx] = keep
+        np.put(st.alive, idx, keep)
     if len(idx):
         solid_full_forces(
             x,
