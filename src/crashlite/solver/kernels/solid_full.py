@@ -15,7 +15,11 @@ then the material update (``solid_materials.update_stress``) with
 Δε = D̃_p·Δt, the honeycomb's and foam's relative volume being the point's
 det J over its initial det J. Bulk viscosity as in ELFORM 1, at the element
 level (from tr D̄, the element's density, wave speed and V^⅓); material
-damping (P_DAMP) as the viscous stress μ·D̃_p, μ from the element's values.
+damping (P_DAMP) as the viscous stress μ·D̃_p, μ = P_DAMP·ρ·c·L from the
+element's values, L = V / A_max the time step's characteristic length (a
+fraction P_DAMP of critical damping of the element's highest mode: on V^⅓ an
+element crushed flat is many times overdamped and the explicit viscous force,
+which the step does not cover, diverges).
 
 Nodal forces at x(n+1): f_I = −Σ_p J_p (s_p + p̄ I)·∂N_I/∂x (p), s_p the
 deviator of the point's total stress and p̄ = Σ_p J_p ⅓tr σ_p / V the
@@ -50,7 +54,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .solid import _DE, _M, _R, _V, _X, N_WORK, XI, _convect_axes, _load_coords, _rotate6
+from .solid import _DE, _M, _R, _V, _X, FACES, N_WORK, XI, _convect_axes, _load_coords, _rotate6
 from .solid_materials import HONEYCOMB, _to_global, _to_local, update_stress
 
 
@@ -161,6 +165,22 @@ def _end_gradients(w):
             w[o + 1] = c10 * g0 + c11 * g1 + c12 * g2
             w[o + 2] = c20 * g0 + c21 * g1 + c22 * g2
     return vol
+
+
+@njit(cache=True)
+def _largest_face(w):
+    """Largest face area of the coordinates w[_X:_X+24], each face ½|d1 × d2|
+    from its diagonals (as kernels.solid.solid_timestep)."""
+    amax = 0.0
+    for fc in range(6):
+        a0, a1, a2, a3 = _X + 3 * FACES[fc, 0], _X + 3 * FACES[fc, 1], _X + 3 * FACES[fc, 2], _X + 3 * FACES[fc, 3]
+        d10, d11, d12 = w[a2] - w[a0], w[a2 + 1] - w[a0 + 1], w[a2 + 2] - w[a0 + 2]
+        d20, d21, d22 = w[a3] - w[a1], w[a3 + 1] - w[a1 + 1], w[a3 + 2] - w[a1 + 2]
+        c0 = d11 * d22 - d12 * d21
+        c1 = d12 * d20 - d10 * d22
+        c2 = d10 * d21 - d11 * d20
+        amax = max(amax, 0.5 * math.sqrt(c0 * c0 + c1 * c1 + c2 * c2))
+    return amax
 
 
 @njit(cache=True)
@@ -304,6 +324,7 @@ def _element(
         _kill(k, e, fe, sig, sv, psig, psv)
         return
     vol[e] = vn
+    lt = vn / _largest_face(w)  # the step's characteristic length V / A_max (solid_timestep)
     m = mat_of[e]
     kind = mtype[m]
     pr = props[m]
@@ -352,7 +373,10 @@ def _element(
     qb = 0.0
     if th < 0.0 and pr[7] != 0.0:  # P_BULKQ
         qb = rho * le * (q1[e] * le * th * th - q2[e] * c * th)
-    mu = pr[6] * rho * c * le  # P_DAMP: viscous stress factor
+    # P_DAMP: viscous stress factor, on the step's length V / A_max (not V^⅓ as the bulk viscosity):
+    # a fraction P_DAMP of critical damping of the element's highest mode, whatever its shape; on V^⅓
+    # an element crushed flat (V^⅓ / L ~ 100) is overdamped ~5x and the explicit viscous force diverges
+    mu = pr[6] * rho * c * lt
     de = 0.0
     pbar = 0.0
     for t in range(6):
