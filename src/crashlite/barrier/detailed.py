@@ -113,8 +113,8 @@ def detailed_barrier(
     one point with stiffness hourglass control (IHQ 4, QM 0.1), whose
     hourglass energy reaches 17–19 % of the internal energy under an
     offset impactor or a car; 2 fully integrated, without hourglass modes
-    (not yet the default: at 60 mm under the 40 % impactor its run goes
-    unstable)."""
+    (not yet the default: the simplified barrier is calibrated against the
+    one-point barrier)."""
     spec = spec or ODBSpec()
     spec.check()
     pl = placement or Placement()
