@@ -67,20 +67,21 @@ def main() -> None:
                 )
                 print(f"  {ov:g} % overlap, {size:g} mm: {cases[size].cycles} cycles", flush=True)
             t1 = min(crushed_solid(c, spec) for c in cases.values())
-            fine = _phase(cases[sizes[-1]], t1)
+            phases = {size: _phase(c, t1) for size, c in cases.items()}
+            fine = phases[sizes[-1]]
             print(f"\n{ov:g} % overlap, crush phase to {1e3 * t1:.1f} ms (the first size crushed solid)")
             keys = ["travel_mm", "work_kJ", "mean_force_kN", *[f"{a:g}-{b:g} mm kN" for a, b in WINDOWS]]
             head = ["size mm", "solids", *keys, "HG end %", "HG max %", "cycles", "loop s"]
             print("".join(f"{h:>15}" for h in head))
             for size in sizes:
-                c, p = cases[size], _phase(cases[size], t1)
+                c, p = cases[size], phases[size]
                 hg = c.hourglass or {}
                 row = [size, c.counts["solids"], *[p[k] for k in keys]]
                 row += [hg.get("end_percent", float("nan")), hg.get("max_percent", float("nan")), c.cycles, c.run_time]
                 print("".join(f"{v:>15.4g}" for v in row), flush=True)
             print("against the finest size: " + ", ".join(keys[1:]))
             for size in sizes:
-                p = _phase(cases[size], t1)
+                p = phases[size]
                 print(f"{size:>15g}" + "".join(f"{p[k] / fine[k]:>15.3f}" for k in keys[1:]))
 
 

@@ -10,6 +10,7 @@ text that builds a group through crashlite's reader and build_solids.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -175,3 +176,45 @@ class Driver:
         largest of KE0, |W_ext|, IE [energy]."""
         ke, ie, hg = self.kinetic(v_n), float(self.g.energy.sum()), float(self.g.hourglass.sum())
         return ke + ie + hg - self.kinetic0 - self.work, max(self.kinetic0, abs(self.work), ie)
+
+
+# --- materials, shapes and helpers shared by the one-point and fully integrated element tests ----------------
+
+E, NU, RHO = 210000.0, 0.3, 7.85e-9  # MPa, -, t/mm³
+LAM, MU = E * NU / ((1 + NU) * (1 - 2 * NU)), E / (2 * (1 + NU))
+STEEL = f"*MAT_ELASTIC\n1,{RHO},{E},{NU}"
+GRAD = np.array([[1.0, 0.3, -0.2], [0.1, -0.5, 0.4], [0.2, 0.0, 0.7]])  # velocity gradient [1/s]
+HC_RHO, HC_E, HC_SIGY, HC_VF = 2.89e-11, 1000.0, 200.0, 0.2  # t/mm³, MPa, MPa, -
+HC_CURVE = np.array([[0.0, 0.342], [0.7, 0.5], [0.8, 0.8]])  # crush stress [MPa] vs volumetric strain
+HC_EAAU, HC_WEAK = 34.2, 0.0171  # crush modulus (0.342 MPa at 1 %) [MPa]; lateral and shear strength [MPa]
+
+
+def sym(sig):
+    """(6,) Voigt xx yy zz xy yz zx -> (3, 3)."""
+    return np.array([[sig[0], sig[3], sig[5]], [sig[3], sig[1], sig[4]], [sig[5], sig[4], sig[2]]])
+
+
+def one_step(g, x_mid, v, dt):
+    """One force evaluation with the mid-step shape x_mid and velocity v:
+    x(n+1) = x_mid + ½Δt·v. Returns the nodal forces (n, 3)."""
+    st = SimpleNamespace(x=x_mid + 0.5 * dt * v, v=v, dt=dt, t=dt, f=np.zeros_like(x_mid))
+    g.forces(st)
+    return st.f
+
+
+def distorted_block(seed=3):
+    """2x2x2 block of 10 mm cubes with its interior node and the in-plane
+    positions of the face nodes moved (outer faces stay planar)."""
+    x, conn = brick_mesh(2, 2, 2, 10.0, 10.0, 10.0)
+    rng = np.random.default_rng(seed)
+    d = rng.uniform(-2.0, 2.0, x.shape)
+    for k in range(3):  # nodes on a face of the block keep that coordinate
+        d[np.isclose(x[:, k], 0.0) | np.isclose(x[:, k], 20.0), k] = 0.0
+    return x + d, conn
+
+
+def rotation(axis, angle):
+    """Rotation matrix of ``angle`` [rad] about ``axis`` (Rodrigues)."""
+    a = np.asarray(axis, float) / np.linalg.norm(axis)
+    k = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+    return np.eye(3) + math.sin(angle) * k + (1 - math.cos(angle)) * k @ k

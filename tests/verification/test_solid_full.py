@@ -13,18 +13,37 @@ from types import SimpleNamespace
 import numba
 import numpy as np
 import pytest
-from _solid_driver import Driver, brick_mesh, deck_text, group_from_deck
+from _solid_driver import (
+    GRAD,
+    HC_CURVE,
+    HC_E,
+    HC_EAAU,
+    HC_RHO,
+    HC_SIGY,
+    HC_VF,
+    HC_WEAK,
+    LAM,
+    MU,
+    NU,
+    RHO,
+    STEEL,
+    Driver,
+    E,
+    brick_mesh,
+    deck_text,
+    distorted_block,
+    group_from_deck,
+    one_step,
+    rotation,
+    sym,
+)
 
 from crashlite import read_deck
 from crashlite.solver import run
 from crashlite.solver.kernels.solid_full import N_WORK_FULL, point_jacobians
 from crashlite.solver.solids import build_solids
 
-E, NU, RHO = 210000.0, 0.3, 7.85e-9  # MPa, -, t/mm³
-LAM, MU = E * NU / ((1 + NU) * (1 - 2 * NU)), E / (2 * (1 + NU))
-STEEL = f"*MAT_ELASTIC\n1,{RHO},{E},{NU}"
 FULL = "1,2"  # *SECTION_SOLID SECID 1, ELFORM 2
-GRAD = np.array([[1.0, 0.3, -0.2], [0.1, -0.5, 0.4], [0.2, 0.0, 0.7]])  # velocity gradient [1/s]
 # one hexahedron with warped faces (the patch test holds for any trilinear shape)
 DISTORTED = np.array(
     [
@@ -39,30 +58,6 @@ DISTORTED = np.array(
     + [[0.5, 8.1, 6.4]],
     float,
 )
-
-
-def _sym(sig):
-    """(6,) Voigt xx yy zz xy yz zx -> (3, 3)."""
-    return np.array([[sig[0], sig[3], sig[5]], [sig[3], sig[1], sig[4]], [sig[5], sig[4], sig[2]]])
-
-
-def _one_step(g, x_mid, v, dt):
-    """One force evaluation with the mid-step shape x_mid and velocity v:
-    x(n+1) = x_mid + ½Δt·v. Returns the nodal forces (n, 3)."""
-    st = SimpleNamespace(x=x_mid + 0.5 * dt * v, v=v, dt=dt, t=dt, f=np.zeros_like(x_mid))
-    g.forces(st)
-    return st.f
-
-
-def _distorted_block(seed=3):
-    """2x2x2 block of 10 mm cubes with its interior node and the in-plane
-    positions of the face nodes moved (outer faces stay planar)."""
-    x, conn = brick_mesh(2, 2, 2, 10.0, 10.0, 10.0)
-    rng = np.random.default_rng(seed)
-    d = rng.uniform(-2.0, 2.0, x.shape)
-    for k in range(3):  # nodes on a face of the block keep that coordinate
-        d[np.isclose(x[:, k], 0.0) | np.isclose(x[:, k], 20.0), k] = 0.0
-    return x + d, conn
 
 
 def _relative_volumes(g, x):
@@ -81,26 +76,26 @@ def test_patch_linear_velocity_gives_uniform_stress_at_every_point(tmp_path, mes
     largest), Σf = 0, Σx×f = 0, the forces' power in the velocity field is
     −V·σ:L (1e-9); the energy of the step is ½Δt·V·σ:D (1e-9) and there is
     no hourglass energy."""
-    x, conn = _distorted_block() if mesh == "block" else (DISTORTED, np.arange(8)[None])
+    x, conn = distorted_block() if mesh == "block" else (DISTORTED, np.arange(8)[None])
     g, _, warns = group_from_deck(tmp_path, deck_text(x, conn, STEEL, section=FULL))
     assert not warns and g.s.full.all() and len(g.st.full_idx) == len(conn)
     dt = 1e-7
     v = x @ GRAD.T
-    f = _one_step(g, x, v, dt)
+    f = one_step(g, x, v, dt)
     d = 0.5 * (GRAD + GRAD.T) * dt
     expect = LAM * np.trace(d) * np.eye(3) + 2 * MU * d
     scale = np.abs(expect).max()
     for k in range(len(conn)):
         for p in range(8):
-            np.testing.assert_allclose(_sym(g.st.sig8[k, p]), expect, rtol=0, atol=1e-9 * scale)
-        np.testing.assert_allclose(_sym(g.st.sig[k]), expect, rtol=0, atol=1e-9 * scale)
+            np.testing.assert_allclose(sym(g.st.sig8[k, p]), expect, rtol=0, atol=1e-9 * scale)
+        np.testing.assert_allclose(sym(g.st.sig[k]), expect, rtol=0, atol=1e-9 * scale)
     fscale = np.abs(f).max()
     if mesh == "block":
         centre = np.flatnonzero(~np.any(np.isclose(x, 0.0) | np.isclose(x, 20.0), axis=1))
         assert len(centre) == 1
         assert np.abs(f[centre]).max() < 1e-9 * fscale
     xn = x + 0.5 * dt * v
-    sig_total = _sym(g.st.sig[0] + g.st.sv[0])
+    sig_total = sym(g.st.sig[0] + g.st.sv[0])
     vol = g.st.vol.sum()
     assert np.einsum("ij,ij->", f, xn @ GRAD.T) == pytest.approx(-vol * np.einsum("ij,ij->", sig_total, GRAD), rel=1e-9)
     assert np.abs(f.sum(axis=0)).max() < 1e-9 * fscale
@@ -110,21 +105,15 @@ def test_patch_linear_velocity_gives_uniform_stress_at_every_point(tmp_path, mes
     assert np.all(g.hourglass == 0.0)
 
 
-def _rotation(axis, angle):
-    a = np.asarray(axis, float) / np.linalg.norm(axis)
-    k = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
-    return np.eye(3) + math.sin(angle) * k + (1 - math.cos(angle)) * k @ k
-
-
 def test_rigid_translation_and_large_rotation_leave_the_stress_in_its_frame(tmp_path):
     """A distorted block moved rigidly: a translation gives no stress and
     no force; a prestress at every Gauss point, turned 120° about a skew
     axis in 12 steps of 10°, is the same prestress turned with the body
     (R σ Rᵀ, 1e-9) at every point, with no strain energy."""
-    x, conn = _distorted_block()
+    x, conn = distorted_block()
     g, _, _ = group_from_deck(tmp_path, deck_text(x, conn, STEEL, section=FULL))
     dt = 1e-6
-    f = _one_step(g, x, np.tile([3000.0, -1000.0, 500.0], (len(x), 1)), dt)
+    f = one_step(g, x, np.tile([3000.0, -1000.0, 500.0], (len(x), 1)), dt)
     assert np.abs(g.st.sig8).max() < 1e-9 and np.abs(f).max() < 1e-9
     c = x.mean(axis=0)
     pre = np.array([100.0, -50.0, 30.0, 20.0, -10.0, 5.0])
@@ -132,15 +121,15 @@ def test_rigid_translation_and_large_rotation_leave_the_stress_in_its_frame(tmp_
     axis, n, total = [1.0, 2.0, 2.0], 12, math.radians(120.0)
     xa = x.copy()
     for k in range(1, n + 1):  # exact rigid motion between the step ends: v = (x(n+1) − x(n)) / Δt
-        xb = c + (x - c) @ _rotation(axis, total * k / n).T
+        xb = c + (x - c) @ rotation(axis, total * k / n).T
         g.forces(SimpleNamespace(x=xb, v=(xb - xa) / dt, dt=dt, t=k * dt, f=np.zeros_like(x)))
         xa = xb
-    r = _rotation(axis, total)
-    turned = r @ _sym(pre) @ r.T
+    r = rotation(axis, total)
+    turned = r @ sym(pre) @ r.T
     for k in range(len(conn)):
         for p in range(8):
-            np.testing.assert_allclose(_sym(g.st.sig8[k, p]), turned, atol=1e-9 * 100.0)
-        np.testing.assert_allclose(_sym(g.st.sig[k]), turned, atol=1e-9 * 100.0)
+            np.testing.assert_allclose(sym(g.st.sig8[k, p]), turned, atol=1e-9 * 100.0)
+        np.testing.assert_allclose(sym(g.st.sig[k]), turned, atol=1e-9 * 100.0)
     assert np.abs(g.energy).max() < 1e-12 * 100.0 * g.s.vol0.sum()
     assert np.all(g.hourglass == 0.0)
 
@@ -257,11 +246,6 @@ def test_cantilever_tip_stiffness_is_euler_bernoulli(tmp_path):
     assert stiffness == pytest.approx(k_eb, rel=0.03)
     assert np.abs(err).max() <= 0.01 * scale.max()
     assert np.all(g.hourglass == 0.0)
-
-
-HC_RHO, HC_E, HC_SIGY, HC_VF = 2.89e-11, 1000.0, 200.0, 0.2  # t/mm³, MPa, MPa, -
-HC_CURVE = np.array([[0.0, 0.342], [0.7, 0.5], [0.8, 0.8]])  # crush stress [MPa] vs volumetric strain
-HC_EAAU, HC_WEAK = 34.2, 0.0171  # crush modulus [MPa]; lateral and shear strength [MPa]
 
 
 def _honeycomb():

@@ -10,40 +10,32 @@ from types import SimpleNamespace
 import numba
 import numpy as np
 import pytest
-from _solid_driver import Driver, brick_mesh, deck_text, group_from_deck
+from _solid_driver import (
+    GRAD,
+    HC_CURVE,
+    HC_E,
+    HC_EAAU,
+    HC_RHO,
+    HC_SIGY,
+    HC_VF,
+    HC_WEAK,
+    LAM,
+    MU,
+    NU,
+    RHO,
+    STEEL,
+    Driver,
+    E,
+    brick_mesh,
+    deck_text,
+    distorted_block,
+    group_from_deck,
+    one_step,
+    rotation,
+    sym,
+)
 
 from crashlite.solver.solids import lumped_mass
-
-E, NU, RHO = 210000.0, 0.3, 7.85e-9  # MPa, -, t/mm³
-LAM, MU = E * NU / ((1 + NU) * (1 - 2 * NU)), E / (2 * (1 + NU))
-STEEL = f"*MAT_ELASTIC\n1,{RHO},{E},{NU}"
-
-
-def _sym(sig):
-    """(6,) Voigt xx yy zz xy yz zx -> (3, 3)."""
-    return np.array([[sig[0], sig[3], sig[5]], [sig[3], sig[1], sig[4]], [sig[5], sig[4], sig[2]]])
-
-
-def _one_step(g, x_mid, v, dt):
-    """One force evaluation with the mid-step shape x_mid and velocity v:
-    x(n+1) = x_mid + ½Δt·v. Returns the nodal forces (n, 3)."""
-    st = SimpleNamespace(x=x_mid + 0.5 * dt * v, v=v, dt=dt, t=dt, f=np.zeros_like(x_mid))
-    g.forces(st)
-    return st.f
-
-
-def _distorted_block(seed=3):
-    """2x2x2 block of 10 mm cubes with its interior node and the in-plane
-    positions of the face nodes moved (outer faces stay planar)."""
-    x, conn = brick_mesh(2, 2, 2, 10.0, 10.0, 10.0)
-    rng = np.random.default_rng(seed)
-    d = rng.uniform(-2.0, 2.0, x.shape)
-    for k in range(3):  # nodes on a face of the block keep that coordinate
-        d[np.isclose(x[:, k], 0.0) | np.isclose(x[:, k], 20.0), k] = 0.0
-    return x + d, conn
-
-
-GRAD = np.array([[1.0, 0.3, -0.2], [0.1, -0.5, 0.4], [0.2, 0.0, 0.7]])  # velocity gradient [1/s]
 
 
 @pytest.mark.parametrize("ihq", [1, 2, 3, 4, 5])
@@ -54,16 +46,16 @@ def test_patch_linear_velocity_gives_uniform_stress_and_interior_equilibrium(tmp
     no hourglass force (IHQ 1 only on an undistorted patch, where its base
     vectors are orthogonal to linear fields), the forces' power in the
     velocity field is −V·σ:L, Σf = 0, Σx×f = 0."""
-    x, conn = _distorted_block() if ihq != 1 else brick_mesh(2, 2, 2, 10.0, 10.0, 10.0)
+    x, conn = distorted_block() if ihq != 1 else brick_mesh(2, 2, 2, 10.0, 10.0, 10.0)
     g, _, _ = group_from_deck(tmp_path, deck_text(x, conn, STEEL, hourglass=f"1,{ihq},0.1"))
     dt = 1e-7
     v = x @ GRAD.T
-    f = _one_step(g, x, v, dt)
+    f = one_step(g, x, v, dt)
     d = 0.5 * (GRAD + GRAD.T) * dt
     expect = LAM * np.trace(d) * np.eye(3) + 2 * MU * d
     scale = np.abs(expect).max()
     for e in range(len(conn)):
-        np.testing.assert_allclose(_sym(g.st.sig[e]), expect, rtol=0, atol=1e-9 * scale)
+        np.testing.assert_allclose(sym(g.st.sig[e]), expect, rtol=0, atol=1e-9 * scale)
     fscale = np.abs(f).max()
     assert np.abs(g.st.hgq).max() < 1e-9 * fscale
     centre = np.flatnonzero(~np.any(np.isclose(x, 0.0) | np.isclose(x, 20.0), axis=1))
@@ -71,7 +63,7 @@ def test_patch_linear_velocity_gives_uniform_stress_and_interior_equilibrium(tmp
     assert np.abs(f[centre]).max() < 1e-9 * fscale
     xn = x + 0.5 * dt * v  # the forces act at t(n+1): Σ_a b_a ⊗ x_a = V·I there
     vol = g.st.vol.sum()
-    sig_total = _sym(g.st.sig[0] + g.st.sv[0])
+    sig_total = sym(g.st.sig[0] + g.st.sv[0])
     assert np.einsum("ij,ij->", f, xn @ GRAD.T) == pytest.approx(-vol * np.einsum("ij,ij->", sig_total, GRAD), rel=1e-9)
     assert np.abs(f.sum(axis=0)).max() < 1e-9 * fscale
     assert np.abs(np.cross(xn, f).sum(axis=0)).max() < 1e-9 * fscale * 20.0
@@ -97,17 +89,11 @@ def test_patch_degenerate_wedge_and_tetrahedron(tmp_path, shape):
     assert g.s.vol0[0] == pytest.approx(vol, rel=1e-12)
     np.testing.assert_allclose(lumped_mass(g.s, len(x)), RHO * vol / k, rtol=1e-12)
     dt = 1e-7
-    f = _one_step(g, x, x @ GRAD.T, dt)
+    f = one_step(g, x, x @ GRAD.T, dt)
     d = 0.5 * (GRAD + GRAD.T) * dt
     expect = LAM * np.trace(d) * np.eye(3) + 2 * MU * d
-    np.testing.assert_allclose(_sym(g.st.sig[0]), expect, rtol=0, atol=1e-9 * np.abs(expect).max())
+    np.testing.assert_allclose(sym(g.st.sig[0]), expect, rtol=0, atol=1e-9 * np.abs(expect).max())
     assert np.abs(f.sum(axis=0)).max() < 1e-9 * np.abs(f).max()
-
-
-def _rotation(axis, angle):
-    a = np.asarray(axis, float) / np.linalg.norm(axis)
-    k = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
-    return np.eye(3) + math.sin(angle) * k + (1 - math.cos(angle)) * k @ k
 
 
 @pytest.mark.parametrize("ihq", [1, 4])
@@ -115,10 +101,10 @@ def test_rigid_translation_and_large_rotation_give_no_stress(tmp_path, ihq):
     """A distorted block moved rigidly (translation, then 120° about a
     skew axis in 12 steps of 10°): no stress, no strain energy, no
     hourglass energy, no nodal force; a prestress turns with the body."""
-    x, conn = _distorted_block()
+    x, conn = distorted_block()
     g, _, _ = group_from_deck(tmp_path, deck_text(x, conn, STEEL, hourglass=f"1,{ihq},0.1"))
     dt = 1e-6
-    f = _one_step(g, x, np.tile([3000.0, -1000.0, 500.0], (len(x), 1)), dt)
+    f = one_step(g, x, np.tile([3000.0, -1000.0, 500.0], (len(x), 1)), dt)
     assert np.abs(g.st.sig).max() < 1e-9 and np.abs(f).max() < 1e-9
     c = x.mean(axis=0)
     pre = np.array([100.0, -50.0, 30.0, 20.0, -10.0, 5.0])
@@ -126,13 +112,13 @@ def test_rigid_translation_and_large_rotation_give_no_stress(tmp_path, ihq):
     axis, n, total = [1.0, 2.0, 2.0], 12, math.radians(120.0)
     xa = x.copy()
     for k in range(1, n + 1):  # exact rigid motion between the step ends: v = (x(n+1) − x(n)) / Δt
-        xb = c + (x - c) @ _rotation(axis, total * k / n).T
+        xb = c + (x - c) @ rotation(axis, total * k / n).T
         st = SimpleNamespace(x=xb, v=(xb - xa) / dt, dt=dt, t=k * dt, f=np.zeros_like(x))
         g.forces(st)
         xa = xb
-    r = _rotation(axis, total)
+    r = rotation(axis, total)
     for e in range(len(conn)):
-        np.testing.assert_allclose(_sym(g.st.sig[e]), r @ _sym(pre) @ r.T, atol=1e-9 * 100.0)
+        np.testing.assert_allclose(sym(g.st.sig[e]), r @ sym(pre) @ r.T, atol=1e-9 * 100.0)
     assert np.abs(g.energy).max() < 1e-12 * 100.0 * g.s.vol0.sum()
     if ihq == 4:  # stiffness hourglass: no hourglass displacement in a rigid motion
         assert np.abs(g.st.hgq).max() < 1e-9 and np.abs(g.hourglass).max() < 1e-12
@@ -291,11 +277,6 @@ def test_bar_impact_stress_is_rho_c_v_for_two_wave_transits(tmp_path):
     assert force[t > 1.1 * t2].max() < 0.0  # the glued end holds the bar back
     assert np.abs(err).max() <= 0.01 * scale.max()
     assert g.hourglass.max() < 1e-9 * g.energy.sum()
-
-
-HC_RHO, HC_E, HC_SIGY, HC_VF = 2.89e-11, 1000.0, 200.0, 0.2  # t/mm³, MPa, MPa, -
-HC_CURVE = np.array([[0.0, 0.342], [0.7, 0.5], [0.8, 0.8]])  # crush stress [MPa] vs volumetric strain
-HC_EAAU, HC_WEAK = 34.2, 0.0171  # crush modulus (0.342 MPa at 1 %) [MPa]; lateral and shear strength [MPa]
 
 
 def _honeycomb(bulk=0.0, mu=0.05, aopt="2.0", a=(1.0, 0.0, 0.0), d=(0.0, 1.0, 0.0)):
