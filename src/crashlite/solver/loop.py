@@ -373,9 +373,11 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list 
                 if why is not None:
                     raise FloatingPointError(why[0] + f" (cycle {cycle}): the run is stopped")
             if s.dt_min > 0 and dt_new < s.dt_min * dt_first:
+                _, who = smallest_step(s, groups, st)
                 raise FloatingPointError(
                     f"time step {dt_new:.4g} at t = {t:.6g} (cycle {cycle}) fell below "
-                    f"DTMIN x first step = {s.dt_min * dt_first:.4g}: the run is stopped"
+                    f"DTMIN x first step = {s.dt_min * dt_first:.4g}: the run is stopped; "
+                    f"the smallest element step is that of {who}"
                 )
             output = t >= next_out * (1 - 1e-9) or t >= s.end_time
             field_state = t >= next_state * (1 - 1e-9) or (t >= s.end_time and np.isfinite(next_state))
