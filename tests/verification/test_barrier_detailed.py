@@ -64,3 +64,12 @@ def test_detailed_cladding_sheets_share_the_face_nodes(tmp_path):
     sheets = c.density * (c.thickness_middle * spec.main.area + c.thickness_front * spec.bumper.area)
     assert m.mass_properties().mass == pytest.approx(bare.mass + sheets, rel=1e-9)
     assert {"cladding front", "cladding middle"} <= set(b.part_ids)
+
+
+def test_shear_slip_fixes_the_tear_in_mm_at_every_element_size(tmp_path):
+    """shear_slip [mm] > 0: the transverse shears' failure strain SSEF is
+    the slip over the element size (the same tear at 100 and at 50 mm);
+    without it SSEF is shear_failure, the same strain at every size."""
+    for size, slip, want in ((100.0, 50.0, 0.5), (50.0, 50.0, 1.0), (50.0, 0.0, 1.5)):
+        m = read_deck(detailed_barrier(element_size=size, shear_slip=slip).write(tmp_path / f"d{size:g}_{slip:g}.k"))
+        assert [float(mat["ssef"]) for mat in m.materials.values()] == pytest.approx([want, want])

@@ -263,6 +263,7 @@ def odb_deck(
     units: str | None = None,
     element_size: float = 20.0,
     erode_dtmin: float = 0.1,
+    honeycomb: dict | None = None,
 ) -> Path:
     """Write the Euro NCAP ODB load case for vehicle deck ``car`` to ``out``
     and the barrier to ``<out stem>_barrier<suffix>`` beside it:
@@ -273,7 +274,9 @@ def odb_deck(
     detailed barrier, honeycomb elements crushed to a step below
     ``erode_dtmin`` x their first step, or turned inside out, are deleted
     (ERODE = 1, DTMIN), as honeycomb barrier models are run: crushed solid
-    under a rail's edge they would otherwise stop the run (0: keep them)."""
+    under a rail's edge they would otherwise stop the run (0: keep them).
+    ``honeycomb``: further options of the detailed barrier
+    (``detailed_barrier``: elform, shear_failure, shear_slip …)."""
     from ...barrier import offset_placement, simplified_barrier
     from ...barrier.detailed import detailed_barrier
 
@@ -289,7 +292,7 @@ def odb_deck(
     if barrier == "simplified":
         b = simplified_barrier(placement=pl, id_offset=boff, units=u)
     else:
-        b = detailed_barrier(placement=pl, id_offset=boff, units=u, element_size=element_size)
+        b = detailed_barrier(placement=pl, id_offset=boff, units=u, element_size=element_size, **(honeycomb or {}))
     bpath = out.with_name(f"{out.stem}_barrier{out.suffix or '.k'}")
     out.parent.mkdir(parents=True, exist_ok=True)
     b.write(bpath)
