@@ -603,10 +603,10 @@ def test_stiffness_hourglass_gives_back_no_more_than_it_stored_when_the_modulus_
 
 def test_a_step_below_dtmin_stops_the_run_naming_the_element(tmp_path):
     """DTMIN = 0.5 without ERODE: one steel cube crushed at 10 m/s between a
-    held face and a driven one; its step falls as L^1.5 (the density rises
-    with the mass kept), below half the first at about 60 % of its length.
-    The run stops there with a message naming the element that sets the
-    step, and keeps the states so far."""
+    held face and a driven one; its step falls as it shortens (length,
+    density and bulk viscosity), below half the first at 0.39 ms (3.9 mm
+    of crush). The run stops there with a message naming the element that
+    sets the step, and keeps the states so far."""
     from crashlite.solver import RunError, run
 
     x, conn = brick_mesh(1, 1, 1, 10.0, 10.0, 10.0)
@@ -625,4 +625,34 @@ def test_a_step_below_dtmin_stops_the_run_naming_the_element(tmp_path):
     ) as e:
         run(path, output_dt=1e-5)
     t_stop = e.value.results.time[-1]
-    assert 3.0e-4 < t_stop < 5.0e-4  # crushed 3 to 5 mm: L^1.5 = 0.5 at L = 0.63
+    assert 3.5e-4 < t_stop < 4.2e-4
+
+
+def test_erode_deletes_at_dtmin_times_the_runs_first_step(tmp_path):
+    """ERODE = 1, DTMIN = 0.5, as LS-DYNA: a solid is deleted when its step
+    falls below DTMIN times the run's first step (TSMIN), which a 2 mm
+    brick beside it sets, five times below the crushed 10 mm cube's own.
+    The cube, crushed at 10 m/s, goes when its step is a tenth of its
+    first (0.82 ms, 8.2 mm of crush), not at half its own first step (0.39
+    ms, where the run above stops); the run goes on to its end."""
+    from crashlite.solver import run
+
+    x, conn = brick_mesh(1, 1, 1, 10.0, 10.0, 10.0)
+    small = x * 0.2 + np.array([0.0, 20.0, 0.0])  # a 2 mm cube away from the crush, untouched
+    xs, cs = np.vstack([x, small]), np.vstack([conn, conn + len(x)])
+    held = np.flatnonzero(xs[:, 0] == 0.0) + 1
+    driven = np.flatnonzero(x[:, 0] == 10.0) + 1
+    extra = "\n".join(
+        ["*SET_NODE_LIST", "1", ",".join(map(str, driven)), "*BOUNDARY_PRESCRIBED_MOTION_SET", "1,1,0,1,-1.0"]
+        + ["*DEFINE_CURVE", "1", "0.0,10000.0", "1.0,10000.0", ERODE]
+        + [line for n in held for line in ("*BOUNDARY_SPC_NODE", f"{n},0,1,1,1,0,0,0")]
+    )
+    path = tmp_path / "crush.k"
+    path.write_text(
+        deck_text(xs, cs, STEEL, extra=extra).replace("*CONTROL_TERMINATION\n1.0", "*CONTROL_TERMINATION\n0.9e-3,0,0.5")
+    )
+    r = run(path, output_dt=1e-5, quiet=True)
+    assert r.time[-1] == pytest.approx(0.9e-3, rel=1e-3)
+    rising = np.flatnonzero(np.diff(r.internal) > 1e-9 * r.internal.max())
+    t_gone = r.time[rising[-1] + 1]
+    assert 0.75e-3 < t_gone < 0.87e-3

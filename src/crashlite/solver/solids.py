@@ -724,6 +724,14 @@ class SolidGroup(ElementGroup):
                 self._dt[small] = np.inf
         return float(self._dt.min())
 
+    def first_step(self, dt: float) -> None:
+        """The run's first step (TSSFAC taken off): ERODE deletes a solid
+        whose step falls below DTMIN times it, the step the run stops at
+        (LS-DYNA's TSMIN), not below DTMIN times the solids' own first step
+        (a honeycomb reports its compacted modulus before its first update,
+        a step four times shorter than its real one)."""
+        self._dt_first = dt
+
     @property
     def eroded(self) -> int:
         return int(np.count_nonzero(self.st.alive != 1))
