@@ -272,7 +272,7 @@ def odb_deck(
     ``side`` (the driver's), face ``gap`` mm ahead of the vehicle, and the
     test rig's rigid block behind it (``_rig_wall``). With the
     detailed barrier, honeycomb elements crushed to a step below
-    ``erode_dtmin`` x their first step, or turned inside out, are deleted
+    ``erode_dtmin`` x the run's first step, or turned inside out, are deleted
     (ERODE = 1, DTMIN), as honeycomb barrier models are run: crushed solid
     under a rail's edge they would otherwise stop the run (0: keep them).
     ``honeycomb``: further options of the detailed barrier
