@@ -46,6 +46,9 @@ class ElementGroup:
         """(ne, k, 3) forces exerted ON the nodes at each element corner."""
         raise NotImplementedError
 
+    def first_step(self, dt: float) -> None:
+        """The run's first step, TSSFAC taken off (for limits relative to it)."""
+
     def corner_moments(self) -> np.ndarray | None:
         """(ne, k, 3) moments ON the nodes, or None for translational elements."""
         return None

@@ -324,9 +324,8 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list 
         raise SetupError([Problem(s.source, 0, why[1], None, why[0])])
     t_loop, cpu_loop, compile_loop = _time.perf_counter(), _time.process_time(), clock.seconds
     dt_first = dt
-    for g in updated:
-        if hasattr(g, "first_step"):  # ERODE's limit is the run's own (TSMIN)
-            g.first_step(dt_first / s.tssfac)
+    for g in groups:
+        g.first_step(dt_first / s.tssfac)  # ERODE's limit is the run's own (TSMIN)
     t = 0.0
     v_prev, w_prev = v.copy(), st.w.copy()
     x_prev = np.zeros_like(x)

@@ -713,10 +713,7 @@ class SolidGroup(ElementGroup):
         solid_timestep(st.x, s.conn, g.alive, g.vol, s.rho0, s.vol0, g.cmod, g.rate, s.q1, s.q2, self._dt)
         if not len(self._dt):
             return np.inf
-        if self._dt_first == 0.0:
-            if self.st.cmod.max() > 0.0:  # the wave speeds exist once forces have been computed
-                self._dt_first = float(self._dt.min())
-        elif s.erode_dtmin > 0.0:
+        if s.erode_dtmin > 0.0 and self._dt_first > 0.0:  # ERODE's limit, once the run has set it
             small = self._dt < s.erode_dtmin * self._dt_first  # eroded ones report an infinite step
             if small.any():
                 self.erosions += int(np.count_nonzero(small))
@@ -725,11 +722,11 @@ class SolidGroup(ElementGroup):
         return float(self._dt.min())
 
     def first_step(self, dt: float) -> None:
-        """The run's first step (TSSFAC taken off): ERODE deletes a solid
-        whose step falls below DTMIN times it, the step the run stops at
-        (LS-DYNA's TSMIN), not below DTMIN times the solids' own first step
-        (a honeycomb reports its compacted modulus before its first update,
-        a step four times shorter than its real one)."""
+        """ERODE deletes a solid whose step falls below DTMIN times the run's
+        first step (LS-DYNA's TSMIN, the step the run stops at), not the
+        solids' own first step (a honeycomb reports its compacted modulus
+        before its first update, a step four times shorter than its real
+        one)."""
         self._dt_first = dt
 
     @property
