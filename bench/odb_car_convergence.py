@@ -30,7 +30,7 @@ from crashlite.solver.loop import RunError
 from crashlite.vehicle.car.generic import generic_vehicle
 from crashlite.vehicle.car.loadcases import odb_deck, vehicle_info
 from crashlite.verify.curves import make_pair
-from crashlite.verify.hourglass import hourglass_share
+from crashlite.verify.hourglass import results_share
 
 TIMES = (0.02, 0.04)  # [s] besides the end
 
@@ -41,14 +41,14 @@ def _figures(r, barrier_parts: np.ndarray, boxes: list[int]) -> dict:
     box = np.isin(ids, boxes)
     e_bar = r.part_internal[:, bar].sum(axis=1) / 1e6  # N·mm -> kJ
     out = {f"barrier {1e3 * t:g} ms kJ": float(np.interp(t, r.time, e_bar, right=np.nan)) for t in TIMES}
-    hg = hourglass_share(r.time, r.internal, r.hourglass)
+    hg = results_share(r)
     out |= {
         "barrier end kJ": float(e_bar[-1]),
         "car IE kJ": float(r.internal[-1] / 1e6 - e_bar[-1]),
         "crash boxes kJ": float(r.part_internal[-1, box].sum() / 1e6),
         "car KE end kJ": float(r.kinetic[-1] / 1e6),
-        "HG end %": hg["end_percent"],
-        "HG max %": hg["max_percent"],
+        "HG end %": hg.get("end_percent", np.nan),
+        "HG max %": hg.get("max_percent", np.nan),
         "cycles": int(r.cycles),
         "loop s": float(r.loop_time),
     }
@@ -94,16 +94,16 @@ def main() -> None:
             rows[name], hist[name] = _figures(r, barrier_parts, boxes)
             print(f"{name}: {time.perf_counter() - t0:.0f} s", flush=True)
     keys = list(next(iter(rows.values())))
-    done = [n for n in rows if n.startswith("detailed") and "stopped" not in n]
-    if not done:
-        return
-    ref = done[-1]  # the finest detailed barrier that ran to the end
     print(
         f"\ncar {args.mesh_size:g} mm ({args.front} front), ODB 40 % 64 km/h to {args.end_ms:g} ms; honeycomb {honeycomb}"
     )
     print(f"{'':32s}" + "".join(f"{k:>20s}" for k in keys))
     for name, f in rows.items():
         print(f"{name:32s}" + "".join(f"{f[k]:20.4g}" for k in keys))
+    done = [n for n in rows if n.startswith("detailed") and "stopped" not in n]
+    if not done:
+        return
+    ref = done[-1]  # the finest detailed barrier that ran to the end
     print(f"\nagainst {ref}")
     print(f"{'':32s}" + "".join(f"{k:>20s}" for k in keys[:6]) + f"{'rating barrier E':>20s}")
     for name, f in rows.items():
