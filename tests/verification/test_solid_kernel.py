@@ -279,13 +279,13 @@ def test_bar_impact_stress_is_rho_c_v_for_two_wave_transits(tmp_path):
     assert g.hourglass.max() < 1e-9 * g.energy.sum()
 
 
-def _honeycomb(bulk=0.0, mu=0.05, aopt="2.0", a=(1.0, 0.0, 0.0), d=(0.0, 1.0, 0.0)):
+def _honeycomb(bulk=0.0, mu=0.05, aopt="2.0", a=(1.0, 0.0, 0.0), d=(0.0, 1.0, 0.0), ssef=0.0):
     """*MAT_HONEYCOMB crushing along a = x (AOPT 2), weak across, with its
-    curves (LCA 2, LCB = LCC = LCS 3)."""
+    curves (LCA 2, LCB = LCC = LCS 3) and shear failure strain SSEF."""
     wk = 0.05 * HC_EAAU
     mat = (
         f"*MAT_HONEYCOMB\n1,{HC_RHO},{HC_E},0.3,{HC_SIGY},{HC_VF},{mu},{bulk}\n2,3,3,3\n"
-        f"{HC_EAAU},{wk},{wk},{wk},{wk},{wk},{aopt},1\n0,0,0,{a[0]},{a[1]},{a[2]}\n{d[0]},{d[1]},{d[2]},0,0"
+        f"{HC_EAAU},{wk},{wk},{wk},{wk},{wk},{aopt},1\n0,0,0,{a[0]},{a[1]},{a[2]}\n{d[0]},{d[1]},{d[2]},0,{ssef}"
     )
     curves = (
         "*DEFINE_CURVE\n2\n"
@@ -560,6 +560,46 @@ def test_honeycomb_axes_follow_the_cell_walls_in_simple_shear(tmp_path):
     assert abs(s[5]) == pytest.approx(HC_WEAK, rel=1e-6)
     assert np.abs(s[:5]).max() < 1e-9
     assert max(abs(e) for e, scale in errs) <= 0.01 * max(scale for _, scale in errs)
+
+
+@pytest.mark.parametrize("elform", [1, 2])
+@pytest.mark.parametrize(
+    "crush, slide_dof, slid",
+    [(5.0, 0, "top"), (7.0, 2, "front")],
+    ids=["tear-across-a-crushed-band", "crushed-faces-slide"],
+)
+def test_honeycomb_shear_failure_is_a_slide_over_the_undeformed_cell(tmp_path, elform, crush, slide_dof, slid):
+    """SSEF = 0.5 on a 10 mm MAT_026 cube (cell axis a = x), every node
+    driven: first crushed along a by ``crush`` mm, then slid. Tear: the top
+    face slides along a (u_x ∝ z, the band beside an imprint dragged in);
+    its height is still 10 mm, so it fails at 5 mm of slide although it is
+    half crushed (V = 0.5). Crushed faces slide: the crushed front face
+    (depth 3 of 10 mm) slides sideways along z; the slide counts over the
+    undeformed depth, so it fails at 5 mm too, not at 1.5 mm, as a shear
+    summed from the increments over the current depth did (crushed
+    honeycomb under a flat impactor then failed in shear). Both element
+    formulations."""
+    x, conn, _ = _slab(1, 1, 1, 10.0)
+    mat, curves = _honeycomb(ssef=0.5)
+    g, _, _ = group_from_deck(tmp_path, deck_text(x, conn, mat, section=f"1,{elform}", extra=curves))
+    speed, t1 = 1000.0, crush / 1000.0  # mm/s; end of the crush [s]
+    front = np.isclose(x[:, 0], 10.0)
+    moved = np.isclose(x[:, 2], 10.0) if slid == "top" else front
+
+    def velocity(n, dof):  # every node driven: the crush, then the slide
+        crushing = -speed if (dof == 0 and front[n]) else 0.0
+        sliding = speed if (dof == slide_dof and moved[n]) else 0.0
+        return lambda t: crushing if t <= t1 else sliding
+
+    driven = [(np.array([n]), dof, velocity(n, dof)) for n in range(len(x)) for dof in range(3)]
+    dr = Driver(g, x, driven=driven, dt_max=2e-6)
+    failed_at = []
+    dr.run(
+        t1 + 8e-3,
+        lambda d, vn: failed_at.append(d.st.t) if (g.st.alive[0] == 0 and not failed_at) else None,
+    )
+    assert failed_at, "the cube did not fail"
+    assert speed * (failed_at[0] - t1) == pytest.approx(5.0, rel=0.02)
 
 
 def test_stiffness_hourglass_gives_back_no_more_than_it_stored_when_the_modulus_falls(tmp_path):

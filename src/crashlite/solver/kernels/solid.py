@@ -52,7 +52,7 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from .solid_materials import HONEYCOMB, N_SCRATCH, _to_global, _to_local, update_stress
+from .solid_materials import HONEYCOMB, N_SCRATCH, _to_global, _to_local, carry_lines, update_stress
 
 # natural coordinates of the nodes, LS-DYNA order (1-4 bottom, 5-8 top)
 XI = np.array(
@@ -274,6 +274,19 @@ def _element(
     m = mat_of[e]
     if mtype[m] == HONEYCOMB:  # the stress keeps its components in the convected material axes
         _to_local(q, s, 0, w, _M)
+        carry_lines(
+            hist[e],
+            q,
+            l00 * inv * dt,
+            l01 * inv * dt,
+            l02 * inv * dt,
+            l10 * inv * dt,
+            l11 * inv * dt,
+            l12 * inv * dt,
+            l20 * inv * dt,
+            l21 * inv * dt,
+            l22 * inv * dt,
+        )
         _convect_axes(
             q,
             l00 * inv * dt,

@@ -55,7 +55,7 @@ import numpy as np
 from numba import njit, prange
 
 from .solid import _DE, _M, _R, _V, _X, FACES, N_WORK, XI, _convect_axes, _load_coords, _rotate6
-from .solid_materials import HONEYCOMB, _to_global, _to_local, update_stress
+from .solid_materials import HONEYCOMB, _to_global, _to_local, carry_lines, update_stress
 
 
 def _gauss_derivatives():
@@ -233,11 +233,25 @@ def _kill(k, e, fe, sig, sv, psig, psv):
 
 
 @njit(cache=True)
-def _rotate_point(w, kind, s, vs, q, dt, p):
-    """Stress, viscous stress and material axes of point p to t(n+1)'s frame."""
+def _rotate_point(w, kind, s, vs, q, h, dt, p):
+    """Stress, viscous stress and material axes of point p to t(n+1)'s frame
+    (a honeycomb's history h carries its initial axes as material lines)."""
     if kind == HONEYCOMB:  # the stress keeps its components in the convected material axes
         o = _L + 9 * p
         _to_local(q, s, 0, w, _M)
+        carry_lines(
+            h,
+            q,
+            w[o] * dt,
+            w[o + 1] * dt,
+            w[o + 2] * dt,
+            w[o + 3] * dt,
+            w[o + 4] * dt,
+            w[o + 5] * dt,
+            w[o + 6] * dt,
+            w[o + 7] * dt,
+            w[o + 8] * dt,
+        )
         _convect_axes(
             q,
             w[o] * dt,
@@ -334,7 +348,7 @@ def _element(
         s = psig[k, p]
         vs = psv[k, p]
         _spin_rotation(w, p, dt)
-        _rotate_point(w, kind, s, vs, paxes[k, p], dt, p)
+        _rotate_point(w, kind, s, vs, paxes[k, p], phist[k, p], dt, p)
         for t in range(6):
             w[_OLD + 6 * p + t] = s[t] + vs[t]
         d00, d11, d22, d01, d12, d20 = _strain_rate(w, p, th)

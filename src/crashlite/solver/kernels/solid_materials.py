@@ -44,7 +44,11 @@ C_LCSS, C_TABLE = 0, 1
 C_A, C_B, C_C, C_AB, C_BC, C_CA = 0, 1, 2, 3, 4, 5
 C_FOAM = 0
 
-N_HIST = 6  # history variables per element (honeycomb: local strains)
+# history per element (per point for ELFORM 2). Honeycomb: [0:3] normal strains summed over the steps
+# (TSEF), [3:6] half the total engineering shears (SSEF), [6:15] H = F·A0, the images of the initial
+# material axes (columns, row major), [15:24] A0 itself (set on the first step)
+H_LINES, H_AXES0 = 6, 15
+N_HIST = 24
 N_SCRATCH = 24  # scratch values a material update may use
 
 
@@ -200,6 +204,34 @@ def _bound(v, y):
 
 
 @njit(cache=True)
+def carry_lines(h, q, g00, g01, g02, g10, g11, g12, g20, g21, g22):
+    """H ← (I + L·Δt)·H (g = L·Δt) for the history h of a honeycomb: the
+    initial material axes carried as material lines, H = F·A0. On the
+    first step (A0 still zero) A0 = H = q, the axes before they move."""
+    if h[H_AXES0] == 0.0 and h[H_AXES0 + 3] == 0.0 and h[H_AXES0 + 6] == 0.0:
+        for t in range(9):
+            h[H_AXES0 + t] = q[t // 3, t % 3]
+            h[H_LINES + t] = q[t // 3, t % 3]
+    for j in range(3):
+        c0, c1, c2 = h[H_LINES + j], h[H_LINES + 3 + j], h[H_LINES + 6 + j]
+        h[H_LINES + j] = c0 + g00 * c0 + g01 * c1 + g02 * c2
+        h[H_LINES + 3 + j] = c1 + g10 * c0 + g11 * c1 + g12 * c2
+        h[H_LINES + 6 + j] = c2 + g20 * c0 + g21 * c1 + g22 * c2
+
+
+@njit(cache=True)
+def _shear_of_cell(h, i, j):
+    """G_ij + G_ji, G = A0ᵀ·H: the engineering shear of material axes i, j
+    over the undeformed cell (zero before carry_lines has run)."""
+    gij = 0.0
+    gji = 0.0
+    for k in range(3):
+        gij += h[H_AXES0 + 3 * k + i] * h[H_LINES + 3 * k + j]
+        gji += h[H_AXES0 + 3 * k + j] * h[H_LINES + 3 * k + i]
+    return gij + gji
+
+
+@njit(cache=True)
 def update_honeycomb(p, mc, cs, ce, cx, cy, s, w, do, wo, hist, axes, relvol):
     """MAT_026. Uncompacted (relative volume V > VF): in the material axes
     each normal and shear component is updated on its own with the moduli
@@ -207,8 +239,16 @@ def update_honeycomb(p, mc, cs, ce, cx, cy, s, w, do, wo, hist, axes, relvol):
     β = max(min((1 − V)/(1 − VF), 1), 0), and bounded in magnitude by its
     curve (a, b, c, ab, bc, ca) of stress vs volumetric strain 1 − V.
     Fully compacted (V ≤ VF): isotropic elastic–perfectly plastic (E, PR,
-    SIGY). hist[0:6] accumulates the strains in the material axes for the
-    failure strains TSEF (normal, tension) and SSEF (engineering shear).
+    SIGY). hist[0:3] accumulates the normal strains in the material axes
+    for TSEF (tension). SSEF bounds the engineering shear of the undeformed
+    cell, γ_ab = ∂u_a/∂X_b + ∂u_b/∂X_a = G_ab + G_ba with G = A0ᵀ·F·A0, the
+    deformation gradient in the initial material axes (``_shear_of_cell``):
+    a band dragged along the cell axis beside an imprint tears at a slip of
+    SSEF × its width however much it is crushed, and a crushed brick whose
+    faces slide sideways fails at a slide of SSEF × its initial depth, not
+    of its current one (summing the increments D·Δt, a brick crushed to a
+    third fails at a third of the slide). Rigid rotations cancel exactly in
+    a plane and to second order otherwise.
 
     Returns (wave modulus, failed).
     """
@@ -242,8 +282,9 @@ def update_honeycomb(p, mc, cs, ce, cx, cy, s, w, do, wo, hist, axes, relvol):
         c = mc[C_AB + i]
         y = max(curve_value(cx, cy, cs[c], ce[c], ev), 0.0)
         w[wo + 3 + i] = _bound(w[wo + 3 + i] + 2.0 * mod * w[wo + 15 + i], y)
-        hist[3 + i] += w[wo + 15 + i]
-        if p[P_SSEF] > 0.0 and abs(2.0 * hist[3 + i]) > p[P_SSEF]:
+        gam = _shear_of_cell(hist, i, (i + 1) % 3)
+        hist[3 + i] = 0.5 * gam
+        if p[P_SSEF] > 0.0 and abs(gam) > p[P_SSEF]:
             failed = True
     _to_global(axes, w, wo, s)
     return wave, failed
