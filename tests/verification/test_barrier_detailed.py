@@ -73,3 +73,23 @@ def test_shear_slip_fixes_the_tear_in_mm_at_every_element_size(tmp_path):
     for size, slip, want in ((100.0, 50.0, 0.5), (50.0, 50.0, 1.0), (50.0, 0.0, 1.5)):
         m = read_deck(detailed_barrier(element_size=size, shear_slip=slip).write(tmp_path / f"d{size:g}_{slip:g}.k"))
         assert [float(mat["ssef"]) for mat in m.materials.values()] == pytest.approx([want, want])
+
+
+def test_height_size_refines_the_rows_only(tmp_path):
+    """height_size: rows of about that height through every block edge
+    (the bumper's included), columns and depth at element_size; the
+    barrier's mass and its ids of parts unchanged."""
+    spec = ODBSpec()
+    coarse = detailed_barrier(element_size=50.0)
+    fine = detailed_barrier(element_size=50.0, height_size=25.0)
+    mc, mf = (read_deck(b.write(tmp_path / f"{n}.k")) for n, b in (("c", coarse), ("f", fine)))
+    zc, zf = (np.unique(np.round(m.nodes.xyz[:, 2], 6)) for m in (mc, mf))
+    yc, yf = (np.unique(np.round(m.nodes.xyz[:, 1], 6)) for m in (mc, mf))
+    xc, xf = (np.unique(np.round(m.nodes.xyz[:, 0], 6)) for m in (mc, mf))
+    assert np.array_equal(yc, yf) and np.array_equal(xc, xf)
+    assert np.diff(zf).max() <= 1.1 * 25.0 < np.diff(zc).min()
+    edges = [spec.main.z_low, spec.bumper.z_low, spec.bumper.z_high, spec.main.z_high]
+    assert all(np.isclose(zf - zf.min() + edges[0], e).any() for e in edges)
+    assert fine.solids > 1.8 * coarse.solids
+    assert mf.mass_properties().mass == pytest.approx(mc.mass_properties().mass, rel=1e-9)
+    assert fine.part_ids == coarse.part_ids
