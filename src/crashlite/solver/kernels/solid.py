@@ -149,14 +149,17 @@ def _rotate6(w, s):
 
 
 @njit(cache=True)
-def _convect_axes(q, g00, g01, g02, g10, g11, g12, g20, g21, g22):
+def _convect_axes(q, h, g00, g01, g02, g10, g11, g12, g20, g21, g22):
     """Material axes of a honeycomb (columns a, b, c) carried by the
     deformation: the cell axis a is a material line, a ← (I + L·Δt)·a
     (g = L·Δt), so a sheared cell keeps crushing along its walls; b is
     carried likewise and made orthogonal to a, c = a × b. (Turning them
     with the spin instead would swing a by half the shear angle, and a
     block sheared at the edge of an impactor would crush in its weak
-    directions.)"""
+    directions.) Its history h carries the initial axes as material lines
+    by the same g first (``carry_lines``: on the first step it keeps q as
+    it was before it moves)."""
+    carry_lines(h, q, g00, g01, g02, g10, g11, g12, g20, g21, g22)
     a0, a1, a2 = q[0, 0], q[1, 0], q[2, 0]
     b0, b1, b2 = q[0, 1], q[1, 1], q[2, 1]
     n0 = a0 + g00 * a0 + g01 * a1 + g02 * a2
@@ -274,21 +277,9 @@ def _element(
     m = mat_of[e]
     if mtype[m] == HONEYCOMB:  # the stress keeps its components in the convected material axes
         _to_local(q, s, 0, w, _M)
-        carry_lines(
-            hist[e],
-            q,
-            l00 * inv * dt,
-            l01 * inv * dt,
-            l02 * inv * dt,
-            l10 * inv * dt,
-            l11 * inv * dt,
-            l12 * inv * dt,
-            l20 * inv * dt,
-            l21 * inv * dt,
-            l22 * inv * dt,
-        )
         _convect_axes(
             q,
+            hist[e],
             l00 * inv * dt,
             l01 * inv * dt,
             l02 * inv * dt,

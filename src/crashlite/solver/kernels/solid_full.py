@@ -55,7 +55,7 @@ import numpy as np
 from numba import njit, prange
 
 from .solid import _DE, _M, _R, _V, _X, FACES, N_WORK, XI, _convect_axes, _load_coords, _rotate6
-from .solid_materials import HONEYCOMB, _to_global, _to_local, carry_lines, update_stress
+from .solid_materials import HONEYCOMB, _to_global, _to_local, update_stress
 
 
 def _gauss_derivatives():
@@ -239,21 +239,9 @@ def _rotate_point(w, kind, s, vs, q, h, dt, p):
     if kind == HONEYCOMB:  # the stress keeps its components in the convected material axes
         o = _L + 9 * p
         _to_local(q, s, 0, w, _M)
-        carry_lines(
-            h,
-            q,
-            w[o] * dt,
-            w[o + 1] * dt,
-            w[o + 2] * dt,
-            w[o + 3] * dt,
-            w[o + 4] * dt,
-            w[o + 5] * dt,
-            w[o + 6] * dt,
-            w[o + 7] * dt,
-            w[o + 8] * dt,
-        )
         _convect_axes(
             q,
+            h,
             w[o] * dt,
             w[o + 1] * dt,
             w[o + 2] * dt,
