@@ -13,7 +13,7 @@ against the finest detailed size's, and the ISO/TS 18571 rating of the
 barrier's energy history against it. Usage::
 
     python bench/odb_car_convergence.py [--sizes 100 75 50] [--mesh-size 60] [--end-ms 80] [--front generic]
-        [--elform 1] [--shear-failure 1.5] [--shear-slip 0] [--height-size MM]
+        [--elform 1] [--shear-failure 1.5] [--shear-slip 0] [--height-size MM] [--width-size MM]
 """
 
 from __future__ import annotations
@@ -67,6 +67,9 @@ def main() -> None:
     ap.add_argument(
         "--height-size", type=float, default=None, help="element size across the height [mm] (default: the size)"
     )
+    ap.add_argument(
+        "--width-size", type=float, default=None, help="element size across the width [mm] (default: the size)"
+    )
     args = ap.parse_args()
     sizes = sorted(args.sizes, reverse=True)
     v = generic_vehicle(args.mesh_size, front=args.front)
@@ -74,6 +77,8 @@ def main() -> None:
     honeycomb = {"elform": args.elform, "shear_failure": args.shear_failure, "shear_slip": args.shear_slip}
     if args.height_size:
         honeycomb["height_size"] = args.height_size
+    if args.width_size:
+        honeycomb["width_size"] = args.width_size
     rows, hist = {}, {}
     with tempfile.TemporaryDirectory() as tmp:
         car = v.write(Path(tmp) / "car.k")

@@ -93,3 +93,17 @@ def test_height_size_refines_the_rows_only(tmp_path):
     assert fine.solids > 1.8 * coarse.solids
     assert mf.mass_properties().mass == pytest.approx(mc.mass_properties().mass, rel=1e-9)
     assert fine.part_ids == coarse.part_ids
+
+
+def test_width_size_refines_the_columns_only(tmp_path):
+    """width_size: columns of about that width across the barrier's
+    1 000 mm, rows and depth at element_size; mass unchanged."""
+    coarse = detailed_barrier(element_size=50.0)
+    fine = detailed_barrier(element_size=50.0, width_size=25.0)
+    mc, mf = (read_deck(b.write(tmp_path / f"{n}.k")) for n, b in (("c", coarse), ("f", fine)))
+    (xc, yc, zc), (xf, yf, zf) = ([np.unique(np.round(m.nodes.xyz[:, a], 6)) for a in range(3)] for m in (mc, mf))
+    assert np.array_equal(zc, zf) and np.array_equal(xc, xf)
+    assert np.diff(yf).max() <= 1.1 * 25.0 < np.diff(yc).min()
+    assert yf[0] == yc[0] and yf[-1] == yc[-1]
+    assert fine.solids > 1.9 * coarse.solids
+    assert mf.mass_properties().mass == pytest.approx(mc.mass_properties().mass, rel=1e-9)

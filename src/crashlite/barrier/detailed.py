@@ -98,6 +98,7 @@ def detailed_barrier(
     title: str = "detailed ODB",
     elform: int = 1,
     height_size: float | None = None,
+    width_size: float | None = None,
 ) -> SimplifiedBarrier:
     """Solid honeycomb barrier (mm–t–s spec, written in ``units``):
     elements of about ``element_size`` mm; ``compacted_modulus`` [MPa] of
@@ -130,6 +131,8 @@ def detailed_barrier(
     nodes and all, crush by half its push; under the generic car 25 mm
     rows at 50 mm take the barrier's energy at 20 / 40 / 80 ms from 20.6 /
     46.4 / 53.1 to 16.8 / 37.5 / 48.9 kJ (ELFORM 1; docs/validation.md).
+    ``width_size`` [mm] likewise across the width (y): the columns at the
+    car's edge (the overlap's) and at its rails' edges.
     ``shear_slip`` counts over ``element_size``.
     ``elform``: the honeycomb's *SECTION_SOLID formulation: 1 (default)
     one point with stiffness hourglass control (IHQ 4, QM 0.1), whose
@@ -151,7 +154,7 @@ def detailed_barrier(
     L = u.length
     main, bmp = spec.main, (spec.bumper if bumper else None)
     d = pl.direction
-    y = _segments([pl.y_min, pl.y_min + main.width], element_size)
+    y = _segments([pl.y_min, pl.y_min + main.width], width_size or element_size)
     zb = [main.z_low, main.z_high] if bmp is None else [main.z_low, bmp.z_low, bmp.z_high, main.z_high]
     z = _segments(sorted(set(zb)), height_size or element_size)
     s_mid = bmp.depth if bmp is not None else 0.0
