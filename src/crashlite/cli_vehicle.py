@@ -65,6 +65,7 @@ def _odb(args) -> int:
         ground=args.ground,
         units=args.units,
         element_size=args.barrier_size,
+        honeycomb=_honeycomb(args),
     )
     print(f"wrote {out} (and {out.stem}_barrier{out.suffix}): run it with `crashlite run {out} -o OUT`")
     return 0
@@ -212,6 +213,33 @@ def _interface(args) -> int:
     return 0
 
 
+def _honeycomb_arguments(p) -> None:
+    """The detailed barrier's options beside --barrier-size (odb, study)."""
+    p.add_argument(
+        "--barrier-face-size",
+        type=float,
+        default=None,
+        help="rows and columns of the detailed barrier across its face [mm] (default: --barrier-size): "
+        "a car loads strips of it, and the elements beside the strips crush by half its push",
+    )
+    p.add_argument(
+        "--barrier-elform", type=int, choices=(1, 2), default=1, help="the detailed honeycomb's solid formulation"
+    )
+    p.add_argument(
+        "--barrier-slip",
+        type=float,
+        default=0.0,
+        help="slip at which the detailed honeycomb's cell walls tear [mm] (0: its shear failure strain)",
+    )
+
+
+def _honeycomb(args) -> dict:
+    h = {"elform": args.barrier_elform, "shear_slip": args.barrier_slip}
+    if args.barrier_face_size:
+        h |= {"height_size": args.barrier_face_size, "width_size": args.barrier_face_size}
+    return h
+
+
 def _study(args) -> int:
     from .vehicle.workflow import paper_study
 
@@ -219,6 +247,7 @@ def _study(args) -> int:
         args.output,
         mesh_size=args.mesh_size,
         barrier_size=args.barrier_size,
+        barrier_options=_honeycomb(args),
         usncap_end=args.usncap_end / 1000.0,
         odb_end=args.odb_end / 1000.0,
         interface_x=args.interface_x,
@@ -301,6 +330,7 @@ def add_commands(sub) -> None:
     o.add_argument("--overlap", type=float, default=40.0, help="overlap [%% of the vehicle width]")
     o.add_argument("--side", choices=("left", "right"), default="left", help="driver side")
     o.add_argument("--barrier-size", type=float, default=20.0, help="element size of the detailed barrier [mm]")
+    _honeycomb_arguments(o)
     o.set_defaults(func=_odb)
     r = vsub.add_parser(
         "reduce", formatter_class=fmt, help="the four-step simplified vehicle from a full deck and its runs"
@@ -470,6 +500,7 @@ def add_commands(sub) -> None:
     y.add_argument("-o", "--output", type=Path, required=True, help="study folder")
     y.add_argument("--mesh-size", type=float, default=38.0, help="element size of the car [mm]")
     y.add_argument("--barrier-size", type=float, default=50.0, help="element size of the detailed barrier [mm]")
+    _honeycomb_arguments(y)
     y.add_argument("--usncap-end", type=float, default=80.0, help="end time of the US NCAP runs [ms]")
     y.add_argument("--odb-end", type=float, default=100.0, help="end time of the ODB runs [ms]")
     y.add_argument("--interface-x", type=float, default=-600.0, help="x of the interface [mm]")

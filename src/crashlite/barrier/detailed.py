@@ -111,9 +111,10 @@ def detailed_barrier(
     the honeycomb is dragged along until its walls tear: with a strain
     fixed per element, over a band an element wide as far as 1.5
     elements, so the barrier's energy under the generic car falls from
-    72.7 to 53.1 kJ between 100 and 50 mm (ELFORM 2: 69.8 to 55.1); with
-    ELFORM 2 a 50 mm slip gives 39.9 and 45.3 kJ, within 4 % up to 40 ms
-    (``bench/odb_car_convergence.py``, docs/validation.md).
+    72.7 to 53.1 kJ between 100 and 50 mm (ELFORM 2 with a 90 mm slip:
+    82.4 to 69.8 kJ), and further with finer rows and columns
+    (``height_size``, ``width_size``; ``bench/odb_car_convergence.py``,
+    docs/validation.md).
     Not the default: under the flat impactor the bumper pushes the block
     face in along its top and bottom edges before the impactor reaches
     it, the slip deletes those bands of the block, and their crush

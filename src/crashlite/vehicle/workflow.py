@@ -190,6 +190,7 @@ def paper_study(
     out: Path | str,
     mesh_size: float = 38.0,
     barrier_size: float = 50.0,
+    barrier_options: dict | None = None,
     usncap_end: float = 0.08,
     odb_end: float = 0.1,
     interface_x: float = -600.0,
@@ -205,7 +206,8 @@ def paper_study(
 
     1. full runs: US NCAP (56 km/h, rigid wall) and Euro NCAP ODB (64 km/h,
        40 %) against the detailed barrier (honeycomb solids of
-       ``barrier_size`` mm);
+       ``barrier_size`` mm; ``barrier_options``: the rest of
+       ``detailed_barrier``'s, e.g. finer rows and columns);
     2. one reduction at ``interface_x`` from both runs (``shares``:
        "combined", the mean of the load cases' shares, or one load case's
        name), its deviation from each load case's own shares reported;
@@ -261,7 +263,12 @@ def paper_study(
 
     def odb(vehicle_deck: Path, barrier: str, name: str) -> Path:
         return odb_deck(
-            vehicle_deck, out / f"{_slug(name)}.k", barrier=barrier, end_time=odb_end, element_size=barrier_size
+            vehicle_deck,
+            out / f"{_slug(name)}.k",
+            barrier=barrier,
+            end_time=odb_end,
+            element_size=barrier_size,
+            honeycomb=barrier_options,
         )
 
     decks = {"usncap full": usncap_deck(car, out / "usncap_full.k", end_time=usncap_end)}
@@ -364,6 +371,7 @@ def paper_study(
         "mesh_size": mesh_size,
         "front": front,
         "barrier_element_size": barrier_size,
+        "barrier_options": dict(barrier_options or {}),
         "interface_x": v.interface_x,
         "shares": s["shares_used"],
         "time": times,

@@ -115,3 +115,22 @@ def test_cli_generic_and_load_cases(tmp_path, capsys):
     assert read_deck(tmp_path / "us.k").find("CONTROL_TERMINATION")[0]["endtim"] == pytest.approx(0.08)
     assert main(["vehicle", "loadcase", "odb", str(car), "-o", str(tmp_path / "odb.k"), "--barrier", "simplified"]) == 0
     assert (tmp_path / "odb_barrier.k").exists()
+
+
+def test_cli_detailed_barrier_options(tmp_path):
+    """--barrier-face-size refines the detailed honeycomb's rows and columns
+    (depth at --barrier-size), --barrier-elform and --barrier-slip reach its
+    *SECTION_SOLID and SSEF (slip over the element size)."""
+    car = tmp_path / "car.k"
+    assert main(["vehicle", "generic", "-o", str(car), "--mesh-size", "100"]) == 0
+    base = ["vehicle", "loadcase", "odb", str(car), "--barrier", "detailed", "--barrier-size", "100"]
+    assert main([*base, "-o", str(tmp_path / "coarse.k")]) == 0
+    assert main([*base, "-o", str(tmp_path / "fine.k"), "--barrier-face-size", "50", "--barrier-elform", "2"]) == 0
+    assert main([*base, "-o", str(tmp_path / "slip.k"), "--barrier-slip", "90"]) == 0
+    coarse, fine, slip = (read_deck(tmp_path / f"{n}_barrier.k") for n in ("coarse", "fine", "slip"))
+    (xc, yc, zc), (xf, yf, zf) = ([np.unique(np.round(m.nodes.xyz[:, a], 6)) for a in range(3)] for m in (coarse, fine))
+    assert np.array_equal(xc, xf)  # depth at --barrier-size
+    assert np.diff(yf).max() <= 55.0 < np.diff(yc).min() and np.diff(zf).max() <= 55.0 < np.diff(zc).min()
+    assert {int(r["elform"]) for r in fine.sections.values()} == {2}
+    assert {int(r["elform"]) for r in coarse.sections.values()} == {1}
+    assert [float(m["ssef"]) for m in slip.materials.values()] == pytest.approx([0.9, 0.9])
