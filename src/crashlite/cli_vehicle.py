@@ -223,21 +223,25 @@ def _honeycomb_arguments(p) -> None:
         "a car loads strips of it, and the elements beside the strips crush by half its push",
     )
     p.add_argument(
-        "--barrier-elform", type=int, choices=(1, 2), default=1, help="the detailed honeycomb's solid formulation"
+        "--barrier-elform",
+        type=int,
+        choices=(1, 2),
+        default=None,
+        help="the detailed honeycomb's solid formulation (default: detailed_barrier's, 1)",
     )
     p.add_argument(
         "--barrier-slip",
         type=float,
-        default=0.0,
-        help="slip at which the detailed honeycomb's cell walls tear [mm] (0: its shear failure strain)",
+        default=None,
+        help="slip at which the detailed honeycomb's cell walls tear [mm] (default: its shear failure strain)",
     )
 
 
 def _honeycomb(args) -> dict:
-    h = {"elform": args.barrier_elform, "shear_slip": args.barrier_slip}
-    if args.barrier_face_size:
-        h |= {"height_size": args.barrier_face_size, "width_size": args.barrier_face_size}
-    return h
+    """The options given, by detailed_barrier's names: the rest keep its defaults."""
+    face = args.barrier_face_size
+    given = {"elform": args.barrier_elform, "shear_slip": args.barrier_slip, "height_size": face, "width_size": face}
+    return {k: v for k, v in given.items() if v is not None}
 
 
 def _study(args) -> int:

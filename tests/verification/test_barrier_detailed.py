@@ -75,6 +75,11 @@ def test_shear_slip_fixes_the_tear_in_mm_at_every_element_size(tmp_path):
         assert [float(mat["ssef"]) for mat in m.materials.values()] == pytest.approx([want, want])
 
 
+def _grid_lines(model) -> list[np.ndarray]:
+    """The structured barrier's node coordinates along x, y and z."""
+    return [np.unique(np.round(model.nodes.xyz[:, a], 6)) for a in range(3)]
+
+
 def test_height_size_refines_the_rows_only(tmp_path):
     """height_size: rows of about that height through every block edge
     (the bumper's included), columns and depth at element_size; the
@@ -83,9 +88,7 @@ def test_height_size_refines_the_rows_only(tmp_path):
     coarse = detailed_barrier(element_size=50.0)
     fine = detailed_barrier(element_size=50.0, height_size=25.0)
     mc, mf = (read_deck(b.write(tmp_path / f"{n}.k")) for n, b in (("c", coarse), ("f", fine)))
-    zc, zf = (np.unique(np.round(m.nodes.xyz[:, 2], 6)) for m in (mc, mf))
-    yc, yf = (np.unique(np.round(m.nodes.xyz[:, 1], 6)) for m in (mc, mf))
-    xc, xf = (np.unique(np.round(m.nodes.xyz[:, 0], 6)) for m in (mc, mf))
+    (xc, yc, zc), (xf, yf, zf) = _grid_lines(mc), _grid_lines(mf)
     assert np.array_equal(yc, yf) and np.array_equal(xc, xf)
     assert np.diff(zf).max() <= 1.1 * 25.0 < np.diff(zc).min()
     edges = [spec.main.z_low, spec.bumper.z_low, spec.bumper.z_high, spec.main.z_high]
@@ -101,7 +104,7 @@ def test_width_size_refines_the_columns_only(tmp_path):
     coarse = detailed_barrier(element_size=50.0)
     fine = detailed_barrier(element_size=50.0, width_size=25.0)
     mc, mf = (read_deck(b.write(tmp_path / f"{n}.k")) for n, b in (("c", coarse), ("f", fine)))
-    (xc, yc, zc), (xf, yf, zf) = ([np.unique(np.round(m.nodes.xyz[:, a], 6)) for a in range(3)] for m in (mc, mf))
+    (xc, yc, zc), (xf, yf, zf) = _grid_lines(mc), _grid_lines(mf)
     assert np.array_equal(zc, zf) and np.array_equal(xc, xf)
     assert np.diff(yf).max() <= 1.1 * 25.0 < np.diff(yc).min()
     assert yf[0] == yc[0] and yf[-1] == yc[-1]
