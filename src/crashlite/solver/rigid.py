@@ -85,10 +85,14 @@ class RigidBody:
         """(3, 3) inverse of ``inertia_body``."""
         return self._inverse()[1]
 
+    def spin_per_momentum(self) -> float:
+        """λmax(I⁻¹): |ω| ≤ it·|L| whatever the body's orientation."""
+        return self._inverse()[2]
+
     def spin_bound(self) -> float:
         """An upper bound of |ω| without forming ω: |R I⁻¹ Rᵀ L| ≤ λmax(I⁻¹)·|L|."""
         m = self.momentum
-        return self._inverse()[2] * float(np.sqrt(m @ m))
+        return self.spin_per_momentum() * float(np.sqrt(m @ m))
 
     def omega(self, rot: np.ndarray | None = None, mom: np.ndarray | None = None) -> np.ndarray:
         """(3,) angular velocity R I⁻¹ Rᵀ L (at ``rot`` and ``mom`` if given)."""

@@ -15,7 +15,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .kernels.integrate import copy_rows
-from .kernels.rigid import plane_reach
+from .kernels.rigid import out_of_reach
 from .kernels.rigidwall import N_CHUNKS, cylinder_wall, planar_wall
 from .rigid import RigidBody, cross
 from .state import State
@@ -138,11 +138,19 @@ class Walls:
         w = self.walls[k]
         moving = w.mass > 0 and w.radius == 0
         wall_v = self.velocity[k] if w.radius == 0 else 0.0
-        if w.radius == 0:  # out of reach over the step: no node can land on the plane
-            gap_min, arm_max = plane_reach(x, nodes, body.cog, self.point[k], w.normal)
-            speed = np.sqrt(body.velocity @ body.velocity) + body.spin_bound() * arm_max + abs(wall_v)
-            if gap_min > 2.0 * speed * dt:
-                return None
+        if w.radius == 0 and out_of_reach(  # no node can land on the plane over the step
+            x,
+            nodes,
+            body.cog,
+            self.point[k],
+            w.normal,
+            body.velocity,
+            body.momentum,
+            body.spin_per_momentum(),
+            wall_v,
+            dt,
+        ):
+            return None
         omega = body.omega()
         arm = x[nodes] - body.cog
         gap, normals, over = self._gaps(k, x, nodes, dt)

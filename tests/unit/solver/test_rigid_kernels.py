@@ -82,3 +82,28 @@ def test_spin_bound_bounds_omega_and_is_reached_about_the_softest_axis():
     body.momentum = 3.0 * vec[:, 0]
     assert np.linalg.norm(body.omega()) == pytest.approx(body.spin_bound(), rel=1e-12)
     assert body.spin_bound() == pytest.approx(3.0 / lam[0], rel=1e-12)
+
+
+def test_out_of_reach_is_the_gap_against_twice_the_fastest_node():
+    """A body's nodes cannot reach a plane over a step when the smallest gap
+    exceeds 2·(|v| + λmax(I⁻¹)|L|·r_max + |wall speed|)·dt: the test flips
+    exactly there, for translation, spin and a moving wall alike."""
+    from crashlite.solver.kernels.rigid import out_of_reach
+
+    x = np.array([[0.0, 0.0, 10.0], [0.0, 0.0, 14.0], [0.0, 3.0, 10.0]])  # nearest node 10 above z = 0
+    nodes, cog = np.arange(3, dtype=np.int64), np.array([0.0, 0.0, 12.0])
+    point, normal = np.zeros(3), np.array([0.0, 0.0, 1.0])
+    r_max = np.sqrt(9.0 + 4.0)  # node 3 from the CoG
+    zero, dt = np.zeros(3), 0.5
+
+    def reach(v, mom, spin, wall):  # the speed at which the gap is just covered twice over
+        return out_of_reach(x, nodes, cog, point, normal, v, mom, spin, wall, dt)
+
+    assert reach(np.array([0.0, 0.0, -9.99]), zero, 0.0, 0.0)  # 2·9.99·0.5 < 10
+    assert not reach(np.array([0.0, 0.0, -10.01]), zero, 0.0, 0.0)
+    assert not reach(np.array([10.01, 0.0, 0.0]), zero, 0.0, 0.0)  # any direction counts
+    spin = 10.01 / r_max  # |ω| bound = spin_per_momentum·|L| with |L| = 1
+    assert not reach(zero, np.array([0.0, 1.0, 0.0]), spin, 0.0)
+    assert reach(zero, np.array([0.0, 1.0, 0.0]), 9.99 / r_max, 0.0)
+    assert not reach(zero, zero, 0.0, -10.01)  # the wall's own speed
+    assert reach(zero, zero, 0.0, 9.99)

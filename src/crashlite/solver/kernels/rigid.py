@@ -65,9 +65,12 @@ def force_sums(f, x, moment, nodes, cog, use_moment, out):
 
 
 @njit(cache=True)
-def plane_reach(x, nodes, cog, point, normal):
-    """(smallest signed distance of the nodes to the plane through
-    ``point`` along ``normal``, largest distance of a node to the CoG)."""
+def out_of_reach(x, nodes, cog, point, normal, velocity, momentum, spin_per_momentum, wall_speed, dt):
+    """True when no node of a rigid body can land on the plane through
+    ``point`` along ``normal`` over the next step: its smallest distance to
+    the plane exceeds twice the largest speed a node can have, |v| + |ω|·r
+    (|ω| ≤ ``spin_per_momentum``·|L|, r the largest distance of a node from
+    the CoG) + |the wall's speed|, times ``dt``."""
     gap = math.inf
     arm2 = 0.0
     for k in range(nodes.shape[0]):
@@ -76,7 +79,9 @@ def plane_reach(x, nodes, cog, point, normal):
         gap = min(gap, g)
         a0, a1, a2 = x[i, 0] - cog[0], x[i, 1] - cog[1], x[i, 2] - cog[2]
         arm2 = max(arm2, a0 * a0 + a1 * a1 + a2 * a2)
-    return gap, math.sqrt(arm2)
+    v = math.sqrt(velocity[0] ** 2 + velocity[1] ** 2 + velocity[2] ** 2)
+    spin = spin_per_momentum * math.sqrt(momentum[0] ** 2 + momentum[1] ** 2 + momentum[2] ** 2)
+    return gap > 2.0 * (v + spin * math.sqrt(arm2) + abs(wall_speed)) * dt
 
 
 @njit(cache=True)
