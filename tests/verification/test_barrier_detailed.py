@@ -68,10 +68,20 @@ def test_detailed_cladding_sheets_share_the_face_nodes(tmp_path):
 
 def test_shear_slip_fixes_the_tear_in_mm_at_every_element_size(tmp_path):
     """shear_slip [mm] > 0: the transverse shears' failure strain SSEF is
-    the slip over the element size (the same tear at 100 and at 50 mm);
-    without it SSEF is shear_failure, the same strain at every size."""
-    for size, slip, want in ((100.0, 50.0, 0.5), (50.0, 50.0, 1.0), (50.0, 0.0, 1.5)):
-        m = read_deck(detailed_barrier(element_size=size, shear_slip=slip).write(tmp_path / f"d{size:g}_{slip:g}.k"))
+    the slip over the elements' size across the face (the same tear at 100
+    and at 50 mm, and with 25 mm rows and columns under 50 mm depth; the
+    finer of rows and columns where they differ); without it SSEF is
+    shear_failure, the same strain at every size."""
+    cases = (
+        (100.0, None, None, 50.0, 0.5),
+        (50.0, None, None, 50.0, 1.0),
+        (50.0, None, None, 0.0, 1.5),
+        (50.0, 25.0, 25.0, 90.0, 3.6),
+        (50.0, 12.5, 25.0, 90.0, 7.2),
+    )
+    for k, (size, height, width, slip, want) in enumerate(cases):
+        b = detailed_barrier(element_size=size, height_size=height, width_size=width, shear_slip=slip)
+        m = read_deck(b.write(tmp_path / f"d{k}.k"))
         assert [float(mat["ssef"]) for mat in m.materials.values()] == pytest.approx([want, want])
 
 

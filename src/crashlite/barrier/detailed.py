@@ -134,7 +134,11 @@ def detailed_barrier(
     46.4 / 53.1 to 16.8 / 37.5 / 48.9 kJ (ELFORM 1; docs/validation.md).
     ``width_size`` [mm] likewise across the width (y): the columns at the
     car's edge (the overlap's) and at its rails' edges.
-    ``shear_slip`` counts over ``element_size``.
+    ``shear_slip`` counts over the elements' size across the face (the
+    slip of a tear is a shear across the rows or the columns): the
+    smaller of ``height_size`` and ``width_size`` where given (where they
+    differ the slip holds across the finer, the coarser tears later), else
+    ``element_size``.
     ``elform``: the honeycomb's *SECTION_SOLID formulation: 1 (default)
     one point with stiffness hourglass control (IHQ 4, QM 0.1), whose
     hourglass energy reaches 17–19 % of the internal energy under an
@@ -160,6 +164,7 @@ def detailed_barrier(
     z = _segments(sorted(set(zb)), height_size or element_size)
     s_mid = bmp.depth if bmp is not None else 0.0
     s_main = _segments([s_mid, s_mid + main.depth], element_size)
+    across = min(height_size or element_size, width_size or element_size)  # what a tear's slip shears
 
     o = id_offset
     dk = _Deck(o)
@@ -229,7 +234,7 @@ def detailed_barrier(
             lateral,
             shear_modulus,
             shear_strength,
-            shear_slip / element_size if shear_slip > 0.0 else shear_failure,
+            shear_slip / across if shear_slip > 0.0 else shear_failure,
         )
     shells = []
     if cladding:

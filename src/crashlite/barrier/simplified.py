@@ -143,6 +143,55 @@ def _num(v) -> str:
     return repr(float(v))
 
 
+def _shear_links(dk, b: Block, nid, y, z, vid, eid, first_id, strength, modulus, slip, title, u) -> list:
+    """Shear links between the front nodes of neighbouring columns of block
+    ``b`` (``nid`` rows along z, columns along y): each resists the two
+    columns' relative crush δ along the depth axis (orientation ``vid``) as
+    the shared cell walls do: τ·A with A the shared face (the tributary
+    width across the link × the block's depth) and τ = ``strength`` × the
+    plateau stress, reached at δ = τh/G (h the columns' spacing, G =
+    ``modulus`` × the crush modulus), torn at δ = ``slip``
+    (*MAT_SPRING_INELASTIC, unloading elastic; a torn link keeps a
+    millionth of its force, so it stays on its envelope). *MAT_S08 carries
+    one sign: each link is two elements, tension only and compression
+    only, one part (material, curve) each per spacing h with IDs from
+    ``first_id``, element scale factor A. Returns the ELEMENT_DISCRETE rows."""
+    cx, cf = b.curve.points(b.depth)
+    tau = strength * b.curve.plateau / b.area
+    g = modulus * float(cf[1] / b.area) / float(cx[1] / b.depth)
+    ty, tz = _tributary(y), _tributary(z)
+    links = []  # (n1, n2, h, area)
+    for i in range(nid.shape[0]):
+        for j in range(nid.shape[1] - 1):
+            links.append((nid[i, j], nid[i, j + 1], y[j + 1] - y[j], tz[i] * b.depth))
+    for i in range(nid.shape[0] - 1):
+        for j in range(nid.shape[1]):
+            links.append((nid[i, j], nid[i + 1, j], z[i + 1] - z[i], ty[j] * b.depth))
+    L, F = u.length, u.force
+    stress = F / L**2
+    parts = {}
+    rows = []
+    for n1, n2, h, area in links:
+        key = round(float(h), 6)
+        if key not in parts:  # *MAT_S08 carries one sign (CTF -1 tension, 1 compression): a part for each
+            d_y = min(tau * h / g, 0.5 * slip)  # the plateau's start, well before the tear
+            tail = 1e-6 * tau
+            env = [(0.0, 0.0), (d_y, tau), (slip, tau), (1.001 * slip, tail), (1e3 * slip, tail)]
+            parts[key] = []
+            for sign in (1.0, -1.0):
+                pid = first_id + 2 * (len(parts) - 1) + (sign < 0)
+                parts[key].append(pid)
+                pts = sorted([(-sign * 1e3 * slip * L, 0.0)] + [(sign * d * L, sign * f * stress) for d, f in env])
+                side = "tension" if sign > 0 else "compression"
+                dk.kw("PART", [f"{title} {b.name} shear {h:.4g} {side}"], [pid, pid, pid])
+                dk.kw("SECTION_DISCRETE", [pid, 0])
+                dk.kw("MAT_SPRING_INELASTIC", [pid, pid, g / h * F / L**3, -sign])
+                dk.kw("DEFINE_CURVE", [pid], *pts)
+        for pid in parts[key]:
+            rows.append((next(eid), pid, n1, n2, vid, area * L**2))
+    return rows
+
+
 def simplified_barrier(
     spec: ODBSpec | None = None,
     placement: Placement | None = None,
@@ -154,12 +203,23 @@ def simplified_barrier(
     bumper: bool = True,
     cladding: bool = True,
     title: str = "simplified ODB",
+    shear_strength: float = 0.0,
+    shear_modulus: float = 1.0,
+    shear_slip: float = 90.0,
 ) -> SimplifiedBarrier:
     """The paper's simplified barrier: ``n_width × n_main`` main-block beams
     and ``n_width × n_bumper`` bumper beams (36 × 20 + 36 × 10 = 1080 by
     default), as deck text in ``units`` (default mm–t–s) with every ID
     raised by ``id_offset``. ``bumper=False`` gives the main block alone
-    (its characterisation); ``cladding=False`` leaves the sheets out."""
+    (its characterisation); ``cladding=False`` leaves the sheets out.
+
+    ``shear_strength`` > 0 joins neighbouring columns of each block by
+    shear links (``_shear_links``): the honeycomb's cell walls, which drag
+    the columns beside an impactor's edge or a car's imprint along until
+    they tear, as the detailed barrier's transverse shear does (its
+    ``shear_strength``, ``shear_modulus`` and ``shear_slip``: 0.5, 1.0 and
+    90 mm there). Columns crushed alike do not shear: a full-face impactor
+    never loads them."""
     spec = spec or ODBSpec()
     spec.check()
     pl = placement or Placement()
@@ -230,6 +290,14 @@ def simplified_barrier(
     beams(main, planes["block_front"], planes["back"], share_main)
     if bmp is not None:
         beams(bmp, planes["bumper_front"], planes["block_front"][brow], np.outer(tzb, ty) / bmp.area)
+    if shear_strength > 0:
+        fronts = [(main, planes["block_front"], y, z)] + (
+            [(bmp, planes["bumper_front"], y, z[brow])] if bmp is not None else []
+        )
+        for k, (b, nid, yy, zz) in enumerate(fronts):
+            elems += _shear_links(
+                dk, b, nid, yy, zz, vid, eid, o + 10 + 10 * k, shear_strength, shear_modulus, shear_slip, title, u
+            )
     dk.kw("ELEMENT_DISCRETE", *elems)
     n_beams = len(elems)
 
