@@ -96,7 +96,9 @@ def test_shear_links_are_the_cell_walls_between_columns(tmp_path):
     the shared face (the tributary width × the block's depth, the element's
     scale factor), elastic at G/h per unit area (G the crush modulus, h the
     spacing), torn at the 90 mm slip: on the 36 × 20 main block, 35 × 20 +
-    36 × 19 links whose faces add up to 20 rows × 650 mm... of depth 450."""
+    36 × 19 links (two elements each, one per sign), whose faces add up to
+    the block's height × its depth for each of the 35 column gaps and its
+    width × its depth for each of the 19 row gaps."""
     spec = ODBSpec()
     pl = Placement()
     b = simplified_barrier(placement=pl, bumper=False, cladding=False, shear_strength=0.5)
