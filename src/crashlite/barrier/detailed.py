@@ -61,7 +61,7 @@ def _honeycomb(
     lcid + 1 (weak), lcid + 2 (transverse shear)."""
     cx, cf = b.curve.points(b.depth)
     strain, stress = cx / b.depth, cf / b.area
-    e_u = float(stress[1] / strain[1])  # uncompacted crush modulus: the initial slope
+    e_u = b.crush_modulus
     vf = 1.0 - b.curve.full
     s = u.stress
     lcw, lct = lcid + 1, lcid + 2
@@ -77,7 +77,7 @@ def _honeycomb(
     dk.kw("DEFINE_CURVE", [lcid], *[(float(a), float(f) * s) for a, f in zip(strain, stress)])
     low = lateral * stress[1:].min()
     dk.kw("DEFINE_CURVE", [lcw], (0.0, low * s), (1.0, low * s))
-    tau = shear_strength * b.curve.plateau / b.area
+    tau = shear_strength * b.plateau_stress
     dk.kw("DEFINE_CURVE", [lct], (0.0, tau * s), (1.0, tau * s))
 
 

@@ -143,7 +143,7 @@ def _num(v) -> str:
     return repr(float(v))
 
 
-def _shear_links(dk, b: Block, nid, y, z, vid, eid, first_id, strength, modulus, slip, title, u) -> list:
+def _shear_links(dk, b: Block, nid, y, z, vid, eid, part_ids, strength, modulus, slip, title, u) -> list:
     """Shear links between the front nodes of neighbouring columns of block
     ``b`` (``nid`` rows along z, columns along y): each resists the two
     columns' relative crush δ along the depth axis (orientation ``vid``) as
@@ -154,11 +154,11 @@ def _shear_links(dk, b: Block, nid, y, z, vid, eid, first_id, strength, modulus,
     (*MAT_SPRING_INELASTIC, unloading elastic; a torn link keeps a
     millionth of its force, so it stays on its envelope). *MAT_S08 carries
     one sign: each link is two elements, tension only and compression
-    only, one part (material, curve) each per spacing h with IDs from
-    ``first_id``, element scale factor A. Returns the ELEMENT_DISCRETE rows."""
-    cx, cf = b.curve.points(b.depth)
-    tau = strength * b.curve.plateau / b.area
-    g = modulus * float(cf[1] / b.area) / float(cx[1] / b.depth)
+    only, one part (material, curve) each per spacing h with IDs from the
+    iterator ``part_ids``, element scale factor A. Returns the
+    ELEMENT_DISCRETE rows."""
+    tau = strength * b.plateau_stress
+    g = modulus * b.crush_modulus
     ty, tz = _tributary(y), _tributary(z)
     links = []  # (n1, n2, h, area)
     for i in range(nid.shape[0]):
@@ -179,7 +179,7 @@ def _shear_links(dk, b: Block, nid, y, z, vid, eid, first_id, strength, modulus,
             env = [(0.0, 0.0), (d_y, tau), (slip, tau), (1.001 * slip, tail), (1e3 * slip, tail)]
             parts[key] = []
             for sign in (1.0, -1.0):
-                pid = first_id + 2 * (len(parts) - 1) + (sign < 0)
+                pid = next(part_ids)
                 parts[key].append(pid)
                 pts = sorted([(-sign * 1e3 * slip * L, 0.0)] + [(sign * d * L, sign * f * stress) for d, f in env])
                 side = "tension" if sign > 0 else "compression"
@@ -294,9 +294,10 @@ def simplified_barrier(
         fronts = [(main, planes["block_front"], y, z)] + (
             [(bmp, planes["bumper_front"], y, z[brow])] if bmp is not None else []
         )
-        for k, (b, nid, yy, zz) in enumerate(fronts):
+        link_parts = iter(range(o + 10, o + 10**8))  # above the blocks' and sheets' parts (o + 1 .. o + 4)
+        for b, nid, yy, zz in fronts:
             elems += _shear_links(
-                dk, b, nid, yy, zz, vid, eid, o + 10 + 10 * k, shear_strength, shear_modulus, shear_slip, title, u
+                dk, b, nid, yy, zz, vid, eid, link_parts, shear_strength, shear_modulus, shear_slip, title, u
             )
     dk.kw("ELEMENT_DISCRETE", *elems)
     n_beams = len(elems)

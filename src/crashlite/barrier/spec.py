@@ -88,6 +88,17 @@ class Block:
     def mass(self) -> float:
         return self.density * self.area * self.depth
 
+    @property
+    def plateau_stress(self) -> float:
+        """The crush plateau over the face [MPa]."""
+        return self.curve.plateau / self.area
+
+    @property
+    def crush_modulus(self) -> float:
+        """The uncompacted honeycomb's crush modulus [MPa]: the curve's
+        initial slope as stress against strain."""
+        return (self.curve.peak / self.area) / (self.curve.rise / self.depth)
+
 
 @dataclass(frozen=True)
 class Cladding:
