@@ -93,6 +93,7 @@ def _reduce(args) -> int:
         connection=args.connection,
         condensed_modes=args.condensed_modes,
         cut_dashpots=not args.no_cut_dashpots,
+        shells=args.shells,
         quiet=False,
     )
     files = red.write(args.output, args.report, fmt=args.format)
@@ -366,18 +367,28 @@ def add_commands(sub) -> None:
     r.add_argument("--t-end", type=float, default=None, help="ignore section forces after this time [ms]")
     r.add_argument(
         "--connection",
-        choices=("condensed", "springs"),
+        choices=("condensed", "craig-bampton", "springs"),
         default="condensed",
         help="join the cut to the rear body by the replaced structure condensed onto the cut nodes "
-        "(a linear superelement: the cut bends as the structure behind it), or by a rigid "
-        "interface and one spring per load path (the paper; the options below)",
+        "(a linear superelement: the cut bends as the structure behind it); replace the structure by "
+        "a Craig-Bampton superelement with its mass and held modes (no rear body); or join it by a "
+        "rigid interface and one spring per load path (the paper; the options below)",
     )
     r.add_argument(
         "--condensed-modes",
         type=int,
         default=0,
         help="with the condensed connection, the replaced structure's N lowest free modes move on their "
-        "own beside the residual stiffness of the rest (0: quasi-static)",
+        "own beside the residual stiffness of the rest (0: quasi-static); with craig-bampton, its N "
+        "lowest modes held at the boundary",
+    )
+    r.add_argument(
+        "--shells",
+        choices=("static", "kernel"),
+        default="static",
+        help="the replaced shells' stiffness in the condensed and craig-bampton connections: a linear "
+        "solver's (QM6 membrane, MITC4 plate) or the time loop's own shell elements linearised (the "
+        "stiffness the full run integrates)",
     )
     r.add_argument(
         "--no-cut-dashpots",

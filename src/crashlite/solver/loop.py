@@ -239,9 +239,15 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list 
     rec = _Recorder(s, st, groups, parts, walls)
     free_mass = s.mass.copy()
     rot_free = st.rot_inertia.copy()
+    in_body = np.zeros(n, bool)
     for b in s.bodies:
         free_mass[b.nodes] = 0.0  # counted through the body
         rot_free[b.nodes] = 0.0
+        in_body[b.nodes] = True
+    dense = [c for g in groups if hasattr(g, "consistent") and (c := g.consistent(n)) is not None]
+    for c in dense:  # superelements' mass matrices, solved as given
+        c.start(st.mass, s.fixed, in_body)
+        rec.warnings += [f"{s.source}: *ELEMENT_DIRECT_MATRIX_INPUT: {w}" for w in c.notes]
 
     def place(b):
         b.place(x, v, st.rot if nb else None, st.w if nb else None)
@@ -249,7 +255,10 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list 
     def body_force(t):
         out = np.zeros_like(x)
         for axis, curve, sf in s.body_loads:  # base acceleration a: inertial load -m a
-            out -= np.outer(s.mass * sf * np.interp(t, *curve), axis)
+            acc = sf * np.interp(t, *curve)
+            out -= np.outer(s.mass * acc, axis)
+            for c in dense:
+                c.body_force(out, axis, acc)
         return out
 
     def internal_forces(t):
@@ -270,11 +279,13 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list 
         ke = 0.5 * float(np.einsum("i,ij,ij->", free_mass, v_mid, v_mid))
         if nb:
             ke += 0.5 * float(np.einsum("i,ij,ij->", rot_free, w_mid, w_mid))
-        ke += sum(b.kinetic() for b in s.bodies)
+        ke += sum(b.kinetic() for b in s.bodies) + sum(c.kinetic(v_mid) for c in dense)
         return ke + walls.kinetic()
 
     def kick(dt_v):
         update_velocity(v, f, st.inv_mass, s.fixed, dt_v)
+        for c in dense:
+            c.kick(f, v, dt_v)
         project_out(v, s.skew_nodes, s.skew_held)
         if nb:
             update_rotations(st.rot, st.w, st.moment, st.inv_j, st.fixed_rot, dt_v, 0.0)

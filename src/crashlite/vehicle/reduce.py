@@ -39,6 +39,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..model.model import Model
+from .connection.cb_surrogate import build_cb_surrogate
 from .connection.condense import relieved_condensation
 from .connection.condensed import build_condensed_surrogate
 from .connection.connection import compare_connection, connection_stiffness
@@ -49,6 +50,8 @@ from .steps.massprops import NodeSelection, ReplacedMass, replaced_mass
 from .steps.relief import relieved_stiffness
 from .steps.stiffness import StiffnessResult, longitudinal_stiffness
 from .steps.surrogate import Surrogate, build_surrogate
+
+CONNECTIONS = ("condensed", "craig-bampton", "springs")
 
 if TYPE_CHECKING:
     from ..results.history import History
@@ -207,6 +210,7 @@ def reduce_vehicle(
     connection: str = "condensed",
     condensed_modes: int = 0,
     cut_dashpots: bool = True,
+    shells: str = "static",
     quiet: bool = True,
 ) -> Reduction:
     """Steps 1–4 (module docstring).
@@ -228,18 +232,24 @@ def reduce_vehicle(
                 (``modes.free_modes``, ``modes.held_modes``; 0: none)
     connection  "condensed" (default): the cut joined to the rear body by the replaced structure
                 condensed onto it (``condensed``; shares, springs and the interface options then
-                only report); "springs": the paper's rigid interface and load-path springs
+                only report); "craig-bampton": the replaced structure as a superelement with its
+                mass and held modes (``craig_bampton``, ``cb_surrogate``: no rear rigid body);
+                "springs": the paper's rigid interface and load-path springs
     condensed_modes  with the condensed connection, the replaced structure's lowest free modes that
-                move on their own (residual flexibility, ``condense``; 0: quasi-static)
+                move on their own (residual flexibility, ``condense``; 0: quasi-static); with
+                "craig-bampton" its modes held at the boundary
     cut_dashpots  with the condensed connection, dashpots of the replaced structure's wave impedance
                 between the cut nodes and the rear body (``impedance``)
+    shells      the replaced shells' stiffness in the condensed and Craig-Bampton connections: "static"
+                (QM6 membrane, MITC4 plate) or "kernel" (the time loop's own shells linearised:
+                ``kernel_stiffness``, the stiffness the full run integrates)
     """
     from ..keyword.reader import read_deck
 
     if springs not in ("axle", "relief"):
         raise ValueError(f"springs={springs!r}: 'axle' or 'relief'")
-    if connection not in ("condensed", "springs"):
-        raise ValueError(f"connection={connection!r}: 'condensed' or 'springs'")
+    if connection not in CONNECTIONS:
+        raise ValueError(f"connection={connection!r}: one of {CONNECTIONS}")
     say = (lambda *a: None) if quiet else (lambda *a: print(*a, flush=True))
     model = deck if isinstance(deck, Model) else read_deck(deck)
     results = list(results) if isinstance(results, (list, tuple)) else [results]
@@ -307,8 +317,14 @@ def reduce_vehicle(
     t0 = time.perf_counter()
     k_springs = rel.stiffness if springs == "relief" else k.stiffness
     cond = None
-    if connection == "condensed":
-        cond = relieved_condensation(cut, modes=condensed_modes)
+    if connection == "craig-bampton":
+        sur = build_cb_surrogate(cut, mass, modes=condensed_modes, stiffness=rel.stiffness, shells=shells)
+        say(
+            f"step 4: the replaced structure as a Craig-Bampton superelement on {sur.craig_bampton.cut_nodes} "
+            f"cut nodes, {len(sur.model.shells)} of {len(model.shells)} shells kept"
+        )
+    elif connection == "condensed":
+        cond = relieved_condensation(cut, modes=condensed_modes, shells=shells)
         sur = build_condensed_surrogate(cut, cond, mass, dashpots=cut_dashpots)
         say(
             f"step 4: the replaced structure condensed on {len(cond.nodes)} cut nodes, "
@@ -332,7 +348,7 @@ def reduce_vehicle(
     conn = None
     if cond is not None and rel.flexibility is not None:  # the condensed cut held rigid against the structure
         conn = compare_connection(cond.rigid_stiffness(rel.load_point), rel.flexibility, cut.axis)
-    elif interface_mode == "rigid" and rel.flexibility is not None:
+    elif connection == "springs" and interface_mode == "rigid" and rel.flexibility is not None:
         conn = compare_connection(connection_stiffness(sur, rel.load_point), rel.flexibility, cut.axis)
         worst = conn["largest_compliance_misfit"]
         say(
@@ -370,5 +386,7 @@ def reduce_vehicle(
         conn,
         free,
         connection,
-        cond.summary() if cond is not None else None,
+        cond.summary()
+        if cond is not None
+        else (sur.craig_bampton.summary() if connection == "craig-bampton" else None),
     )

@@ -103,11 +103,14 @@ def us_ncap_study(
     seconds["reduction"] = time.perf_counter() - t0
     s = red.summary()
     worst = (red.connection or {}).get("largest_compliance_misfit")
-    joined = (
-        f"{len(red.surrogate.springs)} springs"
-        if red.connection_kind == "springs"
-        else f"the structure condensed on {red.condensation['nodes']} cut nodes"
-    )
+    joined = {
+        "springs": lambda: f"{len(red.surrogate.springs)} springs",
+        "condensed": lambda: f"the structure condensed on {red.condensation['nodes']} cut nodes",
+        "craig-bampton": lambda: (
+            f"the structure a Craig-Bampton superelement on {red.condensation['cut_nodes']} cut nodes "
+            f"with {red.condensation['modes']} held modes"
+        ),
+    }[red.connection_kind]()
     say(
         f"  steps 1-4: K = {red.stiffness.stiffness:.5g} N/mm borne at the axle, {red.relief.stiffness:.5g} under "
         f"inertia relief, replaced {red.mass.structure.mass * 1e3:.1f} kg, "

@@ -32,3 +32,17 @@ def matrix_forces(k, x, x0, nodes, comps, u, fe, f):
         e -= 0.5 * u[i] * fe[i]
         f[nodes[i], comps[i]] += fe[i]
     return e
+
+
+@njit(cache=True, parallel=True, fastmath=_REASSOC)
+def matrix_kick(b, f, nodes, comps, g, v, dt):
+    """g = B f[nodes, comps]; v[nodes, comps] += dt g: the velocity
+    correction of DOFs whose mass is a dense matrix (``consistent``)."""
+    n = nodes.shape[0]
+    for i in prange(n):
+        s = 0.0
+        for j in range(n):
+            s += b[i, j] * f[nodes[j], comps[j]]
+        g[i] = s
+    for i in range(n):
+        v[nodes[i], comps[i]] += dt * g[i]

@@ -100,15 +100,16 @@ class Condensation:
 
 
 def relieved_condensation(
-    cut: Cut, nodes: NodeSelection | None = None, modes: int = 0, drill: float = 1e-3
+    cut: Cut, nodes: NodeSelection | None = None, modes: int = 0, drill: float = 1e-3, shells: str = "static"
 ) -> Condensation:
     """The replaced structure of ``cut`` condensed onto the translations of
     the cut nodes (default: all its interface nodes) under inertia relief
     (module docstring); with ``modes`` > 0 also its lowest free elastic
     modes and the residual stiffness of what they leave (residual
-    flexibility, module docstring)."""
+    flexibility, module docstring); ``shells``: the shells' stiffness
+    (``stiffness.build_static``)."""
     model = cut.model
-    ls, _, notes = build_static(model, cut.replaced, drill)
+    ls, _, notes = build_static(model, cut.replaced, drill, shells=shells)
     b = cut.interface_nodes if nodes is None else node_indices(model, nodes)
     ok = ls.in_structure[b] & ~ls.tied()[b]  # a tied node moves with its group's master: no DOFs of its own
     b, left = b[ok], b[~ok]
@@ -160,7 +161,7 @@ def relieved_condensation(
     ks = 0.5 * (ks + ks.T)
     out = Condensation(b, g, ks, big_m, c, m, left, list(cut.notes) + notes + mnotes + rnotes, xyz[b].copy())
     if modes > 0:
-        _, _, _, _, u, lam, rigid, enotes = _eigen(cut, modes, "free", None, drill)
+        _, _, _, _, u, lam, rigid, enotes = _eigen(cut, modes, "free", None, drill, shells)
         if rigid != 6:
             out.notes.append(f"{rigid} free modes at zero frequency (six for one free structure)")
         el = slice(rigid, rigid + modes)

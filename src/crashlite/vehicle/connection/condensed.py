@@ -73,6 +73,7 @@ class CondensedSurrogate(Surrogate):
     """A Surrogate whose deck needs its matrix file beside it."""
 
     matrix: tuple | None = None  # (dofs (k, 2) [node ID, component], K)
+    mass_matrix: np.ndarray | None = None  # (k, k) M on the same DOFs, or None (no mass in the superelement)
 
     def write(self, path: Path | str, fmt: str = "fixed") -> Path:
         from ...keyword.dmig import write_dmig
@@ -81,7 +82,10 @@ class CondensedSurrogate(Surrogate):
         name = path.stem + ".dmig"
         for rec in self.model.find("ELEMENT_DIRECT_MATRIX_INPUT"):
             rec["filename"] = name
-        write_dmig(path.parent / name, {"KCUT": self.matrix})
+        mats = {"KCUT": self.matrix}
+        if self.mass_matrix is not None:
+            mats["MCUT"] = (self.matrix[0], self.mass_matrix)
+        write_dmig(path.parent / name, mats)
         return super().write(path, fmt)
 
 

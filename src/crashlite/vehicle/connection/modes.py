@@ -138,14 +138,14 @@ def held_modes(
     return HeldModes(freq, eff, totals, np.hstack([lt, lr]), p, _where(cut, m, u[: ls.n, :3, el]), notes)
 
 
-def _eigen(cut: Cut, count: int, interface: str, interface_nodes, drill: float):
+def _eigen(cut: Cut, count: int, interface: str, interface_nodes, drill: float, shells: str = "static"):
     """Eigen solve on the step-3 static model, the interface "held", one
     "rigid" body or "free" (its nodes as any other): (model, the rigid
     interface's master or None, the interface nodes in it, node masses,
     mode shapes (n_total, 6, k) mass-normalised, eigenvalues, number at
     zero, notes)."""
     model = cut.model
-    ls, _, notes = build_static(model, cut.replaced, drill)
+    ls, _, notes = build_static(model, cut.replaced, drill, shells=shells)
     nodes = cut.interface_nodes if interface_nodes is None else np.asarray(interface_nodes, np.int64)
     nodes = nodes[ls.in_structure[nodes]]
     if not len(nodes):

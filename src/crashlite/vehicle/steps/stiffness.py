@@ -116,10 +116,19 @@ def _spring_k(model: Model, mat) -> float | None:
     return float((np.interp(hi, x, y) - np.interp(lo, x, y)) / (hi - lo)) if hi > lo else None
 
 
-def build_static(model: Model, select: dict | None = None, drill: float = 1e-3) -> tuple[LinearStatic, dict, list]:
+SHELL_STIFFNESS = ("static", "kernel")
+
+
+def build_static(
+    model: Model, select: dict | None = None, drill: float = 1e-3, shells: str = "static"
+) -> tuple[LinearStatic, dict, list]:
     """A LinearStatic of the selected elements of ``model`` (table name ->
-    bool mask or index array; None: every element) with its rigid links.
+    bool mask or index array; None: every element) with its rigid links;
+    ``shells``: "static" (QM6 membrane, MITC4 plate) or "kernel" (the time
+    loop's own shell elements linearised, ``kernel_stiffness``).
     Returns (problem, element counts, notes)."""
+    if shells not in SHELL_STIFFNESS:
+        raise ValueError(f"shells={shells!r}: one of {SHELL_STIFFNESS}")
     from ...solver.beams import _frames, _properties
 
     notes: list = []
@@ -163,7 +172,13 @@ def build_static(model: Model, select: dict | None = None, drill: float = 1e-3) 
         t = _shell_thickness(model, idx)
         if np.any(t <= 0):
             raise ValueError(f"{int((t <= 0).sum())} shells have no thickness")
-        ls.add_elements(conn, el.shell_stiffness(xyz[conn], t, props[:, 0], props[:, 1], drill=drill))
+        if shells == "kernel":
+            from .kernel_stiffness import kernel_shell_stiffness
+
+            ke = kernel_shell_stiffness(model, idx, drill=drill)
+        else:
+            ke = el.shell_stiffness(xyz[conn], t, props[:, 0], props[:, 1], drill=drill)
+        ls.add_elements(conn, ke)
         in_structure[conn.ravel()] = True
         counts["shell"] = len(idx)
     idx, props = usable("solids", np.flatnonzero(sel["solids"]))

@@ -112,7 +112,20 @@ def reduction_page(r: ReductionView) -> str:
     body.append("<h2>Step 4: the surrogate</h2>")
     sur = s["step4_surrogate"]
     conn = s.get("connection_against_structure")
-    if sur.get("connection") == "condensed":
+    lead = ""
+    if sur.get("connection") == "craig-bampton":
+        c = sur["condensation"]
+        f = c["mode_frequencies"]
+        body.append(
+            f"<p>The replaced structure is one linear superelement with its stiffness and mass "
+            f"(*ELEMENT_DIRECT_MATRIX_INPUT, Craig–Bampton): the translations of its {c['cut_nodes']} cut "
+            f"nodes and {c['boundary_nodes'] - c['cut_nodes']} nodes kept behind the cut, and its "
+            f"{c['modes']} lowest modes with them held"
+            + (f" ({num(f[0])} to {num(f[-1])} per time unit)" if f else "")
+            + f": {c['dofs']} DOFs in all. Its mass ({num(c['mass'])}) and inertia are the structure's; "
+            "no rear rigid body. The load-path shares of step 1 are reported, not needed.</p>"
+        )
+    elif sur.get("connection") == "condensed":
         c = sur["condensation"]
         body.append(
             f"<p>The cut is joined to the rear body by the replaced structure condensed onto its "
