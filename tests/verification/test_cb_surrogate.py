@@ -12,16 +12,12 @@ import pytest
 from crashlite import read_deck, write_deck
 from crashlite.keyword.dmig import read_dmig
 from crashlite.solver import run
-from crashlite.vehicle.car.records import id_list, record
 from crashlite.vehicle.connection.cb_surrogate import build_cb_surrogate
 from crashlite.vehicle.steps.cut import cut_behind
 from crashlite.vehicle.steps.massprops import replaced_mass
 
-sys.path.insert(0, str(Path(__file__).parents[1] / "unit" / "vehicle"))
-from _structures import shell_model, tube_mesh  # noqa: E402
-
-B, T, L, X = 50.0, 1.5, 1200.0, 1000.0  # tube side, wall, length, cut [mm]: 1000 mm replaced, 200 kept
-END, F = 0.01, 50.0  # s, N
+sys.path.insert(0, str(Path(__file__).parent))
+from _pushed_tube import END, L, X, pushed_tube  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -32,27 +28,9 @@ def runs(tmp_path_factory):
     for output (a history node), without and with its four lowest held
     modes."""
     d = tmp_path_factory.mktemp("cb")
-    xyz, q = tube_mesh(B, L, 2, 96)
-    m = shell_model(xyz, q, thickness=T, poisson=0.3)
-    ids = m.nodes.ids
-    front = np.flatnonzero(np.isclose(xyz[:, 0], L))
-    near = np.flatnonzero(np.isclose(xyz[:, 0], X + 100.0))
-    far = np.flatnonzero(np.isclose(xyz[:, 0], 0.0))
-    m.sets[("NODE", 1)] = id_list("SET_NODE_LIST_TITLE", 1, ids[front], title="front")
-    m.curves[1] = record("DEFINE_CURVE", lcid=1, rows={"a1": np.array([0.0, 1.0]), "o1": np.array([1.0, 1.0])})
-    m.keywords += [
-        record(
-            "LOAD_NODE_SET",
-            rows={"nsid": np.array([1]), "dof": np.array([2]), "lcid": np.array([1]), "sf": np.array([F / len(front)])},
-        ),
-        record("CONTROL_TERMINATION", endtim=END),
-        record(
-            "DATABASE_HISTORY_NODE_ID",
-            rows={"id": ids[[front[0], near[0], far[0]]], "heading": np.array(["front", "near", "far"], object)},
-        ),
-    ]
+    m, order = pushed_tube((L, X + 100.0, 0.0))
     out = {"full": run(write_deck(m, d / "full.k")[0], out=d / "full", output_dt=END / 400)}
-    out["order"] = ids[[front[0], near[0], far[0]]]
+    out["order"] = order
     cut = cut_behind(m, x=X)
     mass = replaced_mass(cut)
     for n in (0, 4):

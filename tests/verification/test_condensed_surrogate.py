@@ -19,8 +19,8 @@ from crashlite.vehicle.steps.massprops import replaced_mass
 sys.path.insert(0, str(Path(__file__).parents[1] / "unit" / "vehicle"))
 from _structures import shell_model, tube_mesh  # noqa: E402
 
-B, T, L, X = 50.0, 1.5, 1200.0, 1000.0  # tube side, wall, length, cut [mm]: 1000 mm replaced, 200 kept
-END, F = 0.01, 50.0  # s, N
+sys.path.insert(0, str(Path(__file__).parent))
+from _pushed_tube import END, B, L, T, X, pushed_tube  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -31,24 +31,7 @@ def runs(tmp_path_factory):
     condensation alone: no cut dashpots, which would damp the ringing that
     is compared)."""
     d = tmp_path_factory.mktemp("condensed")
-    xyz, q = tube_mesh(B, L, 2, 96)
-    m = shell_model(xyz, q, thickness=T, poisson=0.3)
-    ids = m.nodes.ids
-    front = np.flatnonzero(np.isclose(xyz[:, 0], L))
-    near = np.flatnonzero(np.isclose(xyz[:, 0], X + 100.0))
-    m.sets[("NODE", 1)] = id_list("SET_NODE_LIST_TITLE", 1, ids[front], title="front")
-    m.curves[1] = record("DEFINE_CURVE", lcid=1, rows={"a1": np.array([0.0, 1.0]), "o1": np.array([1.0, 1.0])})
-    m.keywords += [
-        record(
-            "LOAD_NODE_SET",
-            rows={"nsid": np.array([1]), "dof": np.array([2]), "lcid": np.array([1]), "sf": np.array([F / len(front)])},
-        ),
-        record("CONTROL_TERMINATION", endtim=END),
-        record(
-            "DATABASE_HISTORY_NODE_ID",
-            rows={"id": ids[[front[0], near[0]]], "heading": np.array(["front", "near"], object)},
-        ),
-    ]
+    m, _ = pushed_tube()
     out = {"full": run(write_deck(m, d / "full.k")[0], out=d / "full", output_dt=END / 400)}
     cut = cut_behind(m, x=X)
     mass = replaced_mass(cut)

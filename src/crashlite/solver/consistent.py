@@ -52,6 +52,14 @@ class ConsistentMass:
         m_node = mass[self.nodes]
         d = m_node - self.m_l  # the rest of the nodes' mass: elements beside them, point masses, scaling
         full = self.m + np.diag(d)
+        try:
+            np.linalg.cholesky(full)
+        except np.linalg.LinAlgError:
+            raise FloatingPointError(
+                "*ELEMENT_DIRECT_MATRIX_INPUT: the superelements' mass matrix with the rest of their nodes' "
+                "mass is not positive definite (a DOF without mass, or a matrix that is not a mass): the run "
+                "cannot integrate it"
+            ) from None
         a = np.linalg.inv(full)
         self.b = np.ascontiguousarray(0.5 * (a + a.T) - np.diag(1.0 / m_node))
 

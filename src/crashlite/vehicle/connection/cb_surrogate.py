@@ -26,7 +26,7 @@ from ...model.mesh import Nodes
 from ..car.records import id_list, record
 from ..steps.cut import Cut
 from ..steps.massprops import ReplacedMass
-from ..steps.surrogate import Surrogate, _Ids, kept_front
+from ..steps.surrogate import Surrogate, _Ids, kept_front, retitle
 from .condense import rigid_modes
 from .condensed import MODAL_MASS, CondensedSurrogate
 from .craig_bampton import craig_bampton
@@ -89,9 +89,7 @@ def build_cb_surrogate(
     m.sets[("NODE", sid)] = id_list(
         "SET_NODE_LIST_TITLE", sid, full.nodes.ids[cb.nodes[: cb.cut_nodes]], title="surrogate interface (condensed)"
     )
-    title = next((r for r in m.keywords if getattr(r, "keyword", "") == "TITLE"), None)
-    if title is not None:
-        title["title"] = (str(title.get("title", "")) + " - simplified (Craig-Bampton)").strip(" -")[:80]
+    retitle(m, "Craig-Bampton")
     notes.append(
         f"the replaced structure as a Craig-Bampton superelement on {cb.cut_nodes} cut nodes and "
         f"{len(cb.nodes) - cb.cut_nodes} kept nodes behind the cut ({3 * len(cb.nodes)} DOFs) and its {nq} "

@@ -43,7 +43,7 @@ from ...model.mesh import Discretes, Masses, Nodes
 from ..car.records import id_list, record
 from ..steps.cut import Cut
 from ..steps.massprops import ReplacedMass
-from ..steps.surrogate import Surrogate, _Ids, _whole_vehicle_sets, kept_front
+from ..steps.surrogate import Surrogate, _Ids, _whole_vehicle_sets, kept_front, retitle
 from .condense import Condensation, rigid_modes
 from .impedance import axial_impedance
 
@@ -189,9 +189,7 @@ def build_condensed_surrogate(
             izz=float(inertia[2, 2]),
         )
     )
-    title = next((r for r in m.keywords if getattr(r, "keyword", "") == "TITLE"), None)
-    if title is not None:
-        title["title"] = (str(title.get("title", "")) + " - simplified (condensed)").strip(" -")[:80]
+    retitle(m, "condensed")
     notes.append(
         f"the replaced structure condensed on {len(cond.nodes)} cut nodes ({3 * len(cond.nodes)} DOFs), "
         f"{1e3 * mb.sum():.1f} kg of it on them, the rest on the rear body"

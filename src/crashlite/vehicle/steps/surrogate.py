@@ -196,6 +196,13 @@ class _Ids:
         return first
 
 
+def retitle(m: Model, kind: str) -> None:
+    """The deck's *TITLE marked as the simplified model of ``kind`` (80 characters)."""
+    title = next((r for r in m.keywords if getattr(r, "keyword", "") == "TITLE"), None)
+    if title is not None:
+        title["title"] = (str(title.get("title", "")) + f" - simplified ({kind})").strip(" -")[:80]
+
+
 def kept_front(cut: Cut, keep_nodes: ArrayLike | None = None) -> tuple[Truncated, np.ndarray]:
     """The kept structure (``truncate``) and the removed nodes that ride on
     the rear body with it: the replaced structure's history nodes (so
@@ -498,9 +505,7 @@ def build_surrogate(
         )
     )
     part_ids["rear body"] = pid
-    title = next((r for r in m.keywords if getattr(r, "keyword", "") == "TITLE"), None)
-    if title is not None:
-        title["title"] = (str(title.get("title", "")) + " - simplified (surrogate)").strip(" -")[:80]
+    retitle(m, "surrogate")
     if len(ride):
         notes.append(f"{len(ride)} history node(s) of the replaced structure move with the rear body")
     beam = {"length": length, "axial_stiffness": k_beam, "EI": ei, "GJ": gj, "mass": beam_mass}
