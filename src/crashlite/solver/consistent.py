@@ -38,6 +38,7 @@ class ConsistentMass:
         self.b = None  # (k, k) A − diag(1/m_l), once the loop's masses are known
         self.notes: list = []
         self._g = np.zeros(len(self.nodes))
+        self._fs = np.zeros(len(self.nodes))
 
     def start(self, mass: np.ndarray, fixed: np.ndarray, in_body: np.ndarray) -> None:
         """Form the correction from the loop's lumped nodal ``mass`` (after
@@ -49,6 +50,7 @@ class ConsistentMass:
         self.nodes, self.comps = self.nodes[live], self.comps[live]
         self.m, self.m_l = self.m[np.ix_(live, live)], self.m_l[live]
         self._g = np.zeros(len(self.nodes))
+        self._fs = np.zeros(len(self.nodes))
         m_node = mass[self.nodes]
         d = m_node - self.m_l  # the rest of the nodes' mass: elements beside them, point masses, scaling
         full = self.m + np.diag(d)
@@ -66,7 +68,7 @@ class ConsistentMass:
     def kick(self, f: np.ndarray, v: np.ndarray, dt: float) -> None:
         """After the loop's v += dt f/m_l: v += dt (A − diag 1/m_l) f on these DOFs."""
         if len(self.nodes):
-            matrix_kick(self.b, f, self.nodes, self.comps, self._g, v, dt)
+            matrix_kick(self.b, f, self.nodes, self.comps, self._fs, self._g, v, dt)
 
     def kinetic(self, v: np.ndarray) -> float:
         """What ½ vᵀMv adds to the loop's lumped ½ m_l v² on these DOFs."""

@@ -35,14 +35,17 @@ def matrix_forces(k, x, x0, nodes, comps, u, fe, f):
 
 
 @njit(cache=True, parallel=True, fastmath=_REASSOC)
-def matrix_kick(b, f, nodes, comps, g, v, dt):
-    """g = B f[nodes, comps]; v[nodes, comps] += dt g: the velocity
-    correction of DOFs whose mass is a dense matrix (``consistent``)."""
+def matrix_kick(b, f, nodes, comps, fs, g, v, dt):
+    """fs = f[nodes, comps]; g = B fs; v[nodes, comps] += dt g: the velocity
+    correction of DOFs whose mass is a dense matrix (``consistent``). The
+    forces are gathered once, so that the rows run over contiguous memory."""
     n = nodes.shape[0]
+    for i in range(n):
+        fs[i] = f[nodes[i], comps[i]]
     for i in prange(n):
         s = 0.0
         for j in range(n):
-            s += b[i, j] * f[nodes[j], comps[j]]
+            s += b[i, j] * fs[j]
         g[i] = s
     for i in range(n):
         v[nodes[i], comps[i]] += dt * g[i]
