@@ -79,7 +79,9 @@ class SuperelementGroup(ElementGroup):
         """The superelements' mass matrices on the union of their DOFs, for the loop (``consistent``)."""
         if all(m is None for m in self.m):
             return None
-        keys = np.unique(np.concatenate([3 * n + c for n, c in zip(self.dof_nodes, self.dof_comps)]))
+        keys = np.unique(
+            np.concatenate([3 * n + c for n, c, m in zip(self.dof_nodes, self.dof_comps, self.m) if m is not None])
+        )
         pos = {int(k): i for i, k in enumerate(keys)}
         big = np.zeros((len(keys), len(keys)))
         for nodes, comps, m in zip(self.dof_nodes, self.dof_comps, self.m):

@@ -7,9 +7,12 @@ import pytest
 from _structures import RHO, E, shell_model, tube_mesh
 from scipy.linalg import eigh
 
+from crashlite.model.mesh import Masses, Nodes
+from crashlite.vehicle.connection.cb_surrogate import build_cb_surrogate
 from crashlite.vehicle.connection.condense import rigid_modes
 from crashlite.vehicle.connection.craig_bampton import craig_bampton
 from crashlite.vehicle.steps.cut import cut_behind
+from crashlite.vehicle.steps.massprops import replaced_mass
 from crashlite.vehicle.steps.relief import replaced_node_masses
 
 B, T = 50.0, 1.5
@@ -71,3 +74,29 @@ def test_free_modes_of_the_reduced_tube(tube):
     f1 = 4.730**2 / (2 * np.pi * X_CUT**2) * np.sqrt(ei / mu)
     f = np.sqrt(lam[6:8]) / (2 * np.pi)
     assert f == pytest.approx([f1, f1], rel=0.03)
+
+
+def test_mass_off_the_static_model_goes_on_the_boundary_rigidly():
+    """A point mass on a node no element holds (10 kg, 700 mm behind the
+    cut) is not on the static model: the surrogate puts it on the boundary
+    so that, moved rigidly, the superelement has the replaced structure's
+    mass and inertia about its CoG (to 1e-9), and says so."""
+    xyz, q = tube_mesh(B, 1200.0, 2, 48)
+    m = shell_model(xyz, q, thickness=T)
+    extra = Nodes.zeros(1)
+    extra.ids, extra.xyz = np.array([99999]), np.array([[300.0, 0.0, 0.0]])
+    m.nodes = Nodes.concat([m.nodes, extra])
+    point = Masses.zeros(1)
+    point.ids, point.node, point.mass = np.array([1]), np.array([len(m.nodes) - 1], np.int32), np.array([0.01])
+    m.masses = Masses.concat([m.masses, point])
+    cut = cut_behind(m, x=1000.0)
+    mass = replaced_mass(cut)
+    sur = build_cb_surrogate(cut, mass, modes=2)
+    assert any("10.0 kg" in n and "not on its static model" in n for n in sur.notes)
+    dofs, mm = sur.matrix[0], sur.mass_matrix
+    on = ~np.isin(dofs[:, 0], sur.node_ids["modes"])
+    r = np.zeros((len(dofs), 6))
+    r[on] = rigid_modes(sur.model.nodes.xyz[sur.model.node_index(dofs[on, 0][::3])], mass.structure.cog).reshape(-1, 6)
+    rm = r.T @ mm @ r
+    np.testing.assert_allclose(np.diag(rm)[:3], mass.structure.mass, rtol=1e-9)
+    np.testing.assert_allclose(rm[3:, 3:], mass.structure.inertia, rtol=1e-9, atol=1e-9 * np.abs(rm[3:, 3:]).max())
