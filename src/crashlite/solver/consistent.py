@@ -35,10 +35,8 @@ class ConsistentMass:
         self.comps = np.ascontiguousarray(comps, np.int64)  # (k,) component 0–2
         self.m = mass  # (k, k) the superelements' mass matrix on these DOFs
         self.m_l = lumped  # (k,) its share of the loop's lumped nodal mass at each DOF
-        self.b = None  # (k, k) A − diag(1/m_l), once the loop's masses are known
+        self.b = None  # (k, k) A − diag(1/m_l), once the loop's masses are known (``start``)
         self.notes: list = []
-        self._g = np.zeros(len(self.nodes))
-        self._fs = np.zeros(len(self.nodes))
 
     def start(self, mass: np.ndarray, fixed: np.ndarray, in_body: np.ndarray) -> None:
         """Form the correction from the loop's lumped nodal ``mass`` (after

@@ -27,7 +27,7 @@ rotations never set the time step) times ROTASCL.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -90,6 +90,15 @@ class ShellSet:
 
     def __len__(self) -> int:
         return len(self.ids)
+
+    PER_ELEMENT = (
+        "ids", "pid", "conn", "tri", "mat_of", "thick0", "area0", "nip", "rule", "shrf",
+        "hg_kind", "hg_qm", "hg_qb", "hg_qw", "rho", "marea", "full", "refused",
+    )  # fmt: skip
+
+    def subset(self, rows: np.ndarray) -> ShellSet:
+        """The elements ``rows`` (per-element arrays taken; material and curve tables shared)."""
+        return replace(self, **{f: getattr(self, f)[rows] for f in self.PER_ELEMENT if getattr(self, f) is not None})
 
 
 @dataclass

@@ -55,7 +55,8 @@ class SuperelementGroup(ElementGroup):
         self._x0 = [x0[n, c].copy() for n, c in zip(dof_nodes, dof_comps)]
         self._dt = None  # (ne,) stable steps, computed once the masses are known
 
-    def _dof_lumped(self, m: np.ndarray, comps: np.ndarray) -> np.ndarray:
+    @staticmethod
+    def _dof_lumped(m: np.ndarray, comps: np.ndarray) -> np.ndarray:
         """(k,) a mass matrix's lumped mass per DOF: the row's sum over the
         DOFs of the same component (the mass moving with a unit translation),
         its diagonal where that is not positive."""

@@ -386,7 +386,5 @@ def reduce_vehicle(
         conn,
         free,
         connection,
-        cond.summary()
-        if cond is not None
-        else (sur.craig_bampton.summary() if connection == "craig-bampton" else None),
+        (cond or sur.craig_bampton).summary() if connection != "springs" else None,
     )

@@ -103,14 +103,15 @@ def us_ncap_study(
     seconds["reduction"] = time.perf_counter() - t0
     s = red.summary()
     worst = (red.connection or {}).get("largest_compliance_misfit")
-    joined = {
-        "springs": lambda: f"{len(red.surrogate.springs)} springs",
-        "condensed": lambda: f"the structure condensed on {red.condensation['nodes']} cut nodes",
-        "craig-bampton": lambda: (
-            f"the structure a Craig-Bampton superelement on {red.condensation['cut_nodes']} cut nodes "
-            f"with {red.condensation['modes']} held modes"
-        ),
-    }[red.connection_kind]()
+    c = red.condensation or {}
+    if red.connection_kind == "springs":
+        joined = f"{len(red.surrogate.springs)} springs"
+    elif red.connection_kind == "craig-bampton":
+        joined = (
+            f"the structure a Craig-Bampton superelement on {c['cut_nodes']} cut nodes with {c['modes']} held modes"
+        )
+    else:
+        joined = f"the structure condensed on {c['nodes']} cut nodes"
     say(
         f"  steps 1-4: K = {red.stiffness.stiffness:.5g} N/mm borne at the axle, {red.relief.stiffness:.5g} under "
         f"inertia relief, replaced {red.mass.structure.mass * 1e3:.1f} kg, "

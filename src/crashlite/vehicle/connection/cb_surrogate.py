@@ -96,7 +96,7 @@ def build_cb_surrogate(
         "lowest modes held at them"
         + (f" ({cb.frequencies[0]:.3g} to {cb.frequencies[-1]:.3g} per time unit)" if nq else "")
     )
-    sur = CondensedSurrogate(
+    return CondensedSurrogate(
         m,
         [],
         float(stiffness),
@@ -110,6 +110,5 @@ def build_cb_surrogate(
         {},
         (np.stack([dofs, comps], axis=1), 0.5 * (k + k.T)),
         0.5 * (mm + mm.T),
+        cb,
     )
-    sur.craig_bampton = cb
-    return sur

@@ -39,6 +39,7 @@ from ..steps.cut import Cut
 from ..steps.massprops import NodeSelection, node_indices
 from ..steps.relief import _support_321, static_masses
 from ..steps.statics import factor as _factor
+from ..steps.statics import reduced_columns
 from ..steps.stiffness import build_static
 from .modes import _eigen
 
@@ -130,8 +131,7 @@ def relieved_condensation(
         ls.fix([n], dofs)
     t, fixed, slave_of, rnotes = ls.reduction()
     indep = (slave_of < 0)[:, None] & ~fixed
-    col = np.full(6 * ls.n_total, -1)
-    col[np.flatnonzero(indep.ravel())] = np.arange(int(indep.sum()))
+    col = reduced_columns(fixed, slave_of)
     kr = (t.T @ ls.stiffness_matrix() @ t).tocsr()
     diag = kr.diagonal()
     live = diag > 1e-12 * max(float(np.abs(diag).max(initial=0.0)), 1e-300)

@@ -74,6 +74,7 @@ class CondensedSurrogate(Surrogate):
 
     matrix: tuple | None = None  # (dofs (k, 2) [node ID, component], K)
     mass_matrix: np.ndarray | None = None  # (k, k) M on the same DOFs, or None (no mass in the superelement)
+    craig_bampton: object | None = None  # the craig_bampton.CraigBampton it was built from, if any
 
     def write(self, path: Path | str, fmt: str = "fixed") -> Path:
         from ...keyword.dmig import write_dmig

@@ -25,7 +25,8 @@ step is never shorter than the structure's own.
 The static model is step 3's (``stiffness.build_static``: shells,
 solids, beams and springs of the replaced structure, lumped translational
 masses of ``relief.replaced_node_masses``); mass it cannot carry (on
-nodes outside it) is reported, not moved. The cut nodes' rotations are
+nodes outside it) is not in the reduction (``cb_surrogate`` puts it on the
+boundary). The cut nodes' rotations are
 interior DOFs (shell edges hinge on the cut as on a line of the
 structure).
 """
@@ -35,12 +36,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.sparse as sp
 from scipy.sparse.linalg import eigsh
 
 from ..steps.cut import Cut
-from ..steps.relief import static_masses
-from ..steps.statics import factor
+from ..steps.relief import mass_matrix, static_masses
+from ..steps.statics import factor, reduced_columns
 from ..steps.stiffness import build_static
 from .condense import rigid_modes
 
@@ -107,13 +107,8 @@ def craig_bampton(
     m, _, big_m, c, mnotes = static_masses(cut, ls)
     t, fixed, slave_of, rnotes = ls.reduction()
     k_all = (t.T @ ls.stiffness_matrix() @ t).tocsr()
-    diag = np.zeros(6 * ls.n_total)
-    for i in range(3):
-        diag[6 * np.arange(ls.n) + i] = m
-    m_all = (t.T @ sp.diags(diag) @ t).tocsr()
-    indep = (slave_of < 0)[:, None] & ~fixed
-    col = np.full(6 * ls.n_total, -1)
-    col[np.flatnonzero(indep.ravel())] = np.arange(int(indep.sum()))
+    m_all = (t.T @ mass_matrix(ls, m) @ t).tocsr()
+    col = reduced_columns(fixed, slave_of)
     bdofs = col[(6 * b[:, None] + np.arange(3)).ravel()]
     kd = k_all.diagonal()
     live = kd > 1e-12 * float(np.abs(kd).max())
@@ -128,8 +123,9 @@ def craig_bampton(
     mii = m_all[idofs][:, idofs].tocsc()
     mib = m_all[idofs][:, bdofs]
     lu = factor(kii, dof_node[idofs])
-    psi = -lu.solve(np.asarray(kib.toarray()))
-    psi += lu.solve(np.asarray(-kib.toarray() - kii @ psi))  # one step of iterative refinement
+    kib_d = np.asarray(kib.toarray())
+    psi = -lu.solve(kib_d)
+    psi += lu.solve(-kib_d - kii @ psi)  # one step of iterative refinement
     kbb = k_all[bdofs][:, bdofs].toarray() + kib.T @ psi
     mpsi = mii @ psi
     mbb = m_all[bdofs][:, bdofs].toarray() + mib.T @ psi + psi.T @ (mib.toarray() + mpsi)

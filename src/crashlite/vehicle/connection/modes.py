@@ -27,13 +27,12 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.sparse as sp
 from numpy.typing import ArrayLike
 from scipy.sparse.linalg import eigsh
 
 from ..steps.cut import Cut
 from ..steps.massprops import NodeSelection
-from ..steps.relief import static_masses
+from ..steps.relief import mass_matrix, static_masses
 from ..steps.stiffness import build_static
 from .connection import DIRECTIONS, vehicle_frame
 
@@ -157,11 +156,8 @@ def _eigen(cut: Cut, count: int, interface: str, interface_nodes, drill: float, 
         master = ls.add_rigid(nodes)
     m, _, _, _, mnotes = static_masses(cut, ls)
     t, _, _, rnotes = ls.reduction()
-    diag = np.zeros(6 * ls.n_total)
-    for i in range(3):
-        diag[6 * np.arange(ls.n) + i] = m
     k = (t.T @ ls.stiffness_matrix() @ t).tocsc()
-    mm = (t.T @ sp.diags(diag) @ t).tocsc()
+    mm = (t.T @ mass_matrix(ls, m) @ t).tocsc()
     keep = np.flatnonzero(k.diagonal() > 1e-12 * float(np.abs(k.diagonal()).max()))
     k, mm = k[keep][:, keep], mm[keep][:, keep]
     want = min(count + 6 + max(4, count // 2), len(keep) - 2)  # a margin: the last Ritz pairs converge slowest

@@ -158,6 +158,31 @@ def _to_global(kl, rot, n_nodes):
     return k.reshape(n, 3 * m, 3 * m)
 
 
+def _local(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(rot (n, 3, 3), xl (n, 4, 2)): quads ``x`` (n, 4, 3) in their element
+    frames (``shell_frames``) about their centroids."""
+    rot = shell_frames(x)
+    xl = np.einsum("nij,nkj->nki", rot, x - x.mean(axis=1, keepdims=True))[:, :, :2]
+    return rot, xl
+
+
+def drilling_stiffness(
+    x: np.ndarray, thickness: ArrayLike, young: ArrayLike, poisson: ArrayLike, drill: float
+) -> np.ndarray:
+    """(n, 24, 24) global: the drilling penalty ``shell_stiffness`` adds
+    (``drill`` · G·t on the in-plane rotation against the membrane's)."""
+    x = np.asarray(x, float)
+    n = len(x)
+    t = np.broadcast_to(np.asarray(thickness, float), (n,))
+    g = np.broadcast_to(np.asarray(young, float), (n,)) / (2 * (1 + np.broadcast_to(np.asarray(poisson, float), (n,))))
+    out = np.empty((n, 24, 24))
+    for lo in range(0, n, BLOCK):
+        sl = slice(lo, lo + BLOCK)
+        rot, xl = _local(x[sl])
+        out[sl] = _to_global(_drill(xl, drill * g[sl] * t[sl]), rot, 4)
+    return out
+
+
 def shell_stiffness(
     x: np.ndarray,
     thickness: ArrayLike,
@@ -181,10 +206,7 @@ def shell_stiffness(
     out = np.empty((n, 24, 24))
     for lo in range(0, n, BLOCK):
         sl = slice(lo, lo + BLOCK)
-        xb = x[sl]
-        rot = shell_frames(xb)
-        c = xb.mean(axis=1, keepdims=True)
-        xl = np.einsum("nij,nkj->nki", rot, xb - c)[:, :, :2]
+        rot, xl = _local(x[sl])
         tb, eb, nb = t[sl], e[sl], nu[sl]
         base = np.array([[1.0, 0, 0], [0, 1.0, 0], [0, 0, 0]])
         cross = np.array([[0, 1.0, 0], [1.0, 0, 0], [0, 0, 0]])

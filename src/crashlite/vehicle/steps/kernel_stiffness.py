@@ -23,7 +23,7 @@ model's) holds the in-plane rotation that the kernel leaves free.
 
 from __future__ import annotations
 
-from dataclasses import fields, replace
+from dataclasses import replace
 
 import numpy as np
 
@@ -49,7 +49,7 @@ def kernel_shell_stiffness(model: Model, idx: np.ndarray, drill: float = 1e-3) -
     if np.any(rows < 0):
         raise ValueError("some shells are rigid: no stiffness from the kernel")
     n = len(rows)
-    sub = _subset(s, rows)
+    sub = s.subset(rows)
     conn = model.shells.nodes[np.asarray(idx, np.int64)].astype(np.int64)
     x0 = model.nodes.xyz[conn].reshape(-1, 3).copy()  # private corners: 4 per element
     tri = sub.tri.astype(bool)
@@ -77,28 +77,5 @@ def kernel_shell_stiffness(model: Model, idx: np.ndarray, drill: float = 1e-3) -
         k[t, 18:24, :] = 0.0
         k[t, :, 18:24] = 0.0
     k = 0.5 * (k + np.transpose(k, (0, 2, 1)))
-    return k + _drilling(model, idx, sub, drill, ps.P_E, ps.P_PR)
-
-
-def _subset(s, rows: np.ndarray):
-    """The ShellSet of elements ``rows`` (per-element arrays taken, material tables kept)."""
-    n = len(s)
-    out = {}
-    for f in fields(s):
-        val = getattr(s, f.name)
-        if isinstance(val, np.ndarray) and val.ndim >= 1 and val.shape[0] == n and f.name not in ("mat_ids",):
-            out[f.name] = val[rows]
-    return replace(s, **out)
-
-
-def _drilling(model: Model, idx: np.ndarray, sub, drill: float, p_e: int, p_nu: int) -> np.ndarray:
-    """(n, 24, 24) the static model's drilling penalty on these shells (what
-    ``elements.shell_stiffness`` adds): the difference of its shell with and
-    without it."""
-    conn = model.shells.nodes[np.asarray(idx, np.int64)].astype(np.int64)
-    x = model.nodes.xyz[conn]
-    young = sub.props[sub.mat_of, p_e]
-    nu = sub.props[sub.mat_of, p_nu]
-    return el.shell_stiffness(x, sub.thick0, young, nu, drill=drill) - el.shell_stiffness(
-        x, sub.thick0, young, nu, drill=0.0
-    )
+    young, nu = sub.props[sub.mat_of, ps.P_E], sub.props[sub.mat_of, ps.P_PR]
+    return k + el.drilling_stiffness(x0.reshape(n, 4, 3), sub.thick0, young, nu, drill)

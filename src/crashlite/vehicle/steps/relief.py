@@ -37,6 +37,7 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+import scipy.sparse as sp
 from numpy.typing import ArrayLike
 
 from ...model import mass as mk
@@ -94,6 +95,15 @@ def static_masses(cut: Cut, ls: LinearStatic) -> tuple:
         raise ValueError("the replaced structure has no mass")
     c = (m[carry, None] * cut.model.nodes.xyz[carry]).sum(axis=0) / big_m
     return m, carry, big_m, c, notes
+
+
+def mass_matrix(ls: LinearStatic, m: np.ndarray) -> sp.dia_matrix:
+    """(6·n_total)² diagonal: the node masses ``m`` (of ``static_masses``) on
+    the static model's translations; rotations carry none."""
+    diag = np.zeros(6 * ls.n_total)
+    for i in range(3):
+        diag[6 * np.arange(ls.n) + i] = m
+    return sp.diags(diag)
 
 
 def _support_321(xyz: np.ndarray, candidates: np.ndarray) -> list:

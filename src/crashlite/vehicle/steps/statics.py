@@ -47,6 +47,15 @@ class MechanismError(ValueError):
 PIVOT_RATIO = 1e-12  # a pivot below this fraction of its diagonal term: a free motion
 
 
+def reduced_columns(fixed: np.ndarray, slave_of: np.ndarray) -> np.ndarray:
+    """(6·n_total,) each DOF's column in the reduced matrices tᵀKt of
+    ``LinearStatic.reduction`` (−1: held, or a slave of a rigid group)."""
+    indep = (slave_of < 0)[:, None] & ~fixed
+    col = np.full(indep.size, -1)
+    col[np.flatnonzero(indep.ravel())] = np.arange(int(indep.sum()))
+    return col
+
+
 def factor(k: sp.spmatrix, dof_node: np.ndarray, permc_spec: str = "MMD_AT_PLUS_A") -> SuperLU:
     """Sparse LU of the SPD matrix k with a symmetric ordering (``permc_spec``;
     "NATURAL": k's own) and diagonal pivots; a pivot much smaller than its
