@@ -235,11 +235,10 @@ class ContactGroup(ElementGroup):
             self.gap,
             self.offset,
         )
-        p_new = kc.scatter(self.rows, self.rnode, self.gap, st.v, c.node_side, st.f, self.resultant)
+        p_new, deepest = kc.scatter(self.rows, self.rnode, self.gap, st.v, c.node_side, st.f, self.resultant)
         # work of the contact forces over the step (trapezoid); stored and dissipated energy count positive
         self.energy[0] -= 0.5 * float(st.dt) * (p_old + p_new)
-        if len(self.gap):
-            self.max_gap = max(self.max_gap, float(self.gap.max()))
+        self.max_gap = max(self.max_gap, deepest)
 
     def corner_forces(self) -> np.ndarray:
         return np.zeros((0, 5, 3))

@@ -17,8 +17,8 @@ from ..keyword.errors import Problem
 from ..model.model import Model
 from .frames import project_out
 from .groups import BeamGroup, DiscreteGroup
-from .kernels.beam import turn_nodes, update_rotations
-from .kernels.integrate import update_position, update_velocity
+from .kernels.beam import turn_nodes
+from .kernels.integrate import kick_nodes, update_position
 from .motions import Motions
 from .parts import PartAccount
 from .results import Results, element_counts
@@ -282,13 +282,15 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list 
         ke += sum(b.kinetic() for b in s.bodies) + sum(c.kinetic(v_mid) for c in dense)
         return ke + walls.kinetic()
 
+    no_w = np.zeros((0, 3))
+
     def kick(dt_v):
-        update_velocity(v, f, st.inv_mass, s.fixed, dt_v)
+        w_kick = st.w if nb else no_w
+        kick_nodes(v, f, st.inv_mass, s.fixed, dt_v, walls.before, w_kick, st.moment, st.inv_j, st.fixed_rot)
         for c in dense:
             c.kick(f, v, dt_v)
         project_out(v, s.skew_nodes, s.skew_held)
         if nb:
-            update_rotations(st.rot, st.w, st.moment, st.inv_j, st.fixed_rot, dt_v, 0.0)
             project_out(st.w, s.skew_nodes, s.skew_held_rot)
         for b in s.bodies:
             b.kick(f, x, dt_v, st.moment if nb else None)
@@ -343,7 +345,6 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list 
     f_body_prev = np.zeros_like(x)
     rec.reactions_and_sections()
     rec(t, v, np.zeros_like(v), kinetic(v, st.w), 0.0, ew_total)
-    walls.snapshot(v)
     if fields is not None:  # the d3plot's fields at each state (the velocity after it: once kicked)
         from ..results.d3plot import complete, state
 
@@ -407,7 +408,6 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list 
             if s.body_loads:  # work of the body loads over the last step (positions t-dt .. t)
                 w_ext += float(np.einsum("ij,ij->", f_body_prev, x - x_prev))
             dt_v = 0.5 * (dt_step + dt_new)
-            walls.snapshot(v)
             kick(dt_v)
             dw = motions.apply(st, t, dt_v, dt_new, place)
             w_ext += dw

@@ -16,7 +16,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .kernels.rigid import body_drift, body_omega, force_sums, place_nodes, place_rotations, rodrigues
+from .kernels.rigid import body_drift, body_kick, body_omega, place_body, rodrigues
+
+_NO_ROT = np.zeros((0, 3, 3))  # stands in for the nodal orientations where the nodes have none
+_NO_W = np.zeros((0, 3))
 
 
 def cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -47,13 +50,16 @@ class RigidBody:
     rot: np.ndarray  # (3, 3) body-to-world rotation
     held_v: np.ndarray | None = None  # (3, 3) rows: held translation directions, zero rows free (MAT_RIGID)
     held_w: np.ndarray | None = None  # (3, 3) rows: held rotation axes, zero rows free
-    prev: tuple | None = None  # (velocity, momentum) before the last kick
+    prev: tuple | None = None  # (velocity, momentum) before the last kick (once ``kicked``)
+    kicked: bool = False
     # (j, 3) unit axes (body frame) about which the nodes' masses give no inertia (a point mass: all
     # three, masses on a line: that line); a tiny inertia stands in for it (see build_body)
     no_inertia: np.ndarray | None = None
 
     def __post_init__(self):
         self.rot = np.array(self.rot, dtype=float)  # its own C-ordered copy: the drift kernel turns it in place
+        self.prev = (np.zeros(3), np.zeros(3))
+        self._sums, self._omega = np.zeros(6), np.zeros(3)  # scratch of kick and place
 
     def inverse_mass_at(self, r: np.ndarray) -> np.ndarray:
         """(k,) largest inverse effective mass of points at arms r (k, 3)
@@ -106,7 +112,7 @@ class RigidBody:
         """Kinetic energy at the full step: the mean of the half-step momenta
         around it (as for the nodes)."""
         vel, mom = self.velocity, self.momentum
-        if self.prev is not None:
+        if self.kicked:
             vel, mom = 0.5 * (vel + self.prev[0]), 0.5 * (mom + self.prev[1])
         w = self.omega(mom=mom)
         return 0.5 * self.mass * float(vel @ vel) + 0.5 * float(w @ mom)
@@ -118,18 +124,15 @@ class RigidBody:
 
     def kick(self, f: np.ndarray, x: np.ndarray, dt_v: float, moment: np.ndarray | None = None) -> None:
         """Change momenta by the nodal forces (and moments) over dt_v."""
-        self.prev = (self.velocity.copy(), self.momentum.copy())
-        sums = self._scratch()
-        force_sums(f, x, f if moment is None else moment, self.nodes, self.cog, moment is not None, sums)
-        self.velocity += dt_v * sums[:3] / self.mass
-        self.momentum += dt_v * sums[3:]
-        self.constrain()
-
-    def _scratch(self) -> np.ndarray:
-        out = getattr(self, "_sums", None)
-        if out is None:
-            out = self._sums = np.zeros(6)
-        return out
+        p_vel, p_mom = self.prev
+        use_moment = moment is not None
+        body_kick(
+            f, x, moment if use_moment else f, self.nodes, self.cog, use_moment, self.mass, dt_v,
+            self.velocity, self.momentum, p_vel, p_mom, self._sums,
+        )  # fmt: skip
+        self.kicked = True
+        if self.held_v is not None or self.held_w is not None:
+            self.constrain()
 
     def constrain(self) -> None:
         """Zero the velocity along held directions and the angular velocity
@@ -161,10 +164,11 @@ class RigidBody:
     def place(self, x: np.ndarray, v: np.ndarray, rot: np.ndarray | None = None, w: np.ndarray | None = None) -> None:
         """Write member node positions and velocities (and, for nodes with
         rotations, their orientation and angular velocity) from the body."""
-        omega = self.omega()
-        place_nodes(x, v, self.nodes, self.r_body, self.cog, self.rot, self.velocity, omega)
-        if rot is not None:
-            place_rotations(rot, w, self.nodes, self.rot, omega)
+        turns = rot is not None
+        place_body(
+            x, v, rot if turns else _NO_ROT, w if turns else _NO_W, self.nodes, self.r_body, self.cog, self.rot,
+            self.velocity, self.inverse_inertia_body(), self.momentum, turns, self._omega,
+        )  # fmt: skip
 
 
 def build_body(

@@ -77,15 +77,43 @@ def _solve(inert, tr, b0, b1, b2):
 
 
 @njit(cache=True)
-def weld_forces(ptr, nodes, alive, x, f, moment, mass, jrot, normal0, along, sn, ss, en, em, fn_out, fs_out, crit_out):
+def weld_forces(
+    ptr,
+    nodes,
+    alive,
+    x,
+    f,
+    moment,
+    mass,
+    jrot,
+    normal0,
+    along,
+    sn,
+    ss,
+    en,
+    em,
+    t,
+    tfail,
+    fn_out,
+    fs_out,
+    crit_out,
+    cause,
+):
     """Rigid-body share of the summed force and moment for each live weld,
     the weld force on its nodes split into normal fn and shear fs (the
     node with the largest failure measure), and that measure crit_out.
-    A weld whose measure reaches 1 keeps its nodes' own forces."""
+    A weld past its failure time (cause 1) or whose measure reaches 1
+    (cause 2) fails here and keeps its nodes' own forces. Returns the
+    number that failed (the caller logs them; nothing else to do per cycle)."""
     c = np.empty(3)
     inert = np.empty(6)
+    failed = 0
     for k in range(len(alive)):
         if not alive[k]:
+            continue
+        if t >= tfail[k]:
+            alive[k], cause[k] = False, 1
+            failed += 1
             continue
         m_tot, tr = _inertia(ptr, nodes, k, x, mass, jrot, c, inert)
         if m_tot <= 0.0:
@@ -133,6 +161,8 @@ def weld_forces(ptr, nodes, alive, x, f, moment, mass, jrot, normal0, along, sn,
                 worst, wn, ws = crit, fn, fs
         fn_out[k], fs_out[k], crit_out[k] = wn, ws, worst
         if worst >= 1.0:
+            alive[k], cause[k] = False, 2
+            failed += 1
             continue
         for q in range(ptr[k], ptr[k + 1]):
             i = nodes[q]
@@ -144,6 +174,7 @@ def weld_forces(ptr, nodes, alive, x, f, moment, mass, jrot, normal0, along, sn,
                 moment[i, 0] = jrot[i] * al0
                 moment[i, 1] = jrot[i] * al1
                 moment[i, 2] = jrot[i] * al2
+    return failed
 
 
 @njit(cache=True)
@@ -222,6 +253,7 @@ class SpotWelds:
         self.alive = np.ones(k, np.bool_)
         self.fail_time = np.full(k, np.inf)
         self.fn, self.fs, self.crit = np.zeros(k), np.zeros(k), np.zeros(k)
+        self._cause = np.zeros(k, np.int8)  # set by weld_forces where a weld fails: 1 time, 2 force
 
     def __len__(self) -> int:
         return len(self.ids)
@@ -232,12 +264,8 @@ class SpotWelds:
         return self._jrot
 
     def forces(self, st: State) -> None:
-        if not self.alive.any():
-            return
         t = float(getattr(st, "t", 0.0))
-        for k in np.flatnonzero(self.alive & (t >= self.tfail)):
-            self._fail(k, t, "time")
-        weld_forces(
+        failed = weld_forces(
             self.ptr,
             self.nodes,
             self.alive,
@@ -252,12 +280,18 @@ class SpotWelds:
             self.ss,
             self.en,
             self.em,
+            t,
+            self.tfail,
             self.fn,
             self.fs,
             self.crit,
+            self._cause,
         )
-        for k in np.flatnonzero(self.alive & (self.crit >= 1.0)):
-            self._fail(k, t, "force")
+        if failed:  # logged in the order they are checked: by time, then by force
+            for code, why in ((1, "time"), (2, "force")):
+                for k in np.flatnonzero(self._cause == code):
+                    self._fail(k, t, why)
+            self._cause[:] = 0
 
     def velocities(self, st: State) -> None:
         if self.alive.any():
@@ -273,7 +307,7 @@ class SpotWelds:
             )
 
     def _fail(self, k: int, t: float, cause: str) -> None:
-        self.alive[k] = False
+        self.alive[k] = False  # (the kernel has cleared it already where it failed the weld)
         self.fail_time[k] = t
         self.log.append((int(self.ids[k]), t, cause))
         _LOG.info(

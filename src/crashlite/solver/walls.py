@@ -14,7 +14,6 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .kernels.integrate import copy_rows
 from .kernels.rigid import out_of_reach
 from .kernels.rigidwall import N_CHUNKS, cylinder_wall, planar_wall
 from .rigid import RigidBody, cross
@@ -29,7 +28,9 @@ class Walls:
         self.point = [w.point.copy() for w in walls]
         self.hit = [np.zeros(len(w.nodes), np.bool_) for w in walls]
         self._part = np.zeros((N_CHUNKS, 2))  # planar_wall's per-chunk sums
-        self._before = np.zeros((n_nodes, 3))
+        # velocities before the velocity update (the time loop's kick fills it): the energy a wall takes is
+        # the work of its impulses over the step (kernels.rigidwall); no rows without walls
+        self.before = np.zeros((n_nodes if walls else 0, 3))
         self.velocity = np.array([w.velocity for w in walls], float)  # along the normal
         self.force = np.zeros((len(walls), 4))  # force on each wall (3) and the energy it took over the step
         owner = np.full(n_nodes, -1)
@@ -44,18 +45,13 @@ class Walls:
                 by_body.setdefault(int(owner[i]), []).append(int(i))
             self.body_nodes.append([(bodies[k], np.array(v, np.int64)) for k, v in by_body.items()])
 
-    def snapshot(self, v: np.ndarray) -> None:
-        """Velocities before the velocity update: the energy a wall takes is
-        the work of its impulses over the step (kernels.rigidwall)."""
-        if self.walls:
-            copy_rows(v, self._before)
-
     def kinetic(self) -> float:
         return sum(0.5 * w.mass * self.velocity[k] ** 2 for k, w in enumerate(self.walls))
 
     def move(self, dt: float) -> None:
         for k, w in enumerate(self.walls):
-            self.point[k] += dt * self.velocity[k] * w.normal
+            if self.velocity[k] != 0.0:  # a wall at rest stays (two array temporaries a wall a cycle saved)
+                self.point[k] += dt * self.velocity[k] * w.normal
 
     def apply(self, st: State, t: float, dt: float, place: Callable[[RigidBody], None]) -> float:
         """Correct the velocities for the next step ``dt``; returns the
@@ -70,7 +66,7 @@ class Walls:
                 cylinder_wall(
                     st.x,
                     st.v,
-                    self._before,
+                    self.before,
                     st.mass,
                     w.nodes,
                     self.point[k],
@@ -85,7 +81,7 @@ class Walls:
                 self.velocity[k] = planar_wall(
                     st.x,
                     st.v,
-                    self._before,
+                    self.before,
                     st.mass,
                     w.nodes,
                     self.point[k],
@@ -102,14 +98,15 @@ class Walls:
                     w.len_m,
                     self._part,
                 )
-            ew += self.force[k, 3]
-            v_nodes = self.velocity[k]
+            ew += float(self.force[k, 3])
+            v_nodes = float(self.velocity[k])
             for body, nodes in self.body_nodes[k]:
                 taken = self._push_body(k, body, nodes, st.x, dt)
                 if taken is not None:  # the body was pushed: its nodes follow
                     ew += taken
                     place(body)
-            ew += 0.5 * w.mass * (v_nodes**2 - self.velocity[k] ** 2)
+            if w.mass > 0:
+                ew += 0.5 * w.mass * (v_nodes**2 - float(self.velocity[k]) ** 2)
         return ew
 
     def _gaps(self, k, x, nodes, dt):

@@ -118,22 +118,6 @@ def _turn_node(rot, w, i, dt):
         rot[i, 2, j] = r20 * a0 + r21 * a1 + r22 * a2
 
 
-@njit(cache=True, parallel=True)
-def update_rotations(rot, w, moment, inv_j, fixed_rot, dt_v, dt):
-    """ω += dt_v·M/J on free rotational DOFs (isotropic nodal inertia: no
-    gyroscopic term), then R ← exp(dt·ω)·R for nodes with rotational inertia."""
-    for i in prange(rot.shape[0]):
-        if inv_j[i] == 0.0:
-            continue
-        for j in range(3):
-            if fixed_rot[i, j]:
-                w[i, j] = 0.0
-            else:
-                w[i, j] += dt_v * moment[i, j] * inv_j[i]
-        if dt != 0.0:
-            _turn_node(rot, w, i, dt)
-
-
 @njit(cache=True)
 def turn_nodes(rot, w, nodes, dt):
     """R ← exp(dt·ω)·R for the listed nodes only: the ones whose orientation

@@ -599,12 +599,14 @@ def scatter(rows, rnode, gap, v, node_side, f, resultant):
     """f += the rows, in slave order; resultant (3,) = the force on the
     slave side (row 0 where node_side is 1, else the segment rows).
     Returns the power of the rows at the velocities v (entries in contact
-    only, as ``power``)."""
+    only, as ``power``) and the largest gap (0 with none in contact)."""
     p = 0.0
+    deepest = 0.0
     resultant[0] = resultant[1] = resultant[2] = 0.0
     for i in range(rows.shape[0]):
         if not gap[i] > 0.0:
             continue
+        deepest = max(deepest, gap[i])
         for a in range(5):
             nd = rnode[i, a]
             if nd < 0:
@@ -617,7 +619,7 @@ def scatter(rows, rnode, gap, v, node_side, f, resultant):
                 resultant[0] += rows[i, a, 0]
                 resultant[1] += rows[i, a, 1]
                 resultant[2] += rows[i, a, 2]
-    return p
+    return p, deepest
 
 
 @njit(cache=True)

@@ -65,6 +65,29 @@ def force_sums(f, x, moment, nodes, cog, use_moment, out):
 
 
 @njit(cache=True)
+def body_kick(f, x, moment, nodes, cog, use_moment, mass, dt_v, vel, mom, prev_vel, prev_mom, sums):
+    """The kick of a body in one call: prev_* = the momenta before it,
+    sums = the force and moment sums (``force_sums``), vel += dt_v Σf / mass,
+    mom += dt_v Σ(moment)."""
+    force_sums(f, x, moment, nodes, cog, use_moment, sums)
+    for a in range(3):
+        prev_vel[a] = vel[a]
+        prev_mom[a] = mom[a]
+        vel[a] += dt_v * sums[a] / mass
+        mom[a] += dt_v * sums[3 + a]
+
+
+@njit(cache=True)
+def place_body(x, v, rot_n, w_n, nodes, r_body, cog, rot, vel, inv_i, mom, with_rotations, omega):
+    """``place_nodes`` (and ``place_rotations`` if ``with_rotations``) with
+    ω = R I⁻¹ Rᵀ L formed here (into ``omega`` (3,)): one call a placement."""
+    body_omega(rot, inv_i, mom, omega)
+    place_nodes(x, v, nodes, r_body, cog, rot, vel, omega)
+    if with_rotations:
+        place_rotations(rot_n, w_n, nodes, rot, omega)
+
+
+@njit(cache=True)
 def out_of_reach(x, nodes, cog, point, normal, velocity, momentum, spin_per_momentum, wall_speed, dt):
     """True when no node of a rigid body can land on the plane through
     ``point`` along ``normal`` over the next step: its smallest distance to
