@@ -167,6 +167,8 @@ class ContactGroup(ElementGroup):
         self._cptr, self._cand = np.zeros(ns + 1, np.int64), np.zeros(0, np.int64)
         self._since = 0
         self._smass = self._mmass = None
+        self._soft_set = False  # the SOFT = 1 stiffness is in prm
+        self._active = False  # prm's P_ACTIVE (between BT and DT)
 
     def lumped(self, n_nodes: int) -> tuple[np.ndarray, np.ndarray]:
         return np.zeros(n_nodes), np.zeros(n_nodes)
@@ -195,11 +197,15 @@ class ContactGroup(ElementGroup):
         c = self.c
         if self._smass is None:
             self._first(st)
-        if c.soft == 1 and self.prm[kc.P_SOFT_K] == 0.0:
+        if c.soft == 1 and not self._soft_set:
             dt0 = c.dt0 if np.isfinite(c.dt0) else st.dt
             if dt0 > 0:
                 self.prm[kc.P_SOFT_K] = 0.5 * c.sofscl / dt0**2
-        self.prm[kc.P_ACTIVE] = 1.0 if c.birth <= st.t <= c.death else 0.0
+                self._soft_set = True
+        active = c.birth <= st.t <= c.death
+        if active != self._active:  # written where it changes only: an array write a cycle is not free
+            self.prm[kc.P_ACTIVE] = 1.0 if active else 0.0
+            self._active = active
         for rows, alive, el, across in self.links:
             kc.link_alive(rows, alive, el, across, self.alive)
         self._since += 1

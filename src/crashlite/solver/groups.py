@@ -87,7 +87,7 @@ class DiscreteGroup(ElementGroup):
             for a, z in ((d.ucurve_start, zi), (d.ucurve_stop, zi), (d.yield_t, zf), (d.yield_c, zf))
         )
         self.energy = np.zeros(ne)
-        self._ptr, self._elem, self._sign = incidence(n_nodes, d.n1, d.n2)
+        self._rows, self._ptr, self._elem, self._sign = incidence(n_nodes, d.n1, d.n2)
 
     def forces(self, st: State) -> None:
         d = self.d
@@ -117,7 +117,7 @@ class DiscreteGroup(ElementGroup):
             self.force,
             self.elong,
         )
-        gather(self._ptr, self._elem, self._sign, self.fe, st.f)
+        gather(self._rows, self._ptr, self._elem, self._sign, self.fe, st.f)
 
     def start(self) -> None:
         """Values at t = 0 are the reference of the energy account."""

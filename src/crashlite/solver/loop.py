@@ -261,10 +261,11 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list 
                 c.body_force(out, axis, acc)
         return out
 
-    def internal_forces(t):
-        """f (and moment): the force the elements and body loads exert on the nodes."""
-        f[:] = 0.0
-        if nb:
+    def internal_forces(t, zeroed=False):
+        """f (and moment): the force the elements and body loads exert on the
+        nodes (``zeroed``: f and moment are zero already, update_position)."""
+        if not zeroed:
+            f[:] = 0.0
             st.moment[:] = 0.0
         for g in groups:
             g.forces(st)
@@ -368,7 +369,7 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list 
                 f_body_prev[:] = body_force(t + 0.5 * dt_step)
             if s.nodal_loads is not None:  # work over t .. t + dt with the half-step velocities
                 w_ext += s.nodal_loads.work(t + 0.5 * dt_step, v, st.w if nb else None, dt_step)
-            update_position(x, v, dt_step)
+            update_position(x, v, dt_step, f, st.moment)
             if turn:
                 turn_nodes(st.rot, st.w, turned, dt_step)
             for b in s.bodies:
@@ -378,7 +379,7 @@ def _integrate(s: Setup, output_dt, progress, clock: CompileClock, fields: list 
             t += dt_step
             cycle += 1
             st.t, st.dt = t, dt_step
-            internal_forces(t)
+            internal_forces(t, zeroed=True)
             for g in groups:
                 g.account()
             dt_new = step_size(t)

@@ -170,7 +170,9 @@ def compute_forces(s: ShellSet, st: ShellState, x: np.ndarray, v: np.ndarray, w:
     one-point elements and triangles (kernels.shell), then the fully
     integrated ones (kernels.shell_full)."""
     idx = st.full_idx
-    if len(idx) < len(s):
+    if not len(idx):
+        _one_point(s, st, x, v, w, dt)
+    elif len(idx) < len(s):
         keep = st.alive[idx].copy()
         st.alive[idx] = 2  # not the one-point kernel's: it leaves them as they are
         _one_point(s, st, x, v, w, dt)

@@ -294,8 +294,8 @@ class SpotWelds:
             self._cause[:] = 0
 
     def velocities(self, st: State) -> None:
-        if self.alive.any():
-            weld_velocities(self.ptr, self.nodes, self.alive, st.x, st.v, st.w, st.mass, self._rot(st))
+        # dead welds are skipped there: no check of its own here
+        weld_velocities(self.ptr, self.nodes, self.alive, st.x, st.v, st.w, st.mass, self._rot(st))
 
     def start(self, v: np.ndarray, w: np.ndarray, mass: np.ndarray, rot_inertia: np.ndarray, x: np.ndarray) -> None:
         """Initial velocities made rigid per weld, momentum and angular

@@ -104,7 +104,8 @@ class SuperelementGroup(ElementGroup):
             own = self.node_lumped(len(st.mass))
             for e, (n, _c, k) in enumerate(zip(self.dof_nodes, self.dof_comps, self.k)):
                 self._dt[e] = self._element_dt(k, self.m[e], st.mass[n], own[n])
-        return float(self._dt.min()) if len(self._dt) else np.inf
+            self._dt_min = float(self._dt.min()) if len(self._dt) else np.inf  # linear: the same every cycle
+        return self._dt_min
 
     @staticmethod
     def _element_dt(k, m, node_mass, own) -> float:

@@ -174,49 +174,55 @@ def discrete_forces(
         fe[e, 2] = f * u2
 
 
-@njit(cache=True, parallel=True)
-def gather(node_ptr, elem_of, sign_of, fe, out):
-    """out[i] += Σ sign · fe[e] over the elements of node i, in a fixed order.
+@njit(cache=True)
+def gather(rows, row_ptr, elem_of, sign_of, fe, out):
+    """out[rows[r]] += Σ sign · fe[e] over the elements of row r's node, in
+    a fixed order.
 
-    The node-to-element incidence (CSR: node_ptr, elem_of, sign_of) is built
-    once; every node sums its own terms, so threads never write the same
-    row and the sum order does not depend on the thread count.
+    The node-to-element incidence (CSR over the nodes that have elements:
+    rows, row_ptr, elem_of, sign_of) is built once. Serial: a few adds per
+    node of an element, cheaper than starting the threads (which cost more
+    than the sums on the hundreds of nodes of a model's springs and
+    dampers); a loop over every node of the model was most of the cost.
     """
-    for i in prange(out.shape[0]):
+    for r in range(rows.shape[0]):
         a0 = 0.0
         a1 = 0.0
         a2 = 0.0
-        for k in range(node_ptr[i], node_ptr[i + 1]):
+        for k in range(row_ptr[r], row_ptr[r + 1]):
             e = elem_of[k]
             s = sign_of[k]
             a0 += s * fe[e, 0]
             a1 += s * fe[e, 1]
             a2 += s * fe[e, 2]
+        i = rows[r]
         out[i, 0] += a0
         out[i, 1] += a1
         out[i, 2] += a2
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True)
 def energy_step(force_old, force, elong_old, elong, elem_energy):
     """Work of the element forces over the last step (trapezoid), added per
     element to ``elem_energy`` (totals are summed at output, in a fixed
-    order); the new values become the old ones."""
-    for e in prange(force.shape[0]):
+    order); the new values become the old ones. Serial: three numbers an
+    element, less than starting the threads costs."""
+    for e in range(force.shape[0]):
         elem_energy[e] += 0.5 * (force_old[e] + force[e]) * (elong[e] - elong_old[e])
         force_old[e] = force[e]
         elong_old[e] = elong[e]
 
 
 def incidence(n_nodes: int, n1: np.ndarray, n2: np.ndarray):
-    """CSR node -> (element, sign): +1 where the node is n1, -1 where n2."""
+    """CSR over the nodes that have elements -> (element, sign): (rows,
+    row_ptr, elem_of, sign_of), sign +1 where the node is n1, -1 where n2."""
     ne = len(n1)
     nodes = np.concatenate([n1, n2])
     elems = np.concatenate([np.arange(ne), np.arange(ne)])
     signs = np.concatenate([np.ones(ne), -np.ones(ne)])
-    keep = nodes >= 0
+    keep = (nodes >= 0) & (nodes < n_nodes)
     nodes, elems, signs = nodes[keep], elems[keep], signs[keep]
     order = np.lexsort((elems, nodes))
-    ptr = np.zeros(n_nodes + 1, np.int64)
-    np.add.at(ptr, nodes + 1, 1)
-    return np.cumsum(ptr), elems[order].astype(np.int64), signs[order]
+    rows, counts = np.unique(nodes, return_counts=True)
+    ptr = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+    return rows.astype(np.int64), ptr, elems[order].astype(np.int64), signs[order]

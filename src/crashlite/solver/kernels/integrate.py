@@ -30,7 +30,11 @@ def kick_nodes(v, f, inv_mass, fixed, dt_v, before, w, moment, inv_j, fixed_rot)
 
 
 @njit(cache=True, parallel=True)
-def update_position(x, v, dt):
+def update_position(x, v, dt, f, moment):
+    """x += dt · v, and the nodal forces and moments zeroed for the force
+    pass that follows: one pass over the nodes instead of three."""
     for i in prange(x.shape[0]):
         for j in range(3):
             x[i, j] += dt * v[i, j]
+            f[i, j] = 0.0
+            moment[i, j] = 0.0
