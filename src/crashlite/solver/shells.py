@@ -165,13 +165,14 @@ def new_state(s: ShellSet, n_nodes: int) -> ShellState:
     )
 
 
-def compute_forces(s: ShellSet, st: ShellState, x: np.ndarray, v: np.ndarray, w: np.ndarray, dt: float) -> None:
+def compute_forces(s: ShellSet, st: ShellState, x: np.ndarray, v: np.ndarray, w: np.ndarray, dt: float) -> float | None:
     """Advance the shells' state to t(n+1) and fill st.fe, st.me: the
     one-point elements and triangles (kernels.shell), then the fully
-    integrated ones (kernels.shell_full)."""
+    integrated ones (kernels.shell_full). Returns the smallest element step
+    where the one-point kernel had them all (else None: st.step has them)."""
     idx = st.full_idx
     if not len(idx):
-        _one_point(s, st, x, v, w, dt)
+        return _one_point(s, st, x, v, w, dt)
     elif len(idx) < len(s):
         keep = st.alive[idx].copy()
         st.alive[idx] = 2  # not the one-point kernel's: it leaves them as they are
@@ -214,8 +215,8 @@ def compute_forces(s: ShellSet, st: ShellState, x: np.ndarray, v: np.ndarray, w:
         )
 
 
-def _one_point(s: ShellSet, st: ShellState, x, v, w, dt: float) -> None:
-    shell_forces(
+def _one_point(s: ShellSet, st: ShellState, x, v, w, dt: float) -> float:
+    return shell_forces(
         x,
         v,
         w,
@@ -585,9 +586,10 @@ class ShellGroup(ElementGroup):
         self._mrows = self.st.me.reshape(-1, 3)
         self._dt = self.st.step
         self._fresh = False  # the kernel's steps are those of the current positions
+        self._dt_min = None  # their smallest, where the kernel returned it
 
     def forces(self, st: State) -> None:
-        compute_forces(self.s, self.st, st.x, st.v, st.w, st.dt)
+        self._dt_min = compute_forces(self.s, self.st, st.x, st.v, st.w, st.dt)
         self._fresh = True
         gather_corner_pair(self.st.node_ptr, self.st.corner_of, self._frows, st.f, self._mrows, st.moment)
 
@@ -606,6 +608,9 @@ class ShellGroup(ElementGroup):
     def critical_dt(self, st: State) -> float:
         """The smallest element step at st.x: the one the forces just
         computed (the time loop asks right after them), else computed."""
+        if self._fresh and self._dt_min is not None:
+            self._fresh = False
+            return float(self._dt_min)
         if not self._fresh:
             s = self.s
             shell_timestep(st.x, s.conn, s.tri, self.st.alive, s.mat_of, s.props, s.isdo, self._dt)

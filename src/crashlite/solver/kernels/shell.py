@@ -39,8 +39,8 @@ mass (rotary inertia m·A/8), so QM is the fraction of critical damping.
 Forces and moments ON the nodes go per element corner into fe, me
 (n, 4, 3); the fourth corner of a triangle stays zero. Nodes gather them
 in a fixed order (kernels.solid.gather_corners): results do not depend on
-the number of threads. Elements run in ``work.shape[0]`` fixed chunks,
-each with its own scratch rows, and within a chunk in blocks of BLOCK
+the number of threads. Elements run in N_CHUNKS fixed chunks,
+each with its thread's scratch rows, and within a chunk in blocks of BLOCK
 elements: the strain increments of all the block's points first, then
 their stresses in one pass that LLVM vectorises where the block is one
 material and one section
@@ -74,6 +74,7 @@ Arrays (n elements; units of the model, e.g. mm, t, s, N, MPa):
 
 import math
 
+import numba
 import numpy as np
 from numba import njit, prange
 
@@ -138,11 +139,14 @@ assert BLOCK * 10 <= W
 
 
 def scratch(nip_max: int) -> tuple[np.ndarray, ...]:
-    """Scratch of shell_forces, one row per chunk: points (N_CHUNKS,
-    plane_stress.N_ROWS·W) float64, geometry (N_CHUNKS, shell_block.N_G·BW)
-    float64; and the point number k of each block column (W,) int64 for
-    elements of nip_max points."""
-    return (np.zeros((N_CHUNKS, N_ROWS * W)), np.zeros((N_CHUNKS, N_G * BW)), np.arange(W, dtype=np.int64) % nip_max)
+    """Scratch of shell_forces, one row per thread of Numba's pool (a chunk
+    writes every slot it reads, so which row it gets cannot change a
+    result; a row per chunk put megabytes through the caches every cycle):
+    points (threads, plane_stress.N_ROWS·W) float64, geometry (threads,
+    shell_block.N_G·BW) float64; and the point number k of each block
+    column (W,) int64 for elements of nip_max points."""
+    rows = numba.config.NUMBA_NUM_THREADS
+    return (np.zeros((rows, N_ROWS * W)), np.zeros((rows, N_G * BW)), np.arange(W, dtype=np.int64) % nip_max)
 
 
 @njit(cache=True, inline="always")
@@ -515,12 +519,13 @@ def shell_forces(
     """One step of the shells (see the module docstring for the arrays):
     stresses, thickness, energies and state to t(n+1); corner forces fe
     and moments me ON the nodes; the elements' critical steps at x(n+1)
-    (the loop needs them next: one pass over the elements less)."""
+    (the loop needs them next: one pass over the elements less). Returns
+    the smallest of the steps (NaN if one is)."""
     n = conn.shape[0]
-    nc = points.shape[0]
+    nc = N_CHUNKS
     for ch in prange(nc):
-        pts = points[ch]
-        gc = geometry[ch]
+        pts = points[numba.get_thread_id()]
+        gc = geometry[numba.get_thread_id()]
         _elements(
             ch * n // nc,
             (ch + 1) * n // nc,
@@ -565,6 +570,12 @@ def shell_forces(
             me,
             step,
         )
+    smallest = np.inf  # what the time loop asks next: here rather than another pass from Python
+    for e in range(n):
+        if step[e] != step[e]:
+            return np.nan  # a NaN step: the loop stops with a diagnosis
+        smallest = min(smallest, step[e])
+    return smallest
 
 
 @njit(cache=True, inline="always")
