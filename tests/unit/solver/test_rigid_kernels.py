@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy.linalg import expm
 
-from crashlite.solver.kernels.rigid import body_drift, body_omega, rodrigues
+from crashlite.solver.kernels.rigid import body_drift, body_kick, body_omega, place_body, rodrigues
 from crashlite.solver.rigid import rotation
 
 
@@ -107,3 +107,42 @@ def test_out_of_reach_is_the_gap_against_twice_the_fastest_node():
     assert reach(zero, np.array([0.0, 1.0, 0.0]), 9.99 / r_max, 0.0)
     assert not reach(zero, zero, 0.0, -10.01)  # the wall's own speed
     assert reach(zero, zero, 0.0, 9.99)
+
+
+def test_body_kick_sums_forces_and_moments_about_the_cog_and_keeps_the_momenta_before():
+    rng = np.random.default_rng(5)
+    x, f, moment = rng.normal(size=(9, 3)), rng.normal(size=(9, 3)), rng.normal(size=(9, 3))
+    nodes = np.array([1, 4, 7], np.int64)
+    cog, mass, dt = rng.normal(size=3), 2.5, 1e-3
+    vel, mom = rng.normal(size=3), rng.normal(size=3)
+    vel0, mom0 = vel.copy(), mom.copy()
+    prev_v, prev_m, sums = np.zeros(3), np.zeros(3), np.zeros(6)
+    body_kick(f, x, moment, nodes, cog, True, mass, dt, vel, mom, prev_v, prev_m, sums)
+    force = f[nodes].sum(axis=0)
+    torque = np.cross(x[nodes] - cog, f[nodes]).sum(axis=0) + moment[nodes].sum(axis=0)
+    np.testing.assert_allclose(vel, vel0 + dt * force / mass, rtol=1e-14)
+    np.testing.assert_allclose(mom, mom0 + dt * torque, rtol=1e-14)
+    np.testing.assert_array_equal(prev_v, vel0)
+    np.testing.assert_array_equal(prev_m, mom0)
+
+
+def test_place_body_puts_the_nodes_on_the_rigid_motion():
+    rng = np.random.default_rng(6)
+    n = 6
+    x, v, rot_n, w_n = np.zeros((n, 3)), np.zeros((n, 3)), np.zeros((n, 3, 3)), np.zeros((n, 3))
+    nodes = np.array([0, 2, 5], np.int64)
+    r_body, cog, vel, mom = rng.normal(size=(3, 3)), rng.normal(size=3), rng.normal(size=3), rng.normal(size=3)
+    rot = rotation(rng.normal(size=3))
+    a = rng.normal(size=(3, 3))
+    inv_i = np.linalg.inv(a @ a.T + 3 * np.eye(3))
+    omega = np.zeros(3)
+    place_body(x, v, rot_n, w_n, nodes, r_body, cog, rot, vel, inv_i, mom, True, omega)
+    w = rot @ inv_i @ rot.T @ mom
+    arm = r_body @ rot.T
+    np.testing.assert_allclose(omega, w, rtol=1e-13)
+    np.testing.assert_allclose(x[nodes], cog + arm, rtol=1e-13)
+    np.testing.assert_allclose(v[nodes], vel + np.cross(w, arm), rtol=1e-13, atol=1e-14)
+    np.testing.assert_allclose(rot_n[nodes], np.broadcast_to(rot, (3, 3, 3)), rtol=1e-15)
+    np.testing.assert_allclose(w_n[nodes], np.broadcast_to(w, (3, 3)), rtol=1e-13)
+    others = np.setdiff1d(np.arange(n), nodes)
+    assert not x[others].any() and not v[others].any() and not w_n[others].any()  # only the members move
