@@ -374,3 +374,37 @@ def test_vectorised_block_equals_update_point(case, scale):
     np.testing.assert_array_equal(s1.reshape(-1, 5)[untouched], sig.reshape(-1, 5)[untouched])
     np.testing.assert_array_equal(e1.reshape(-1)[untouched], ep.reshape(-1)[untouched])
     np.testing.assert_array_equal(f1, ipfail)  # the caller marks failures
+
+
+@pytest.mark.parametrize("peak", [1.2, 8.0], ids=["above-static-below-dynamic", "above-dynamic"])
+def test_block_between_the_static_and_the_rate_scaled_yield(peak):
+    """Cowper–Symonds only raises the yield stress, so update_block first
+    tests a block against its static yield and scales by the rate only
+    where some point passes it: a point whose trial stress lies above the
+    static yield but below the rate-scaled one stays elastic (σ = the
+    trial, ε̄p kept), one above both yields; both as update_point."""
+    kind, row, curves, slots = BLOCK_CASES["cowper-symonds"]
+    pt = Point(kind, row, curves, slots)
+    dt = 1e-6
+    dex = np.array([1.2, peak]) * 250.0 / E  # trial σx = 1.2 and `peak` times the static yield
+    n = 2
+    de = np.stack([dex, -NU * dex, 0 * dex, 0 * dex, 0 * dex], axis=1)
+    rate = np.sqrt(2.0 / 3.0 * (1 + NU**2 + (1 - NU) ** 2)) * dex / dt
+    dynamic = 250.0 * (1.0 + (rate / 40.0) ** 0.2)
+    assert dynamic[0] > 2.0 * 300.0  # the first point is well inside the rate-scaled surface
+    P = np.zeros(ps.N_ROWS * ps.W)
+    for i in range(5):
+        P[(ps.R_D + i) * ps.W : (ps.R_D + i) * ps.W + n] = de[:, i]
+    sig, back, ep, ipf = np.zeros(5 * n), np.zeros(5 * n), np.zeros(n), np.zeros(n, np.int8)
+    kk = np.zeros(ps.W, np.int64)
+    ps.update_block(n, P, kk, 1, sig, back, ep, ipf, 0, pt.mtype, pt.props, 0, pt.mcurve, pt.cs, pt.ce, pt.cx, pt.cy,
+                    0.8333, dt)  # fmt: skip
+    assert P[ps.R_OK * ps.W] == 1.0 and P[ps.R_OK * ps.W + 1] == 1.0
+    assert sig[0] == pytest.approx(1.2 * 250.0, rel=1e-12) and ep[0] == 0.0  # elastic: the rate holds it
+    ref_sig, ref_back, ref_ep = np.zeros((n, 5)), np.zeros((n, 5)), np.zeros(n)
+    ps.update_points(pt.mtype, pt.props, pt.mcurve, pt.cs, pt.ce, pt.cx, pt.cy, np.zeros(n, np.int64), ref_sig,
+                     ref_back, ref_ep, de, dt, np.zeros(n), np.zeros(n, np.int8))  # fmt: skip
+    np.testing.assert_allclose(sig.reshape(n, 5), ref_sig, atol=1e-9 * np.abs(ref_sig).max())
+    np.testing.assert_allclose(ep, ref_ep, rtol=1e-9, atol=1e-14)
+    if peak > 3.5:
+        assert ep[1] > 0.0 and sig[5] < peak * 250.0  # the second point yields at its rate-scaled stress

@@ -434,10 +434,11 @@ W = 160  # columns: up to 16 elements of up to 10 points
 
 
 @njit(cache=True, error_model="numpy")
-def _yield_rows(n, P, kind, props, m, mc, cs, ce, cx, cy, dt):
+def _yield_rows(n, P, kind, props, m, mc, cs, ce, cx, cy, dt, rate):
     """R_Y, R_H, R_TOP of points 0 .. n-1 of P: the yield stress at ε̄p, its
     slope and the end of its segment (as _yield and curve_slope), scaled
-    by the rate factor of the step's strain rate."""
+    by the rate factor of the step's strain rate if ``rate`` (else
+    ``_rate_rows`` may scale them after)."""
     c = mc[m, C_LCSS]
     if kind == ELASTIC:
         for p in range(n):
@@ -464,6 +465,14 @@ def _yield_rows(n, P, kind, props, m, mc, cs, ce, cx, cy, dt):
             P[R_Y * W + p] = cy[i] + h * (P[R_EP * W + p] - cx[i])
             P[R_H * W + p] = h
             P[R_TOP * W + p] = cx[i + 1] if i < stop - 2 else math.inf
+    if rate:
+        _rate_rows(n, P, props, m, mc, cs, ce, cx, cy, dt)
+
+
+@njit(cache=True, error_model="numpy")
+def _rate_rows(n, P, props, m, mc, cs, ce, cx, cy, dt):
+    """R_Y and R_H of points 0 .. n-1 of P scaled by the rate factor of the
+    step's strain rate (rate_factor; 1 without rate effects)."""
     if mc[m, C_LCSR] >= 0 or (props[m, P_CS_C] > 0.0 and props[m, P_CS_P] > 0.0):
         for p in range(n):
             rf = rate_factor(
@@ -684,8 +693,15 @@ def update_block(n, P, kk, nk, sig, back, epsp, ipfail, base, mtype, props, m, m
         q5 = 5 * (base + p)
         for i in range(5):
             P[(R_B + i) * W + p] = back[q5 + i] if kinematic else 0.0
-    _yield_rows(n, P, kind, props, m, mc, cs, ce, cx, cy, dt)
-    if not _any_yields(n, P, c1, nu, g):
+    # Cowper–Symonds only raises the yield stress (1 + (ε̇/C)^(1/P) ≥ 1): a block that stays below its static
+    # yield is elastic whatever the rate, and skips a power a point (most of an elastic part's cost)
+    cowper = mc[m, C_LCSR] < 0 and props[m, P_CS_C] > 0.0 and props[m, P_CS_P] > 0.0
+    _yield_rows(n, P, kind, props, m, mc, cs, ce, cx, cy, dt, not cowper)
+    plastic = _any_yields(n, P, c1, nu, g)
+    if plastic and cowper:
+        _rate_rows(n, P, props, m, mc, cs, ce, cx, cy, dt)
+        plastic = _any_yields(n, P, c1, nu, g)
+    if not plastic:
         _elastic_block(n, P, c1, nu, g, e_mod, ks)
     else:
         _plastic_block(n, P, c1, nu, g, e_mod, ks, hk, fail)
