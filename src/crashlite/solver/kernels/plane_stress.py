@@ -522,17 +522,32 @@ def _trial(P, p, c1, nu, g):
     )
 
 
+@njit(cache=True, error_model="numpy", inline="always")
+def _trial_q(P, p, c1, nu, g):
+    """Von Mises measure of point p's elastic trial stress less its back stress."""
+    t0, t1, t2, t3, t4 = _trial(P, p, c1, nu, g)
+    x0, x1 = t0 - P[R_B * W + p], t1 - P[(R_B + 1) * W + p]
+    x2, x3, x4 = t2 - P[(R_B + 2) * W + p], t3 - P[(R_B + 3) * W + p], t4 - P[(R_B + 4) * W + p]
+    return math.sqrt(max(x0 * x0 - x0 * x1 + x1 * x1 + 3.0 * (x2 * x2 + x3 * x3 + x4 * x4), 0.0))
+
+
 @njit(cache=True, error_model="numpy")
 def _any_yields(n, P, c1, nu, g):
     """Whether the trial stress of any of points 0 .. n-1 of P is above yield."""
     count = 0
     for p in range(n):
-        t0, t1, t2, t3, t4 = _trial(P, p, c1, nu, g)
-        x0, x1 = t0 - P[R_B * W + p], t1 - P[(R_B + 1) * W + p]
-        x2, x3, x4 = t2 - P[(R_B + 2) * W + p], t3 - P[(R_B + 3) * W + p], t4 - P[(R_B + 4) * W + p]
-        q = math.sqrt(max(x0 * x0 - x0 * x1 + x1 * x1 + 3.0 * (x2 * x2 + x3 * x3 + x4 * x4), 0.0))
-        count += 1 if q > P[R_Y * W + p] else 0  # as _plastic_block's test
+        count += 1 if _trial_q(P, p, c1, nu, g) > P[R_Y * W + p] else 0  # as _plastic_block's test
     return count > 0
+
+
+@njit(cache=True, error_model="numpy")
+def _first_yields(n, P, c1, nu, g):
+    """``_any_yields`` stopping at the first point above yield: the test
+    after the rate factors, on a block where most points yield."""
+    for p in range(n):
+        if _trial_q(P, p, c1, nu, g) > P[R_Y * W + p]:
+            return True
+    return False
 
 
 @njit(cache=True, error_model="numpy")
@@ -700,7 +715,7 @@ def update_block(n, P, kk, nk, sig, back, epsp, ipfail, base, mtype, props, m, m
     plastic = _any_yields(n, P, c1, nu, g)
     if plastic and cowper:
         _rate_rows(n, P, props, m, mc, cs, ce, cx, cy, dt)
-        plastic = _any_yields(n, P, c1, nu, g)
+        plastic = _first_yields(n, P, c1, nu, g)
     if not plastic:
         _elastic_block(n, P, c1, nu, g, e_mod, ks)
     else:
