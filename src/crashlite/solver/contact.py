@@ -211,7 +211,9 @@ class ContactGroup(ElementGroup):
         self._since += 1
         if self._since >= c.bsort or 2.0 * kc.max_displacement(st.x, self.x_sort, self.involved) > self.margin:
             self._sort(st.x)
-        p_old, p_new, deepest = kc.contact_cycle(
+        p_old = kc.power(self.rows, self.rnode, self.gap, st.v)  # forces of t(n) at v(n+½)
+        kc.segment_boxes(st.x, c.seg, self._reach, self._box)
+        kc.contact_forces(
             st.x,
             st.v,
             float(st.dt),
@@ -227,7 +229,6 @@ class ContactGroup(ElementGroup):
             c.depth,
             c.msize,
             self.alive,
-            self._reach,
             self._box,
             self._cptr,
             self._cand,
@@ -239,10 +240,8 @@ class ContactGroup(ElementGroup):
             self.rnode,
             self.gap,
             self.offset,
-            c.node_side,
-            st.f,
-            self.resultant,
         )
+        p_new, deepest = kc.scatter(self.rows, self.rnode, self.gap, st.v, c.node_side, st.f, self.resultant)
         # work of the contact forces over the step (trapezoid); stored and dissipated energy count positive
         self.energy[0] -= 0.5 * float(st.dt) * (p_old + p_new)
         self.max_gap = max(self.max_gap, deepest)

@@ -87,7 +87,7 @@ class DiscreteGroup(ElementGroup):
             for a, z in ((d.ucurve_start, zi), (d.ucurve_stop, zi), (d.yield_t, zf), (d.yield_c, zf))
         )
         self.energy = np.zeros(ne)
-        self._rows, self._ptr, self._elem, self._sign = incidence(n_nodes, d.n1, d.n2)
+        self._rows, self._ptr, self._elem, self._sign = incidence(d.n1, d.n2)
 
     def forces(self, st: State) -> None:
         d = self.d

@@ -50,16 +50,14 @@ class RigidBody:
     rot: np.ndarray  # (3, 3) body-to-world rotation
     held_v: np.ndarray | None = None  # (3, 3) rows: held translation directions, zero rows free (MAT_RIGID)
     held_w: np.ndarray | None = None  # (3, 3) rows: held rotation axes, zero rows free
-    prev: tuple | None = None  # (velocity, momentum) before the last kick (once ``kicked``)
-    kicked: bool = False
+    prev: tuple | None = None  # (velocity, momentum) before the last kick
     # (j, 3) unit axes (body frame) about which the nodes' masses give no inertia (a point mass: all
     # three, masses on a line: that line); a tiny inertia stands in for it (see build_body)
     no_inertia: np.ndarray | None = None
 
     def __post_init__(self):
         self.rot = np.array(self.rot, dtype=float)  # its own C-ordered copy: the drift kernel turns it in place
-        self.prev = (np.zeros(3), np.zeros(3))
-        self._sums, self._omega = np.zeros(6), np.zeros(3)  # scratch of kick and place
+        self._sums, self._omega, self._drift = np.zeros(6), np.zeros(3), np.zeros((3, 3, 3))  # kernels' scratch
 
     def inverse_mass_at(self, r: np.ndarray) -> np.ndarray:
         """(k,) largest inverse effective mass of points at arms r (k, 3)
@@ -112,7 +110,7 @@ class RigidBody:
         """Kinetic energy at the full step: the mean of the half-step momenta
         around it (as for the nodes)."""
         vel, mom = self.velocity, self.momentum
-        if self.kicked:
+        if self.prev is not None:
             vel, mom = 0.5 * (vel + self.prev[0]), 0.5 * (mom + self.prev[1])
         w = self.omega(mom=mom)
         return 0.5 * self.mass * float(vel @ vel) + 0.5 * float(w @ mom)
@@ -124,13 +122,14 @@ class RigidBody:
 
     def kick(self, f: np.ndarray, x: np.ndarray, dt_v: float, moment: np.ndarray | None = None) -> None:
         """Change momenta by the nodal forces (and moments) over dt_v."""
+        if self.prev is None:
+            self.prev = (np.zeros(3), np.zeros(3))  # filled by every kick from now on
         p_vel, p_mom = self.prev
         use_moment = moment is not None
         body_kick(
             f, x, moment if use_moment else f, self.nodes, self.cog, use_moment, self.mass, dt_v,
             self.velocity, self.momentum, p_vel, p_mom, self._sums,
         )  # fmt: skip
-        self.kicked = True
         if self.held_v is not None or self.held_w is not None:
             self.constrain()
 
@@ -156,10 +155,7 @@ class RigidBody:
     def drift(self, dt: float) -> None:
         """Move and turn the body over dt (kernels.rigid.body_drift: ω at
         mid-rotation)."""
-        scratch = getattr(self, "_drift_scratch", None)
-        if scratch is None:
-            scratch = self._drift_scratch = np.zeros((3, 3, 3))
-        body_drift(self.cog, self.velocity, self.momentum, self.rot, self.inverse_inertia_body(), dt, scratch)
+        body_drift(self.cog, self.velocity, self.momentum, self.rot, self.inverse_inertia_body(), dt, self._drift)
 
     def place(self, x: np.ndarray, v: np.ndarray, rot: np.ndarray | None = None, w: np.ndarray | None = None) -> None:
         """Write member node positions and velocities (and, for nodes with

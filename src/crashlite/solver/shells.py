@@ -608,13 +608,12 @@ class ShellGroup(ElementGroup):
     def critical_dt(self, st: State) -> float:
         """The smallest element step at st.x: the one the forces just
         computed (the time loop asks right after them), else computed."""
-        if self._fresh and self._dt_min is not None:
-            self._fresh = False
+        fresh, self._fresh = self._fresh, False
+        if fresh and self._dt_min is not None:  # the one-point kernel returned it
             return float(self._dt_min)
-        if not self._fresh:
+        if not fresh:
             s = self.s
             shell_timestep(st.x, s.conn, s.tri, self.st.alive, s.mat_of, s.props, s.isdo, self._dt)
-        self._fresh = False
         return float(self._dt.min()) if len(self._dt) else np.inf
 
     @property

@@ -13,7 +13,7 @@ def test_gather_over_the_elements_own_nodes_is_the_scatter_add():
     n1 = rng.integers(0, 12, ne)  # few nodes, many elements on each
     n2 = rng.integers(-1, 12, ne)  # -1: to ground
     fe = rng.normal(size=(ne, 3))
-    rows, ptr, elem, sign = incidence(n_nodes, n1, n2)
+    rows, ptr, elem, sign = incidence(n1, n2)
     assert set(rows) == set(n1) | set(n2[n2 >= 0])  # only the nodes with elements
     out = rng.normal(size=(n_nodes, 3))
     want = out.copy()
@@ -31,7 +31,7 @@ def test_gather_sums_in_element_order():
     n1 = np.array([3, 3, 3], np.int64)
     n2 = np.array([-1, -1, -1], np.int64)
     fe = np.array([[1e16, 0, 0], [1.0, 0, 0], [-1e16, 0, 0]])
-    rows, ptr, elem, sign = incidence(5, n1, n2)
+    rows, ptr, elem, sign = incidence(n1, n2)
     out = np.zeros((5, 3))
     gather(rows, ptr, elem, sign, fe, out)
     assert out[3, 0] == (1e16 + 1.0) - 1e16  # 0.0 in this order (1.0 in another)

@@ -623,54 +623,6 @@ def scatter(rows, rnode, gap, v, node_side, f, resultant):
 
 
 @njit(cache=True)
-def contact_cycle(
-    x,
-    v,
-    dt,
-    snode,
-    sthick,
-    sk,
-    smass,
-    seg,
-    mthick,
-    mk,
-    mmass,
-    onesided,
-    depth,
-    msize,
-    alive,
-    reach,
-    box,
-    cptr,
-    cand,
-    prm,
-    ft,
-    prev,
-    side,
-    rows,
-    rnode,
-    gap,
-    offset,
-    node_side,
-    f,
-    resultant,
-):
-    """One cycle of a contact in one call (each call from Python costs more
-    than these loops on a car's contact): the power of the last forces at
-    the velocities v (``power``), the segments' boxes grown by ``reach``
-    (``segment_boxes``), the new rows (``contact_forces``), and f +=
-    them (``scatter``). Returns (power before, power after, largest gap)."""
-    p_old = power(rows, rnode, gap, v)
-    segment_boxes(x, seg, reach, box)
-    contact_forces(
-        x, v, dt, snode, sthick, sk, smass, seg, mthick, mk, mmass, onesided, depth, msize, alive, box, cptr, cand,
-        prm, ft, prev, side, rows, rnode, gap, offset,
-    )  # fmt: skip
-    p_new, deepest = scatter(rows, rnode, gap, v, node_side, f, resultant)
-    return p_old, p_new, deepest
-
-
-@njit(cache=True)
 def link_alive(rows, alive, el, across, seg_alive):
     """Segments follow their elements: seg_alive[rows[k]] = alive[el[k]] == 1
     (the element that owns the segment), or, ``across``, is cleared where

@@ -213,14 +213,14 @@ def energy_step(force_old, force, elong_old, elong, elem_energy):
         elong_old[e] = elong[e]
 
 
-def incidence(n_nodes: int, n1: np.ndarray, n2: np.ndarray):
+def incidence(n1: np.ndarray, n2: np.ndarray):
     """CSR over the nodes that have elements -> (element, sign): (rows,
     row_ptr, elem_of, sign_of), sign +1 where the node is n1, -1 where n2."""
     ne = len(n1)
     nodes = np.concatenate([n1, n2])
     elems = np.concatenate([np.arange(ne), np.arange(ne)])
     signs = np.concatenate([np.ones(ne), -np.ones(ne)])
-    keep = (nodes >= 0) & (nodes < n_nodes)
+    keep = nodes >= 0
     nodes, elems, signs = nodes[keep], elems[keep], signs[keep]
     order = np.lexsort((elems, nodes))
     rows, counts = np.unique(nodes, return_counts=True)

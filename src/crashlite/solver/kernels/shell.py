@@ -524,8 +524,9 @@ def shell_forces(
     n = conn.shape[0]
     nc = N_CHUNKS
     for ch in prange(nc):
-        pts = points[numba.get_thread_id()]
-        gc = geometry[numba.get_thread_id()]
+        tid = numba.get_thread_id()
+        pts = points[tid]
+        gc = geometry[tid]
         _elements(
             ch * n // nc,
             (ch + 1) * n // nc,
