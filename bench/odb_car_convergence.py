@@ -13,7 +13,7 @@ against the finest detailed size's, and the ISO/TS 18571 rating of the
 barrier's energy history against it. Usage::
 
     python bench/odb_car_convergence.py [--sizes 100 75 50] [--mesh-size 60] [--end-ms 80] [--front generic]
-        [--elform 1] [--shear-failure 1.5] [--shear-slip 0] [--height-size MM] [--width-size MM]
+        [--elform 1] [--shear-failure 1.5] [--shear-slip 0 [BUMPER]] [--height-size MM] [--width-size MM]
 """
 
 from __future__ import annotations
@@ -63,7 +63,13 @@ def main() -> None:
     ap.add_argument("--front", default="generic", choices=("generic", "stiff"), help="the car's front")
     ap.add_argument("--elform", type=int, default=1, help="*SECTION_SOLID ELFORM of the honeycomb (1 or 2)")
     ap.add_argument("--shear-failure", type=float, default=1.5, help="the honeycomb's SSEF (0: none)")
-    ap.add_argument("--shear-slip", type=float, default=0.0, help="tear slip [mm] (SSEF = slip / size) instead")
+    ap.add_argument(
+        "--shear-slip",
+        type=float,
+        nargs="+",
+        default=[0.0],
+        help="tear slip [mm] (SSEF = slip / size) instead; two values: main block, bumper (--shear-slip 19.14 6.4: a cell)",
+    )
     ap.add_argument(
         "--height-size", type=float, default=None, help="element size across the height [mm] (default: the size)"
     )
@@ -74,7 +80,11 @@ def main() -> None:
     sizes = sorted(args.sizes, reverse=True)
     v = generic_vehicle(args.mesh_size, front=args.front)
     boxes = [v.part_ids[f"crash box {s}"] for s in ("left", "right")]
-    honeycomb = {"elform": args.elform, "shear_failure": args.shear_failure, "shear_slip": args.shear_slip}
+    honeycomb = {
+        "elform": args.elform,
+        "shear_failure": args.shear_failure,
+        "shear_slip": (args.shear_slip[0], args.shear_slip[-1]),
+    }
     if args.height_size:
         honeycomb["height_size"] = args.height_size
     if args.width_size:

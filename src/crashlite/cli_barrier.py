@@ -55,7 +55,7 @@ def _impactor(args) -> int:
         args.output,
         b,
         pl,
-        Impactor(args.mass / 1000.0, kmh(args.speed), args.overlap / 100.0),
+        Impactor(args.mass / 1000.0, kmh(args.speed), args.overlap / 100.0, height=args.height and tuple(args.height)),
         end_time=args.end_time / 1000.0,
     )
     print(f"wrote {main} (and barrier.k): run it with `crashlite run {main} -o OUT`")
@@ -146,6 +146,13 @@ def add_commands(sub) -> None:
     i.add_argument("--speed", type=float, default=64.0, help="impact speed [km/h]")
     i.add_argument("--overlap", type=float, default=100.0, help="overlap [%% of the barrier width]")
     i.add_argument("--end-time", type=float, default=100.0, help="end time [ms]")
+    i.add_argument(
+        "--height",
+        type=float,
+        nargs=2,
+        metavar=("LOW", "HIGH"),
+        help="a strip impactor from LOW to HIGH mm above ground (a bumper beam's height: 390 500)",
+    )
     i.add_argument("--no-cladding", action="store_true", help="beams only")
     i.add_argument("--curves", type=Path, help="block curves of `crashlite barrier characterise` (curves.json)")
     i.set_defaults(func=_impactor)

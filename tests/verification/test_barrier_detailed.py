@@ -120,3 +120,18 @@ def test_width_size_refines_the_columns_only(tmp_path):
     assert yf[0] == yc[0] and yf[-1] == yc[-1]
     assert fine.solids > 1.9 * coarse.solids
     assert mf.mass_properties().mass == pytest.approx(mc.mass_properties().mass, rel=1e-9)
+
+
+def test_shear_slip_per_block_and_by_cell(tmp_path):
+    """shear_slip as (main block, bumper) sets each block's SSEF from its own
+    slip; "cell" takes each block's honeycomb cell (19.14 and 6.4 mm,
+    Directive 96/79/EC Annex 6): one cell of slip over the 50 mm face."""
+    spec = ODBSpec()
+    assert (spec.main.cell, spec.bumper.cell) == (19.14, 6.4)
+    for k, slip in enumerate(((19.14, 6.4), "cell")):
+        b = detailed_barrier(element_size=50.0, shear_slip=slip)
+        m = read_deck(b.write(tmp_path / f"d{k}.k"))
+        ssef = {
+            m.parts[p]["heading"].split(" ", 2)[-1]: float(m.materials[int(m.parts[p]["mid"])]["ssef"]) for p in m.parts
+        }
+        assert ssef == pytest.approx({"main block": 19.14 / 50.0, "bumper": 6.4 / 50.0})

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..units import SYSTEMS, UnitSystem
 from .simplified import Placement, SimplifiedBarrier, _Deck
-from .spec import COMPACTED_MODULUS, Block, ODBSpec
+from .spec import COMPACTED_MODULUS, Block, ODBSpec, per_block
 
 
 def _segments(bounds: list[float], size: float) -> np.ndarray:
@@ -93,7 +93,7 @@ def detailed_barrier(
     shear_modulus: float = 1.0,
     shear_strength: float = 0.5,
     shear_failure: float = 1.5,
-    shear_slip: float = 0.0,
+    shear_slip: float | tuple[float, float] | str = 0.0,
     cladding: bool = False,
     title: str = "detailed ODB",
     elform: int = 1,
@@ -217,6 +217,7 @@ def detailed_barrier(
         hexes(nid_b, pid["bumper"])
         blocks.append(bmp)
     dk.kw("ELEMENT_SOLID", *elems)
+    slip = {b.name: b.cell for b in blocks} if shear_slip == "cell" else per_block(shear_slip)
     for k, b in enumerate(blocks):
         p = pid[b.name]
         dk.kw("PART", [f"{title} {b.name}"], [p, p, p, 0, p if elform == 1 else 0])
@@ -234,7 +235,7 @@ def detailed_barrier(
             lateral,
             shear_modulus,
             shear_strength,
-            shear_slip / across if shear_slip > 0.0 else shear_failure,
+            slip[b.name] / across if slip[b.name] > 0.0 else shear_failure,
         )
     shells = []
     if cladding:

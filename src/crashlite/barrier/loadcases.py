@@ -26,13 +26,17 @@ DTMIN = 1e-3  # of the first step: a solid whose step falls below it is eroded (
 class Impactor:
     """A rigid impactor: mass [t], speed [mm/s], overlap as a fraction of the
     barrier width counted from ``y_min`` of the barrier, gap to the face [mm],
-    friction of its face (the wall's FRIC: 0 frictionless, 1 no sliding)."""
+    friction of its face (the wall's FRIC: 0 frictionless, 1 no sliding).
+    ``height``: (low, high) [mm above ground] of a strip impactor, a face
+    only as high as a car's bumper beam, whose top and bottom edges shear
+    the honeycomb as the beam's do (None: the barrier's whole height)."""
 
     mass: float = 5.0
     speed: float = kmh(64.0)
     overlap: float = 1.0
     gap: float = 1.0
     friction: float = 0.0
+    height: tuple[float, float] | None = None
 
 
 def impactor_deck(
@@ -47,12 +51,16 @@ def impactor_deck(
     title: str = "rigid impactor on ODB",
 ) -> str:
     """Main deck text: the barrier include, the impactor wall, controls and
-    output requests (mm–t–s)."""
+    output requests (mm–t–s); ``z_range`` the wall's height above ground
+    unless the impactor gives its own."""
     if not 0.0 < impactor.overlap <= 1.0:
         raise ValueError(f"overlap must be in (0, 1], got {impactor.overlap}")
     d = placement.direction
     x0 = placement.x_face - d * impactor.gap
-    finite = impactor.overlap < 1.0
+    finite = impactor.overlap < 1.0 or impactor.height is not None
+    z_range = impactor.height or z_range
+    if not z_range[0] < z_range[1]:
+        raise ValueError(f"the impactor's height needs its low edge below its high one, got {z_range}")
     name = "RIGIDWALL_PLANAR_MOVING_FINITE" if finite else "RIGIDWALL_PLANAR_MOVING"
     dt = output_dt or end_time / 200.0
     fric = float(impactor.friction)
@@ -67,8 +75,8 @@ def impactor_deck(
         f"{x0!r},0.0,0.0,{x0 + d!r},0.0,0.0,{fric!r}",
     ]
     if finite:
-        z_lo, z_hi = (placement.z_ground + z for z in z_range)
-        y_lo = placement.y_min
+        z_lo, z_hi = (float(placement.z_ground + z) for z in z_range)  # repr of a NumPy float is no number
+        y_lo = float(placement.y_min)
         # wall origin at the lower corner on the y_min side; l along +y, m = n x l
         lenl = impactor.overlap * width
         if d > 0:  # n = +x, l = +y: m = +z

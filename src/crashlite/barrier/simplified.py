@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from ..units import SYSTEMS, UnitSystem
-from .spec import COMPACTED_MODULUS, Block, ODBSpec
+from .spec import COMPACTED_MODULUS, Block, ODBSpec, per_block
 
 
 @dataclass(frozen=True)
@@ -203,9 +203,9 @@ def simplified_barrier(
     bumper: bool = True,
     cladding: bool = True,
     title: str = "simplified ODB",
-    shear_strength: float = 0.0,
+    shear_strength: float | tuple[float, float] = 0.0,
     shear_modulus: float = 1.0,
-    shear_slip: float = 90.0,
+    shear_slip: float | tuple[float, float] = 90.0,
 ) -> SimplifiedBarrier:
     """The paper's simplified barrier: ``n_width × n_main`` main-block beams
     and ``n_width × n_bumper`` bumper beams (36 × 20 + 36 × 10 = 1080 by
@@ -290,14 +290,15 @@ def simplified_barrier(
     beams(main, planes["block_front"], planes["back"], share_main)
     if bmp is not None:
         beams(bmp, planes["bumper_front"], planes["block_front"][brow], np.outer(tzb, ty) / bmp.area)
-    if shear_strength > 0:
-        fronts = [(main, planes["block_front"], y, z)] + (
-            [(bmp, planes["bumper_front"], y, z[brow])] if bmp is not None else []
-        )
-        link_parts = iter(range(o + 10, o + 10**8))  # above the blocks' and sheets' parts (o + 1 .. o + 4)
-        for b, nid, yy, zz in fronts:
+    strength, slip = per_block(shear_strength), per_block(shear_slip)
+    fronts = [(main, planes["block_front"], y, z)] + (
+        [(bmp, planes["bumper_front"], y, z[brow])] if bmp is not None else []
+    )
+    link_parts = iter(range(o + 10, o + 10**8))  # above the blocks' and sheets' parts (o + 1 .. o + 4)
+    for b, nid, yy, zz in fronts:
+        if strength[b.name] > 0:
             elems += _shear_links(
-                dk, b, nid, yy, zz, vid, eid, link_parts, shear_strength, shear_modulus, shear_slip, title, u
+                dk, b, nid, yy, zz, vid, eid, link_parts, strength[b.name], shear_modulus, slip[b.name], title, u
             )
     dk.kw("ELEMENT_DISCRETE", *elems)
     n_beams = len(elems)

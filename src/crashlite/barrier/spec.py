@@ -23,6 +23,13 @@ from ..units import UnitSystem
 COMPACTED_MODULUS = 1000.0
 
 
+def per_block(value: float | tuple[float, float]) -> dict[str, float]:
+    """A value given once for both blocks or as (main block, bumper), by
+    block name."""
+    main, bumper = value if isinstance(value, (tuple, list)) else (value, value)
+    return {"main block": float(main), "bumper": float(bumper)}
+
+
 @dataclass(frozen=True)
 class BlockCurve:
     """Force–crush characteristic of a whole honeycomb block (crush positive).
@@ -75,6 +82,7 @@ class Block:
     strength: float  # crush strength of the honeycomb [MPa]
     density: float  # honeycomb density [t/mm³]
     curve: BlockCurve
+    cell: float = 0.0  # honeycomb cell size [mm] (Directive 96/79/EC Annex 6; 0: not given)
 
     @property
     def z_high(self) -> float:
@@ -118,7 +126,9 @@ class Cladding:
 
 
 def _main_block() -> Block:
-    return Block("main block", 1000.0, 650.0, 450.0, 200.0, 0.342, 2.86e-11, BlockCurve(plateau=230e3, peak=230e3))
+    return Block(
+        "main block", 1000.0, 650.0, 450.0, 200.0, 0.342, 2.86e-11, BlockCurve(plateau=230e3, peak=230e3), cell=19.14
+    )
 
 
 def _bumper() -> Block:
@@ -131,6 +141,7 @@ def _bumper() -> Block:
         1.711,
         8.26e-11,
         BlockCurve(plateau=500e3, peak=1000e3, rise=3.0, drop_end=12.0),
+        cell=6.4,
     )
 
 

@@ -121,3 +121,21 @@ def test_cli_writes_a_placed_barrier_and_a_runnable_impactor_case(tmp_path, caps
     )
     assert main(["run", str(tmp_path / "imp" / "main.k"), "-o", str(tmp_path / "out"), "--quiet"]) == 0
     assert "energy ratio" in capsys.readouterr().out
+
+
+def test_cli_strip_impactor_is_a_finite_wall_of_the_strips_height(tmp_path):
+    """`crashlite barrier impactor --height 390 500`: the moving wall is
+    finite, its lower edge 390 mm above ground and 110 mm high, even at
+    100 % overlap (the full width)."""
+    from crashlite.barrier.loadcases import Impactor, impactor_deck
+    from crashlite.barrier.simplified import Placement
+    from crashlite.cli import main
+
+    assert main(["barrier", "impactor", "-o", str(tmp_path), "--height", "390", "500", "--end-time", "5"]) == 0
+    lines = (tmp_path / "main.k").read_text().splitlines()
+    k = lines.index("*RIGIDWALL_PLANAR_MOVING_FINITE")
+    origin, extent = lines[k + 2].split(","), lines[k + 3].split(",")
+    assert float(origin[2]) == 390.0
+    assert [float(v) for v in extent[3:5]] == [1000.0, 110.0]
+    with pytest.raises(ValueError, match="low edge below"):
+        impactor_deck("b.k", 1, Placement(), Impactor(height=(500.0, 390.0)), 0.01)
