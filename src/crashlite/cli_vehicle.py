@@ -232,10 +232,21 @@ def _honeycomb_arguments(p) -> None:
     )
     p.add_argument(
         "--barrier-slip",
-        type=float,
+        type=_slip,
         default=None,
-        help="slip at which the detailed honeycomb's cell walls tear [mm] (default: its shear failure strain)",
+        help="slip at which the detailed honeycomb's cell walls tear [mm], or 'cell': each block's own cell "
+        "(19.14 and 6.4 mm) (default: its shear failure strain)",
     )
+
+
+def _slip(text: str) -> float | str:
+    """--barrier-slip: a slip in mm or 'cell'."""
+    if text == "cell":
+        return text
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"a slip in mm or 'cell', got {text!r}") from None
 
 
 def _honeycomb(args) -> dict:

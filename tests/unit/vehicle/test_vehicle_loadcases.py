@@ -120,7 +120,8 @@ def test_cli_generic_and_load_cases(tmp_path, capsys):
 def test_cli_detailed_barrier_options(tmp_path):
     """--barrier-face-size refines the detailed honeycomb's rows and columns
     (depth at --barrier-size), --barrier-elform and --barrier-slip reach its
-    *SECTION_SOLID and SSEF (slip over the element size)."""
+    *SECTION_SOLID and SSEF (slip over the element size; 'cell': each
+    block's own cell, 19.14 and 6.4 mm); a slip that is neither is refused."""
     car = tmp_path / "car.k"
     assert main(["vehicle", "generic", "-o", str(car), "--mesh-size", "100"]) == 0
     base = ["vehicle", "loadcase", "odb", str(car), "--barrier", "detailed", "--barrier-size", "100"]
@@ -134,3 +135,8 @@ def test_cli_detailed_barrier_options(tmp_path):
     assert {int(r["elform"]) for r in fine.sections.values()} == {2}
     assert {int(r["elform"]) for r in coarse.sections.values()} == {1}
     assert [float(m["ssef"]) for m in slip.materials.values()] == pytest.approx([0.9, 0.9])
+    assert main([*base, "-o", str(tmp_path / "cell.k"), "--barrier-slip", "cell"]) == 0
+    cell = read_deck(tmp_path / "cell_barrier.k")
+    assert sorted(float(m["ssef"]) for m in cell.materials.values()) == pytest.approx([0.064, 0.1914])
+    with pytest.raises(SystemExit):
+        main([*base, "-o", str(tmp_path / "bad.k"), "--barrier-slip", "wide"])
