@@ -107,7 +107,11 @@ def detailed_barrier(
     transverse shears, as fractions of the crush values, ``shear_failure``
     their failure strain (SSEF; 0: none), or ``shear_slip`` [mm] > 0 the
     slip across an element at which its walls tear (SSEF = ``shear_slip``
-    / ``element_size``, the same tear at any size). Beside a car's imprint
+    / ``element_size``, the same tear at any size; one value, a (main
+    block, bumper) pair, or "cell": each block's honeycomb cell, 19.14 and
+    6.4 mm, a bound on the slip a cell wall carries, with which the
+    barrier converges under the car to about 5 %; docs/validation.md).
+    Beside a car's imprint
     the honeycomb is dragged along until its walls tear: with a strain
     fixed per element, over a band an element wide as far as 1.5
     elements, so the barrier's energy under the generic car falls from
