@@ -55,7 +55,12 @@ def _impactor(args) -> int:
         args.output,
         b,
         pl,
-        Impactor(args.mass / 1000.0, kmh(args.speed), args.overlap / 100.0, height=args.height and tuple(args.height)),
+        Impactor(
+            args.mass / 1000.0,
+            kmh(args.speed),
+            args.overlap / 100.0,
+            height=tuple(args.height) if args.height else None,
+        ),
         end_time=args.end_time / 1000.0,
     )
     print(f"wrote {main} (and barrier.k): run it with `crashlite run {main} -o OUT`")

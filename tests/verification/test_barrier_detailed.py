@@ -135,3 +135,15 @@ def test_shear_slip_per_block_and_by_cell(tmp_path):
             m.parts[p]["heading"].split(" ", 2)[-1]: float(m.materials[int(m.parts[p]["mid"])]["ssef"]) for p in m.parts
         }
         assert ssef == pytest.approx({"main block": 19.14 / 50.0, "bumper": 6.4 / 50.0})
+
+
+def test_shear_slip_refuses_what_it_cannot_place():
+    """A tear by "cell" needs every block's cell size (a zero would fall back
+    to SSEF unnoticed), and a per-block slip is one value or two."""
+    from dataclasses import replace
+
+    spec = ODBSpec()
+    with pytest.raises(ValueError, match="cell size"):
+        detailed_barrier(replace(spec, bumper=replace(spec.bumper, cell=0.0)), element_size=100.0, shear_slip="cell")
+    with pytest.raises(ValueError, match="main block, bumper"):
+        detailed_barrier(element_size=100.0, shear_slip=(19.14, 6.4, 1.0))

@@ -222,6 +222,8 @@ def detailed_barrier(
         blocks.append(bmp)
     dk.kw("ELEMENT_SOLID", *elems)
     slip = {b.name: b.cell for b in blocks} if shear_slip == "cell" else per_block(shear_slip)
+    if shear_slip == "cell" and not all(slip.values()):  # a zero slip would silently mean SSEF instead
+        raise ValueError(f"shear_slip='cell' needs each block's cell size, got {slip}")
     for k, b in enumerate(blocks):
         p = pid[b.name]
         dk.kw("PART", [f"{title} {b.name}"], [p, p, p, 0, p if elform == 1 else 0])

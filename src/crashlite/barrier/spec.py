@@ -26,8 +26,10 @@ COMPACTED_MODULUS = 1000.0
 def per_block(value: float | tuple[float, float]) -> dict[str, float]:
     """A value given once for both blocks or as (main block, bumper), by
     block name."""
-    main, bumper = value if isinstance(value, (tuple, list)) else (value, value)
-    return {"main block": float(main), "bumper": float(bumper)}
+    pair = tuple(value) if isinstance(value, (tuple, list)) else (value, value)
+    if len(pair) != 2:
+        raise ValueError(f"one value or (main block, bumper), got {value!r}")
+    return {"main block": float(pair[0]), "bumper": float(pair[1])}
 
 
 @dataclass(frozen=True)
