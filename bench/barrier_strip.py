@@ -46,11 +46,16 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--faces", type=float, nargs="+", default=[50.0, 35.0, 25.0], help="detailed face sizes [mm]")
     ap.add_argument("--depth", type=float, default=50.0, help="detailed element size along the depth [mm]")
-    ap.add_argument("--slip", nargs="+", default=["cell"], help="tear slip: 'cell' or MM [BUMPER MM]")
+    ap.add_argument(
+        "--slip",
+        nargs="+",
+        default=["cell"],
+        help="tear slip: 'cell', 'columns' (split columns torn at one cell) or MM [BUMPER MM]",
+    )
     ap.add_argument("--elform", type=int, default=2, help="the honeycomb's *SECTION_SOLID ELFORM")
     ap.add_argument("--end-ms", type=float, default=20.0, help="simulated time [ms]")
     args = ap.parse_args()
-    slip = "cell" if args.slip == ["cell"] else (float(args.slip[0]), float(args.slip[-1]))
+    slip = args.slip[0] if args.slip[0] in ("cell", "columns") else (float(args.slip[0]), float(args.slip[-1]))
     spec, imp, end = ODBSpec(), Impactor(height=STRIP), args.end_ms / 1e3
     cases = {}
     with tempfile.TemporaryDirectory() as tmp:

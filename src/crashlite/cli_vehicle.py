@@ -235,18 +235,19 @@ def _honeycomb_arguments(p) -> None:
         type=_slip,
         default=None,
         help="slip at which the detailed honeycomb's cell walls tear [mm], or 'cell': each block's own cell "
-        "(19.14 and 6.4 mm) (default: its shear failure strain)",
+        "(19.14 and 6.4 mm), or 'columns': columns on nodes of their own joined by links torn at one cell, no "
+        "element deleted (default: its shear failure strain)",
     )
 
 
 def _slip(text: str) -> float | str:
-    """--barrier-slip: a slip in mm or 'cell'."""
-    if text == "cell":
+    """--barrier-slip: a slip in mm, 'cell' or 'columns'."""
+    if text in ("cell", "columns"):
         return text
     try:
         return float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"a slip in mm or 'cell', got {text!r}") from None
+        raise argparse.ArgumentTypeError(f"a slip in mm, 'cell' or 'columns', got {text!r}") from None
 
 
 def _honeycomb(args) -> dict:

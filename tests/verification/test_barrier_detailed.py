@@ -147,3 +147,64 @@ def test_shear_slip_refuses_what_it_cannot_place():
         detailed_barrier(replace(spec, bumper=replace(spec.bumper, cell=0.0)), element_size=100.0, shear_slip="cell")
     with pytest.raises(ValueError, match="main block, bumper"):
         detailed_barrier(element_size=100.0, shear_slip=(19.14, 6.4, 1.0))
+
+
+def test_split_columns_own_their_nodes_and_link_every_shared_wall(tmp_path):
+    """shear_slip="columns": every column of elements (one across the face,
+    the block's depth) on nodes of its own, the copies where the shared
+    mesh had one node; the elements never fail in shear (SSEF 0: no
+    element is deleted), and the links along the depth cover every wall
+    two columns of a block share, once: the scale factors of each block's
+    tension (or compression) links sum to its walls' area, (columns − 1)
+    × height × depth + (rows − 1) × width × depth, each at τ = 0.5 × the
+    block's plateau stress up to a slip of its cell. Mass unchanged."""
+    spec = ODBSpec()
+    shared = detailed_barrier(element_size=100.0, shear_slip="cell")
+    b = detailed_barrier(element_size=100.0, shear_slip="columns")
+    ms, m = (read_deck(x.write(tmp_path / f"{n}.k")) for n, x in (("s", shared), ("c", b)))
+    assert m.mass_properties().mass == pytest.approx(ms.mass_properties().mass, rel=1e-9)
+    assert len(m.solids) == len(ms.solids)
+    xyz = {int(n): tuple(np.round(p, 6)) for n, p in zip(m.nodes.ids, m.nodes.xyz)}
+    # a node belongs to one column: its elements' (y, z) centres agree
+    cen = {}
+    for conn in m.solids.nodes:
+        c = tuple(np.round(m.nodes.xyz[conn, 1:].mean(axis=0), 3))
+        for n in conn:
+            cen.setdefault(int(n), set()).add(c)
+    assert max(len(v) for v in cen.values()) == 1
+    assert sorted(set(xyz.values())) == sorted({tuple(np.round(p, 6)) for p in ms.nodes.xyz})
+    assert [float(mat.get("ssef", 0.0)) for mat in m.materials.values() if mat.keyword == "MAT_HONEYCOMB"] == [0.0, 0.0]
+    heading = {p: m.parts[p]["heading"] for p in m.parts}
+    for pid, h in heading.items():  # each block's links hold τ = 0.5 × its plateau up to one cell of slip
+        if h.endswith("tension"):
+            blk = spec.bumper if "bumper" in h else spec.main
+            curve = m.curves[int(m.materials[int(m.parts[pid]["mid"])]["lcfd"])]
+            x, f = np.asarray(curve.rows["a1"], float), np.asarray(curve.rows["o1"], float)
+            assert f.max() == pytest.approx(0.5 * blk.plateau_stress, rel=1e-9)
+            assert x[f > 0.5 * f.max()].max() == pytest.approx(blk.cell, rel=1e-9)
+    scale: dict = {}
+    for pid, s in zip(m.discretes.pid, m.discretes.scale):
+        h = heading[int(pid)]
+        if h.endswith("tension"):
+            block = "bumper" if "bumper" in h else "main block"
+            scale[block] = scale.get(block, 0.0) + float(s)
+    y = np.unique(ms.nodes.xyz[:, 1])
+    for blk in (spec.main, spec.bumper):
+        z = ms.nodes.xyz[:, 2] - Placement().z_ground
+        zb = np.unique(np.round(z[(z >= blk.z_low - 1e-6) & (z <= blk.z_high + 1e-6)], 6))
+        want = (len(y) - 2) * blk.height * blk.depth + (len(zb) - 2) * blk.width * blk.depth
+        assert scale[blk.name] == pytest.approx(want, rel=1e-9)
+
+
+def test_split_columns_crush_at_the_plateau_when_pushed_alike(tmp_path):
+    """Under a wall over the whole face every column crushes alike: the
+    links stay unloaded, and the split main block crushes at the honeycomb's
+    plateau (within 2 %) with its energy balanced (1 %), as the shared
+    mesh does."""
+    pl = Placement()
+    b = detailed_barrier(placement=pl, element_size=75.0, bumper=False, shear_slip="columns")
+    main = write_impactor_case(tmp_path, b, pl, Impactor(mass=5.0, speed=5000.0), end_time=0.02)
+    r = run(main, output_dt=2e-4)
+    f = -r.wall_force[:, 0, 0]
+    assert np.median(f[r.time > 0.002]) == pytest.approx(ODBSpec().main.curve.plateau, rel=0.02)
+    assert np.all(np.abs(r.energy_ratio - 1.0) < 0.01)

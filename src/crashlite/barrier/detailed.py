@@ -21,7 +21,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..units import SYSTEMS, UnitSystem
-from .simplified import Placement, SimplifiedBarrier, _Deck
+from .columns import Column, split_columns
+from .simplified import Placement, SimplifiedBarrier, _Deck, shear_link_springs
 from .spec import COMPACTED_MODULUS, Block, ODBSpec, per_block
 
 
@@ -81,6 +82,31 @@ def _honeycomb(
     dk.kw("DEFINE_CURVE", [lct], (0.0, tau * s), (1.0, tau * s))
 
 
+def _column_links(dk, split, blocks, slip, strength, modulus, lateral, d, eid, u, o, title) -> None:
+    """The links of split columns (``columns.split_columns``): along the
+    depth the cell walls' shear, ``strength`` × the plateau stress torn at
+    the block's ``slip`` (its cell); across, the honeycomb's weak in-plane
+    stiffness (``lateral`` × the crush modulus over the columns' spacing),
+    elastic."""
+    vid = {"x": o + 1, "y": o + 2, "z": o + 3}
+    for key, vec in (("x", (float(d), 0.0, 0.0)), ("y", (0.0, 1.0, 0.0)), ("z", (0.0, 0.0, 1.0))):
+        dk.kw("DEFINE_SD_ORIENTATION", [vid[key], 0, *vec])
+    part_ids = iter(range(o + 10, o + 10**8))  # above the blocks' parts and curves (o + 1 .. o + 6)
+    L, F = u.length, u.force
+    rows = []
+    for b in blocks:
+        links = [(n1, n2, h, a) for (name, _, h), pairs in split.links.items() if name == b.name for n1, n2, a in pairs]
+        if not links:
+            continue
+        rows += shear_link_springs(dk, b, links, vid["x"], eid, part_ids, strength, modulus, slip[b.name], title, u)
+        pid = next(part_ids)
+        dk.kw("PART", [f"{title} {b.name} across the cells"], [pid, pid, pid])
+        dk.kw("SECTION_DISCRETE", [pid, 0])
+        dk.kw("MAT_SPRING_ELASTIC", [pid, lateral * b.crush_modulus * F / L**2])
+        rows += [(next(eid), pid, n1, n2, vid[k], a / h * L) for n1, n2, h, a in links for k in ("y", "z")]
+    dk.kw("ELEMENT_DISCRETE", *rows)
+
+
 def detailed_barrier(
     spec: ODBSpec | None = None,
     placement: Placement | None = None,
@@ -110,7 +136,12 @@ def detailed_barrier(
     / ``element_size``, the same tear at any size; one value, a (main
     block, bumper) pair, or "cell": each block's honeycomb cell, 19.14 and
     6.4 mm, a bound on the slip a cell wall carries, with which the
-    barrier converges under the car to about 5 %; docs/validation.md).
+    barrier converges under the car to about 5 %; docs/validation.md), or
+    "columns": every column of elements on nodes of its own, neighbours
+    joined by links along the depth at ``shear_strength`` torn at one
+    cell, weak and elastic across (``columns.py``); no element fails in
+    shear, so a tear keeps the column's crush, which LS-DYNA's deletion of
+    a failed MAT_026 element takes away. Not with ``cladding``.
     Beside a car's imprint
     the honeycomb is dragged along until its walls tear: with a strain
     fixed per element, over a band an element wide as far as 1.5
@@ -203,8 +234,10 @@ def detailed_barrier(
     eid = iter(range(o + 1, o + 10**9))
     elems = []
 
-    def hexes(nid, part):
-        a = nid  # (s, z, y): depth, height, width
+    cols = []  # the same elements as grid records, for split_columns
+
+    def hexes(nid, part, name, s, k0):
+        a = nid  # (s, z, y): depth, height, width; row k of a is row k0 + k of the barrier's grid
         for i in range(a.shape[0] - 1):
             for k in range(a.shape[1] - 1):
                 for j in range(a.shape[2] - 1):
@@ -214,16 +247,45 @@ def detailed_barrier(
                     if d < 0:  # mirrored along x: keep a positive volume
                         bot, top = bot[::-1], top[::-1]
                     elems.append((next(eid), part, *bot, *top))
+                    K = k0 + k
+                    cols.append(
+                        Column(
+                            elems[-1][0],
+                            part,
+                            tuple(elems[-1][2:]),
+                            name,
+                            i,
+                            (K, j),
+                            (a[i, k, j + 1], a[i + 1, k, j + 1], a[i, k + 1, j + 1], a[i + 1, k + 1, j + 1]),
+                            (a[i, k + 1, j], a[i + 1, k + 1, j], a[i, k + 1, j + 1], a[i + 1, k + 1, j + 1]),
+                            y[j + 1] - y[j],
+                            z[K + 1] - z[K],
+                            s[i + 1] - s[i],
+                        )
+                    )
 
-    hexes(nid_main, pid[main.name])  # "bumper" when the bumper is characterised alone
+    hexes(nid_main, pid[main.name], main.name, s_main, 0)  # "bumper" when the bumper is characterised alone
     blocks = [main]
     if bmp is not None:
-        hexes(nid_b, pid["bumper"])
+        hexes(nid_b, pid["bumper"], bmp.name, s_b, int(kb[0]))
         blocks.append(bmp)
+    slip = {b.name: b.cell for b in blocks} if shear_slip in ("cell", "columns") else per_block(shear_slip)
+    if shear_slip in ("cell", "columns") and not all(slip.values()):  # a zero slip would silently mean SSEF
+        raise ValueError(f"shear_slip={shear_slip!r} needs each block's cell size, got {slip}")
+    split = None
+    if shear_slip == "columns":
+        if cladding:
+            raise ValueError(
+                "shear_slip='columns' splits the face nodes the cladding would share; use one or the other"
+            )
+        split = split_columns(cols, o + 1 + len(rows))
+        elems = split.elements
+        where = {r[0]: r[1:] for r in rows}
+        copies = [(n, *where[orig]) for n, orig in split.new_nodes]
+        dk.kw("NODE", *copies)
+        rows += copies
+        planes = {k: np.array([c for n in v for c in split.copies[n]], np.int64) for k, v in planes.items()}
     dk.kw("ELEMENT_SOLID", *elems)
-    slip = {b.name: b.cell for b in blocks} if shear_slip == "cell" else per_block(shear_slip)
-    if shear_slip == "cell" and not all(slip.values()):  # a zero slip would silently mean SSEF instead
-        raise ValueError(f"shear_slip='cell' needs each block's cell size, got {slip}")
     for k, b in enumerate(blocks):
         p = pid[b.name]
         dk.kw("PART", [f"{title} {b.name}"], [p, p, p, 0, p if elform == 1 else 0])
@@ -241,8 +303,10 @@ def detailed_barrier(
             lateral,
             shear_modulus,
             shear_strength,
-            slip[b.name] / across if slip[b.name] > 0.0 else shear_failure,
+            0.0 if split else slip[b.name] / across if slip[b.name] > 0.0 else shear_failure,
         )
+    if split:
+        _column_links(dk, split, blocks, slip, shear_strength, shear_modulus, lateral, d, eid, u, o, title)
     shells = []
     if cladding:
         c = spec.cladding

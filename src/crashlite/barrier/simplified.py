@@ -145,20 +145,9 @@ def _num(v) -> str:
 
 def _shear_links(dk, b: Block, nid, y, z, vid, eid, part_ids, strength, modulus, slip, title, u) -> list:
     """Shear links between the front nodes of neighbouring columns of block
-    ``b`` (``nid`` rows along z, columns along y): each resists the two
-    columns' relative crush δ along the depth axis (orientation ``vid``) as
-    the shared cell walls do: τ·A with A the shared face (the tributary
-    width across the link × the block's depth) and τ = ``strength`` × the
-    plateau stress, reached at δ = τh/G (h the columns' spacing, G =
-    ``modulus`` × the crush modulus), torn at δ = ``slip``
-    (*MAT_SPRING_INELASTIC, unloading elastic; a torn link keeps a
-    millionth of its force, so it stays on its envelope). *MAT_S08 carries
-    one sign: each link is two elements, tension only and compression
-    only, one part (material, curve) each per spacing h with IDs from the
-    iterator ``part_ids``, element scale factor A. Returns the
-    ELEMENT_DISCRETE rows."""
-    tau = strength * b.plateau_stress
-    g = modulus * b.crush_modulus
+    ``b`` (``nid`` rows along z, columns along y), each over the shared
+    face (the tributary width across the link × the block's depth); see
+    ``shear_link_springs``. Returns the ELEMENT_DISCRETE rows."""
     ty, tz = _tributary(y), _tributary(z)
     links = []  # (n1, n2, h, area)
     for i in range(nid.shape[0]):
@@ -167,6 +156,23 @@ def _shear_links(dk, b: Block, nid, y, z, vid, eid, part_ids, strength, modulus,
     for i in range(nid.shape[0] - 1):
         for j in range(nid.shape[1]):
             links.append((nid[i, j], nid[i + 1, j], z[i + 1] - z[i], ty[j] * b.depth))
+    return shear_link_springs(dk, b, links, vid, eid, part_ids, strength, modulus, slip, title, u)
+
+
+def shear_link_springs(dk, b: Block, links, vid, eid, part_ids, strength, modulus, slip, title, u) -> list:
+    """Springs for shear links ``links`` [(n1, n2, h, area)] of block ``b``:
+    each resists the two nodes' relative crush δ along the depth axis
+    (orientation ``vid``) as shared cell walls do: τ·A with A the shared
+    wall's ``area`` and τ = ``strength`` × the plateau stress, reached at
+    δ = τh/G (h the columns' spacing, G = ``modulus`` × the crush modulus),
+    torn at δ = ``slip`` (*MAT_SPRING_INELASTIC, unloading elastic; a torn
+    link keeps a millionth of its force, so it stays on its envelope).
+    *MAT_S08 carries one sign: each link is two elements, tension only and
+    compression only, one part (material, curve) each per spacing h with
+    IDs from the iterator ``part_ids``, element scale factor A. Returns the
+    ELEMENT_DISCRETE rows."""
+    tau = strength * b.plateau_stress
+    g = modulus * b.crush_modulus
     L, F = u.length, u.force
     stress = F / L**2
     parts = {}
