@@ -13,7 +13,7 @@ against the finest detailed size's, and the ISO/TS 18571 rating of the
 barrier's energy history against it. Usage::
 
     python bench/odb_car_convergence.py [--sizes 100 75 50] [--mesh-size 60] [--end-ms 80] [--front generic]
-        [--elform 1] [--shear-failure 1.5] [--shear-slip 0 [BUMPER]] [--height-size MM] [--width-size MM]
+        [--elform 1] [--shear-failure 1.5] [--shear-slip 0 [BUMPER] | cell | columns] [--height-size MM] [--width-size MM]
 """
 
 from __future__ import annotations
@@ -65,10 +65,10 @@ def main() -> None:
     ap.add_argument("--shear-failure", type=float, default=1.5, help="the honeycomb's SSEF (0: none)")
     ap.add_argument(
         "--shear-slip",
-        type=float,
         nargs="+",
-        default=[0.0],
-        help="tear slip [mm] (SSEF = slip / size) instead; two values: main block, bumper (--shear-slip 19.14 6.4: a cell)",
+        default=["0"],
+        help="tear slip [mm] (SSEF = slip / size) instead; two values: main block, bumper (--shear-slip 19.14 6.4: a "
+        "cell); or 'cell', or 'columns' (split columns, links torn at a cell)",
     )
     ap.add_argument(
         "--height-size", type=float, default=None, help="element size across the height [mm] (default: the size)"
@@ -83,7 +83,9 @@ def main() -> None:
     honeycomb = {
         "elform": args.elform,
         "shear_failure": args.shear_failure,
-        "shear_slip": (args.shear_slip[0], args.shear_slip[-1]),
+        "shear_slip": args.shear_slip[0]
+        if args.shear_slip[0] in ("cell", "columns")
+        else (float(args.shear_slip[0]), float(args.shear_slip[-1])),
     }
     if args.height_size:
         honeycomb["height_size"] = args.height_size

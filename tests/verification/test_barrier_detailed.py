@@ -31,15 +31,17 @@ def test_detailed_main_block_crushes_on_its_honeycomb_curve(tmp_path):
     assert r.hourglass.max() < 0.1 * r.internal.max()
 
 
-def test_whole_detailed_barrier_with_the_bumper_crushes_at_the_full_face_plateau(tmp_path):
+@pytest.mark.parametrize("slip", [0.0, "columns"])
+def test_whole_detailed_barrier_with_the_bumper_crushes_at_the_full_face_plateau(tmp_path, slip):
     """Bumper bonded ahead of the block, 1000 t wall at 10 m/s (constant
     speed), 60 mm solids: once the wall reaches the block face beside the
     bumper, the force is the main block's plateau over the whole face
     (230 kN within 10 %) until compaction: the transverse shear of the cell
     walls keeps the columns behind the bumper's edge from tilting (with
-    weak shear they carried half of it)."""
+    weak shear they carried half of it). The same with split columns,
+    whose links carry the walls' shear until a cell of slip."""
     pl = Placement()
-    b = detailed_barrier(placement=pl, element_size=60.0)
+    b = detailed_barrier(placement=pl, element_size=60.0, shear_slip=slip)
     main = write_impactor_case(tmp_path, b, pl, Impactor(mass=1000.0, speed=10000.0), end_time=0.033)
     r = run(main, output_dt=2e-4)
     f = -r.wall_force[:, 0, 0]
@@ -152,8 +154,9 @@ def test_shear_slip_refuses_what_it_cannot_place():
 def test_split_columns_own_their_nodes_and_link_every_shared_wall(tmp_path):
     """shear_slip="columns": every column of elements (one across the face,
     the block's depth) on nodes of its own, the copies where the shared
-    mesh had one node; the elements never fail in shear (SSEF 0: no
-    element is deleted), and the links along the depth cover every wall
+    mesh had one node; an element tears (SSEF) only at a cell of slip
+    across itself, where a load's edge cuts through it; the links along
+    the depth cover every wall
     two columns of a block share, once: the scale factors of each block's
     tension (or compression) links sum to its walls' area, (columns − 1)
     × height × depth + (rows − 1) × width × depth, each at τ = 0.5 × the
@@ -173,7 +176,8 @@ def test_split_columns_own_their_nodes_and_link_every_shared_wall(tmp_path):
             cen.setdefault(int(n), set()).add(c)
     assert max(len(v) for v in cen.values()) == 1
     assert sorted(set(xyz.values())) == sorted({tuple(np.round(p, 6)) for p in ms.nodes.xyz})
-    assert [float(mat.get("ssef", 0.0)) for mat in m.materials.values() if mat.keyword == "MAT_HONEYCOMB"] == [0.0, 0.0]
+    ssef = [float(mat["ssef"]) for mat in m.materials.values() if mat.keyword == "MAT_HONEYCOMB"]
+    assert ssef == pytest.approx([spec.main.cell / 100.0, spec.bumper.cell / 100.0])
     heading = {p: m.parts[p]["heading"] for p in m.parts}
     for pid, h in heading.items():  # each block's links hold τ = 0.5 × its plateau up to one cell of slip
         if h.endswith("tension"):
