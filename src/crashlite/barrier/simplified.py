@@ -16,6 +16,7 @@ test rig). Honeycomb mass is lumped on the beam ends.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -159,7 +160,19 @@ def _shear_links(dk, b: Block, nid, y, z, vid, eid, part_ids, strength, modulus,
     return shear_link_springs(dk, b, links, vid, eid, part_ids, strength, modulus, slip, title, u)
 
 
-def shear_link_springs(dk, b: Block, links, vid, eid, part_ids, strength, modulus, slip, title, u) -> list:
+def shear_link_springs(
+    dk: _Deck,
+    b: Block,
+    links: list,
+    vid: int,
+    eid: Iterator[int],
+    part_ids: Iterator[int],
+    strength: float,
+    modulus: float,
+    slip: float,
+    title: str,
+    u: UnitSystem,
+) -> list:
     """Springs for shear links ``links`` [(n1, n2, h, area)] of block ``b``:
     each resists the two nodes' relative crush δ along the depth axis
     (orientation ``vid``) as shared cell walls do: τ·A with A the shared
