@@ -25,7 +25,7 @@ import numpy as np
 
 from crashlite.barrier import ODBSpec, simplified_barrier
 from crashlite.barrier.cases import rate_pair, run_case
-from crashlite.barrier.detailed import detailed_barrier
+from crashlite.barrier.detailed import SLIP_WORDS, detailed_barrier
 from crashlite.barrier.loadcases import Impactor
 
 WINDOWS = ((0, 50), (50, 100), (100, 200), (200, 300), (300, 350))  # [mm] of travel
@@ -55,7 +55,7 @@ def main() -> None:
     ap.add_argument("--elform", type=int, default=2, help="the honeycomb's *SECTION_SOLID ELFORM")
     ap.add_argument("--end-ms", type=float, default=20.0, help="simulated time [ms]")
     args = ap.parse_args()
-    slip = args.slip[0] if args.slip[0] in ("cell", "columns") else (float(args.slip[0]), float(args.slip[-1]))
+    slip = args.slip[0] if args.slip[0] in SLIP_WORDS else (float(args.slip[0]), float(args.slip[-1]))
     spec, imp, end = ODBSpec(), Impactor(height=STRIP), args.end_ms / 1e3
     cases = {}
     with tempfile.TemporaryDirectory() as tmp:

@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from crashlite.barrier.detailed import SLIP_WORDS
 from crashlite.solver import run
 from crashlite.solver.loop import RunError
 from crashlite.vehicle.car.generic import generic_vehicle
@@ -84,7 +85,7 @@ def main() -> None:
         "elform": args.elform,
         "shear_failure": args.shear_failure,
         "shear_slip": args.shear_slip[0]
-        if args.shear_slip[0] in ("cell", "columns")
+        if args.shear_slip[0] in SLIP_WORDS
         else (float(args.shear_slip[0]), float(args.shear_slip[-1])),
     }
     if args.height_size:

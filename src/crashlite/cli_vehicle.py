@@ -242,7 +242,9 @@ def _honeycomb_arguments(p) -> None:
 
 def _slip(text: str) -> float | str:
     """--barrier-slip: a slip in mm, 'cell' or 'columns'."""
-    if text in ("cell", "columns"):
+    from .barrier.detailed import SLIP_WORDS
+
+    if text in SLIP_WORDS:
         return text
     try:
         return float(text)

@@ -28,9 +28,7 @@ from dataclasses import dataclass, field
 class Column:
     """One element of a column-split block: its grid position and faces."""
 
-    eid: int
-    part: int
-    nodes: tuple  # the 8 original node IDs
+    element: tuple  # (eid, part, n1..n8) as written for the shared mesh
     block: str
     layer: int  # index along the depth within its block
     col: tuple[int, int]  # (row along z, column along y), in the barrier's grid
@@ -48,15 +46,14 @@ class Split:
     elements: list = field(default_factory=list)  # (eid, part, n1..n8)
     new_nodes: list = field(default_factory=list)  # (id, original id)
     copies: dict = field(default_factory=dict)  # original id -> [ids]
-    # (block, axis, h) -> [(copy 1, copy 2, wall area)]; axis "y" or "z": the wall's normal
-    links: dict = field(default_factory=lambda: defaultdict(list))
+    links: dict = field(default_factory=lambda: defaultdict(list))  # block -> [(copy 1, copy 2, h, wall area)]
 
 
 def split_columns(elems: list[Column], next_id: int) -> Split:
     """Each column its own node copies (the first column to use a node
     keeps its ID), and at every node of a wall two columns share, the pair
-    of copies with the node's share of the wall (a quarter of each element
-    face it bounds)."""
+    of copies with the columns' spacing h and the node's share of the wall
+    (a quarter of each element face it bounds)."""
     out = Split()
     copy: dict = {}
     taken: set = set()
@@ -74,22 +71,21 @@ def split_columns(elems: list[Column], next_id: int) -> Split:
         return copy[key]
 
     for e in elems:
-        out.elements.append((e.eid, e.part, *[node(n, e.col) for n in e.nodes]))
+        out.elements.append((*e.element[:2], *[node(n, e.col) for n in e.element[2:]]))
     present = {(e.block, e.layer, e.col) for e in elems}
     spacing_y = {e.col[1]: e.dy for e in elems}
     spacing_z = {e.col[0]: e.dz for e in elems}
     share: dict = defaultdict(float)
     for e in elems:
         k, j = e.col
-        for axis, nxt, face, area in (
-            ("y", (k, j + 1), e.plus_y, e.dz * e.ds),
-            ("z", (k + 1, j), e.plus_z, e.dy * e.ds),
+        for nxt, face, area, h in (
+            ((k, j + 1), e.plus_y, e.dz * e.ds, 0.5 * (e.dy + spacing_y.get(j + 1, 0.0))),
+            ((k + 1, j), e.plus_z, e.dy * e.ds, 0.5 * (e.dz + spacing_z.get(k + 1, 0.0))),
         ):
             if (e.block, e.layer, nxt) not in present:  # a free face: nothing beside it in this block
                 continue
-            h = 0.5 * (spacing_y[j] + spacing_y[j + 1]) if axis == "y" else 0.5 * (spacing_z[k] + spacing_z[k + 1])
             for n in face:
-                share[(e.block, axis, round(h, 6), copy[(n, e.col)], copy[(n, nxt)])] += 0.25 * area
-    for (block, axis, h, a, b), area in share.items():
-        out.links[(block, axis, h)].append((a, b, area))
+                share[(e.block, round(h, 6), copy[(n, e.col)], copy[(n, nxt)])] += 0.25 * area
+    for (block, h, a, b), area in share.items():
+        out.links[block].append((a, b, h, area))
     return out

@@ -25,6 +25,9 @@ from .columns import Column, split_columns
 from .simplified import Placement, SimplifiedBarrier, _Deck, shear_link_springs
 from .spec import COMPACTED_MODULUS, Block, ODBSpec, per_block
 
+COLUMNS = "columns"  # shear_slip: split columns joined by links torn at one cell
+SLIP_WORDS = ("cell", COLUMNS)  # the tear slips given by a word rather than in mm
+
 
 def _segments(bounds: list[float], size: float) -> np.ndarray:
     """Grid coordinates through every bound, cells close to ``size``."""
@@ -95,7 +98,7 @@ def _column_links(dk, split, blocks, slip, strength, modulus, lateral, d, eid, u
     L, F = u.length, u.force
     rows = []
     for b in blocks:
-        links = [(n1, n2, h, a) for (name, _, h), pairs in split.links.items() if name == b.name for n1, n2, a in pairs]
+        links = split.links.get(b.name)
         if not links:
             continue
         rows += shear_link_springs(dk, b, links, vid["x"], eid, part_ids, strength, modulus, slip[b.name], title, u)
@@ -236,7 +239,7 @@ def detailed_barrier(
     eid = iter(range(o + 1, o + 10**9))
     elems = []
 
-    cols = []  # the same elements as grid records, for split_columns
+    cols = []  # the same elements as grid records, for split_columns (only when splitting)
 
     def hexes(nid, part, name, s, k0):
         a = nid  # (s, z, y): depth, height, width; row k of a is row k0 + k of the barrier's grid
@@ -249,12 +252,12 @@ def detailed_barrier(
                     if d < 0:  # mirrored along x: keep a positive volume
                         bot, top = bot[::-1], top[::-1]
                     elems.append((next(eid), part, *bot, *top))
+                    if shear_slip != COLUMNS:
+                        continue
                     K = k0 + k
                     cols.append(
                         Column(
-                            elems[-1][0],
-                            part,
-                            tuple(elems[-1][2:]),
+                            elems[-1],
                             name,
                             i,
                             (K, j),
@@ -271,11 +274,11 @@ def detailed_barrier(
     if bmp is not None:
         hexes(nid_b, pid["bumper"], bmp.name, s_b, int(kb[0]))
         blocks.append(bmp)
-    slip = {b.name: b.cell for b in blocks} if shear_slip in ("cell", "columns") else per_block(shear_slip)
-    if shear_slip in ("cell", "columns") and not all(slip.values()):  # a zero slip would silently mean SSEF
+    slip = {b.name: b.cell for b in blocks} if shear_slip in SLIP_WORDS else per_block(shear_slip)
+    if shear_slip in SLIP_WORDS and not all(slip.values()):  # a zero slip would silently mean SSEF
         raise ValueError(f"shear_slip={shear_slip!r} needs each block's cell size, got {slip}")
     split = None
-    if shear_slip == "columns":
+    if shear_slip == COLUMNS:
         if cladding:
             raise ValueError(
                 "shear_slip='columns' splits the face nodes the cladding would share; use one or the other"
