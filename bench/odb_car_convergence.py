@@ -14,6 +14,12 @@ barrier's energy history against it. Usage::
 
     python bench/odb_car_convergence.py [--sizes 100 75 50] [--mesh-size 60] [--end-ms 80] [--front generic]
         [--elform 1] [--shear-failure 1.5] [--shear-slip 0 [BUMPER] | cell | columns] [--height-size MM] [--width-size MM]
+        [--beams 36 20 10] [--save DIR] [--reference DIR ...]
+
+``--save DIR`` keeps each run's results (``Results.save``) in DIR/<run>;
+``--reference DIR`` adds such a saved detailed run (of the same car) as a
+row without running it again: ``--sizes`` (none) ``--beams …`` compares
+simplified barriers against a reference measured once.
 """
 
 from __future__ import annotations
@@ -28,6 +34,7 @@ import numpy as np
 from crashlite.barrier.detailed import SLIP_WORDS
 from crashlite.solver import run
 from crashlite.solver.loop import RunError
+from crashlite.solver.results import Results
 from crashlite.vehicle.car.generic import generic_vehicle
 from crashlite.vehicle.car.loadcases import odb_deck, vehicle_info
 from crashlite.verify.curves import make_pair
@@ -58,7 +65,7 @@ def _figures(r, barrier_parts: np.ndarray, boxes: list[int]) -> dict:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--sizes", type=float, nargs="+", default=[100.0, 75.0, 50.0], help="barrier element sizes [mm]")
+    ap.add_argument("--sizes", type=float, nargs="*", default=[100.0, 75.0, 50.0], help="barrier element sizes [mm]")
     ap.add_argument("--mesh-size", type=float, default=60.0, help="the car's element size [mm]")
     ap.add_argument("--end-ms", type=float, default=80.0, help="simulated time [ms]")
     ap.add_argument("--front", default="generic", choices=("generic", "stiff"), help="the car's front")
@@ -77,8 +84,14 @@ def main() -> None:
     ap.add_argument(
         "--width-size", type=float, default=None, help="element size across the width [mm] (default: the size)"
     )
+    ap.add_argument(
+        "--beams", type=int, nargs=3, default=None, metavar=("WIDTH", "MAIN", "BUMPER"), help="simplified barrier grid"
+    )
+    ap.add_argument("--save", type=Path, default=None, help="keep each run's results in DIR/<run>")
+    ap.add_argument("--reference", type=Path, nargs="*", default=[], help="saved detailed runs to compare against")
     args = ap.parse_args()
     sizes = sorted(args.sizes, reverse=True)
+    beams = dict(zip(("n_width", "n_main", "n_bumper"), args.beams)) if args.beams else None
     v = generic_vehicle(args.mesh_size, front=args.front)
     boxes = [v.part_ids[f"crash box {s}"] for s in ("left", "right")]
     honeycomb = {
@@ -96,7 +109,14 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         car = v.write(Path(tmp) / "car.k")
         first_barrier_id = 2 * vehicle_info(car).id_offset  # odb_deck's barrier IDs start above it
-        for kind, size in [("detailed", s) for s in sizes] + [("simplified", sizes[-1])]:
+
+        def add(name: str, r) -> None:
+            barrier_parts = np.asarray(r.part_ids)[np.asarray(r.part_ids) > first_barrier_id]
+            rows[name], hist[name] = _figures(r, barrier_parts, boxes)
+
+        for ref in args.reference:
+            add(f"detailed {ref.name}", Results.load(ref))
+        for kind, size in [("detailed", s) for s in sizes] + [("simplified", sizes[-1] if sizes else 0.0)]:
             name = f"detailed {size:g} mm" if kind == "detailed" else "simplified"
             t0 = time.perf_counter()
             deck = odb_deck(
@@ -104,8 +124,9 @@ def main() -> None:
                 Path(tmp) / f"{kind}_{size:g}.k",
                 barrier=kind,
                 end_time=args.end_ms / 1e3,
-                element_size=size,
+                element_size=size or 20.0,
                 honeycomb=honeycomb,
+                beams=beams,
             )
             try:
                 r = run(deck, out=Path(tmp) / f"run_{kind}_{size:g}", quiet=True)
@@ -113,12 +134,13 @@ def main() -> None:
                 r = e.results
                 name += f" (stopped {1e3 * r.time[-1]:.1f} ms)"
                 print(f"{name}: {e}", flush=True)
-            barrier_parts = np.asarray(r.part_ids)[np.asarray(r.part_ids) > first_barrier_id]
-            rows[name], hist[name] = _figures(r, barrier_parts, boxes)
+            if args.save:
+                r.save(args.save / (f"{kind}_{size:g}" if kind == "detailed" else "simplified"))
+            add(name, r)
             print(f"{name}: {time.perf_counter() - t0:.0f} s", flush=True)
     keys = list(next(iter(rows.values())))
     print(
-        f"\ncar {args.mesh_size:g} mm ({args.front} front), ODB 40 % 64 km/h to {args.end_ms:g} ms; honeycomb {honeycomb}"
+        f"\ncar {args.mesh_size:g} mm ({args.front} front), ODB 40 % 64 km/h to {args.end_ms:g} ms; honeycomb {honeycomb}; beams {beams}"
     )
     print(f"{'':32s}" + "".join(f"{k:>20s}" for k in keys))
     for name, f in rows.items():

@@ -179,6 +179,7 @@ def test_split_columns_own_their_nodes_and_link_every_shared_wall(tmp_path):
     ssef = [float(mat["ssef"]) for mat in m.materials.values() if mat.keyword == "MAT_HONEYCOMB"]
     assert ssef == pytest.approx([spec.main.cell / 100.0, spec.bumper.cell / 100.0])
     heading = {p: m.parts[p]["heading"] for p in m.parts}
+    assert set(m.discretes.pf.tolist()) == {1}  # tens of thousands of links: left out of DEFORC
     for pid, h in heading.items():  # each block's links hold τ = 0.5 × its plateau up to one cell of slip
         if h.endswith("tension"):
             blk = spec.bumper if "bumper" in h else spec.main

@@ -108,6 +108,7 @@ def test_shear_links_are_the_cell_walls_between_columns(tmp_path):
     links = _links(m, b)
     assert len(links) == 2 * (35 * 20 + 36 * 19)  # a tension and a compression element each
     d = m.discretes
+    assert np.all(d.pf[links] == 1) and np.all(np.delete(d.pf, links) == 0)  # DEFORC prints the beams only
     area = d.scale[links]
     along_y = np.isclose(m.nodes.xyz[d.nodes[links, 0], 2], m.nodes.xyz[d.nodes[links, 1], 2])
     main = spec.main

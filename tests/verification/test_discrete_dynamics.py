@@ -582,3 +582,20 @@ def test_general_nonlinear_spring_unloads_on_its_shifted_curve(tmp_path):
     assert delta[i] == pytest.approx(9.6, abs=0.01) and force[i] == pytest.approx(80.0, abs=3.0)  # unloaded
     assert force[-1] == pytest.approx(300.0, rel=1e-3)  # back on the loading curve
     assert r.internal[-1] == pytest.approx(2700.0, rel=5e-3)
+
+
+def test_print_flag_leaves_a_spring_out_of_deforc_and_changes_nothing(tmp_path):
+    """*ELEMENT_DISCRETE PF 1: LS-DYNA leaves the element out of DEFORC
+    (a barrier writes its thousands of links so). Two equal springs in
+    parallel oscillate at sqrt(2K/M) whether printed or not, to the last
+    bit; with PF 1 on the second, only the first's history is kept."""
+    mats = "\n".join(_parts(["*MAT_SPRING_ELASTIC", f"1,{K}"]))
+    both = run(_deck(tmp_path, ["1,1,1,2", "2,1,1,2"], mats, end=0.2), output_dt=1e-3)
+    one = run(_deck(tmp_path, ["1,1,1,2", "2,1,1,2,0,1.0,1"], mats, end=0.2), output_dt=1e-3)
+    np.testing.assert_array_equal(one.final_x, both.final_x)
+    np.testing.assert_array_equal(one.discrete_ids, [1])
+    np.testing.assert_array_equal(one.discrete_force[:, 0], both.discrete_force[:, 0])
+    ux = one.node_displacement[:, 0, 0]
+    w = math.sqrt(2 * K / M)
+    assert np.max(ux) == pytest.approx(1000.0 / w, rel=5e-3)
+    np.testing.assert_allclose(one.discrete_force[:, 0], K * ux, rtol=1e-12, atol=1e-9)

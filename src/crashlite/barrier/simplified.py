@@ -183,7 +183,7 @@ def shear_link_springs(
     *MAT_S08 carries one sign: each link is two elements, tension only and
     compression only, one part (material, curve) each per spacing h with
     IDs from the iterator ``part_ids``, element scale factor A. Returns the
-    ELEMENT_DISCRETE rows."""
+    ELEMENT_DISCRETE rows, with PF 1: thousands of links, left out of DEFORC."""
     tau = strength * b.plateau_stress
     g = modulus * b.crush_modulus
     L, F = u.length, u.force
@@ -207,7 +207,7 @@ def shear_link_springs(
                 dk.kw("MAT_SPRING_INELASTIC", [pid, pid, g / h * F / L**3, -sign])
                 dk.kw("DEFINE_CURVE", [pid], *pts)
         for pid in parts[key]:
-            rows.append((next(eid), pid, n1, n2, vid, area * L**2))
+            rows.append((next(eid), pid, n1, n2, vid, area * L**2, 1))  # PF 1: not in DEFORC
     return rows
 
 

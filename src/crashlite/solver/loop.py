@@ -74,6 +74,7 @@ class _Recorder:
         self.rows: dict[str, list] = {}
         self.cycle = 0
         self.discrete = groups[0]
+        self.printed = s.discrete_printed  # DEFORC's discretes (PF 0)
         self.contacts = [g for g in groups if g.kind == "contact"]  # rcforc: force on each slave side
         self.flagged: set = set()  # contacts warned about negative sliding energy
         self.warnings: list[str] = []
@@ -113,8 +114,8 @@ class _Recorder:
             external=work,
             time_step=st.dt,
             cycle=self.cycle,
-            force=d.force.copy(),
-            elong=d.elong.copy(),
+            force=d.force[self.printed] if self.printed is not None else d.force.copy(),
+            elong=d.elong[self.printed] if self.printed is not None else d.elong.copy(),
             wall_force=self.walls.force[:, :3].copy(),
             wall_velocity=self.walls.velocity.copy(),
             disp=st.x[h] - self.s.x0[h],
@@ -508,7 +509,8 @@ class HeldInterrupts:
 
 def _results(s, rec, groups, parts, walls, st, locals_) -> Results:
     d = groups[0]
-    ne, nw, nh, nsec, npart = len(d), len(s.walls), len(s.history_nodes), len(s.sections), len(parts.part_ids)
+    printed = d.ids if s.discrete_printed is None else d.ids[s.discrete_printed]
+    ne, nw, nh, nsec, npart = len(printed), len(s.walls), len(s.history_nodes), len(s.sections), len(parts.part_ids)
     a = rec.array
     extra = dict(
         part_kinetic=a("part_ke", (npart,)),
@@ -547,7 +549,7 @@ def _results(s, rec, groups, parts, walls, st, locals_) -> Results:
         spc_force=a("spc", (len(rec.spc_nodes), 3)),
         spc_nodes=rec.spc_nodes,
         history_nodes=s.history_nodes,
-        discrete_ids=d.ids,
+        discrete_ids=printed,
         wall_ids=np.array([w.wall_id for w in s.walls], np.int64),
         final_x=st.x,
         final_v=st.v,

@@ -55,6 +55,7 @@ class Setup:
     w0: np.ndarray | None = None  # (n, 3) initial angular velocities
     state_dt: float = 0.0  # *DATABASE_BINARY_D3PLOT DT: field states interval (0: none)
     discrete_pid: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (n_discrete,) part IDs
+    discrete_printed: np.ndarray | None = None  # indices of the discretes DEFORC prints (PF 0); None: all
     beam_pid: np.ndarray = field(default_factory=lambda: np.zeros(0, np.int64))  # (n_beams,) part IDs
     sections: list = field(default_factory=list)  # sections.Section (secforc)
     dt_min: float = 0.0  # *CONTROL_TERMINATION DTMIN: stop below this factor of the first step
@@ -360,6 +361,7 @@ def _build(model: Model) -> Setup:
         w0=w0,
         constraints=constraints,
         discrete_pid=model.discretes.pid.astype(np.int64),
+        discrete_printed=_printed(model, disc),
         sections=sections,
         beam_pid=beam_pid,
         state_dt=float(model.find("DATABASE_BINARY_D3PLOT")[0].get("dt", 0.0) or 0.0)
@@ -376,3 +378,13 @@ def _build(model: Model) -> Setup:
         warnings=warnings,
         moved=moved,
     )
+
+
+def _printed(model: Model, disc) -> np.ndarray | None:
+    """Indices of the discrete elements whose forces DEFORC prints:
+    *ELEMENT_DISCRETE PF 1 leaves one out (a barrier's thousands of links
+    would otherwise fill memory with histories nobody reads); None: all."""
+    pf = np.asarray(model.discretes.pf)
+    if len(pf) != len(disc.ids) or not np.any(pf == 1):
+        return None
+    return np.flatnonzero(pf != 1)

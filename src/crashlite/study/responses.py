@@ -265,8 +265,12 @@ def check_response(spec: ResponseSpec, model: Model, variables: list[str], respo
             raise ValueError("the deck has no *DATABASE_CROSS_SECTION")
         if "id" in o and o["id"] not in secs:
             raise ValueError(f"id: cross section {o['id']} is not in the deck (sections: {secs})")
-    if t == "discrete_force" and "id" in o and o["id"] not in set(model.discretes.ids.tolist()):
-        raise ValueError(f"id: discrete element {o['id']} is not in the deck")
+    if t == "discrete_force" and "id" in o:
+        ids = model.discretes.ids.tolist()
+        if o["id"] not in ids:
+            raise ValueError(f"id: discrete element {o['id']} is not in the deck")
+        if int(model.discretes.pf[ids.index(o["id"])]) == 1:
+            raise ValueError(f"id: discrete element {o['id']} has PF 1 (*ELEMENT_DISCRETE): DEFORC does not print it")
     if t == "expression":
         for n in spec.depends_on():
             if n not in responses and n not in variables:

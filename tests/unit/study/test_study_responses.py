@@ -91,3 +91,16 @@ def test_missing_entity_is_a_response_error(pulse):
 def test_bad_response_tables(table, match):
     with pytest.raises(ValueError, match=match):
         parse_response("r", table)
+
+
+def test_a_discrete_left_out_of_deforc_is_refused_before_the_run():
+    """A response on a spring with PF 1 (*ELEMENT_DISCRETE: not printed to
+    DEFORC) would find no history after the run: refused when checked."""
+    from crashlite.study.responses import check_response
+
+    model = read_deck(PULSE)
+    spec = parse_response("force", {"type": "discrete_force", "id": 1, "stat": "absmax"})
+    check_response(spec, model, [], [])
+    model.discretes.pf[0] = 1
+    with pytest.raises(ValueError, match=r"discrete element 1 has PF 1 \(\*ELEMENT_DISCRETE\)"):
+        check_response(spec, model, [], [])

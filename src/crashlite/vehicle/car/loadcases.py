@@ -264,6 +264,7 @@ def odb_deck(
     element_size: float = 20.0,
     erode_dtmin: float = 0.1,
     honeycomb: dict | None = None,
+    beams: dict | None = None,
 ) -> Path:
     """Write the Euro NCAP ODB load case for vehicle deck ``car`` to ``out``
     and the barrier to ``<out stem>_barrier<suffix>`` beside it:
@@ -276,7 +277,9 @@ def odb_deck(
     (ERODE = 1, DTMIN), as honeycomb barrier models are run: crushed solid
     under a rail's edge they would otherwise stop the run (0: keep them).
     ``honeycomb``: further options of the detailed barrier
-    (``detailed_barrier``: elform, shear_failure, shear_slip …)."""
+    (``detailed_barrier``: elform, shear_failure, shear_slip …); ``beams``:
+    further options of the simplified one (``simplified_barrier``: n_width,
+    n_main, n_bumper …)."""
     from ...barrier import offset_placement, simplified_barrier
     from ...barrier.detailed import detailed_barrier
 
@@ -290,7 +293,7 @@ def odb_deck(
     pl = offset_placement(v.width / u.length, overlap, side, v.y_centre / u.length, x_face, 1, ground)
     boff = 2 * v.id_offset  # barrier IDs above the vehicle's and the load case's own
     if barrier == "simplified":
-        b = simplified_barrier(placement=pl, id_offset=boff, units=u)
+        b = simplified_barrier(placement=pl, id_offset=boff, units=u, **(beams or {}))
     else:
         b = detailed_barrier(placement=pl, id_offset=boff, units=u, element_size=element_size, **(honeycomb or {}))
     bpath = out.with_name(f"{out.stem}_barrier{out.suffix or '.k'}")
