@@ -66,6 +66,7 @@ def _odb(args) -> int:
         units=args.units,
         element_size=args.barrier_size,
         honeycomb=_honeycomb(args),
+        beams=_beams(args),
     )
     print(f"wrote {out} (and {out.stem}_barrier{out.suffix}): run it with `crashlite run {out} -o OUT`")
     return 0
@@ -215,7 +216,7 @@ def _interface(args) -> int:
 
 
 def _honeycomb_arguments(p) -> None:
-    """The detailed barrier's options beside --barrier-size (odb, study)."""
+    """The barriers' options beside --barrier-size (odb, study)."""
     p.add_argument(
         "--barrier-face-size",
         type=float,
@@ -238,6 +239,21 @@ def _honeycomb_arguments(p) -> None:
         "(19.14 and 6.4 mm), or 'columns': columns on nodes of their own joined by links torn at one cell, no "
         "element deleted (default: its shear failure strain)",
     )
+    p.add_argument(
+        "--barrier-beams",
+        type=int,
+        nargs=3,
+        default=None,
+        metavar=("WIDTH", "MAIN", "BUMPER"),
+        help="the simplified barrier's grid: nodes across, main-block rows, bumper rows (default 36 20 10: the "
+        "paper's 720 + 360 beams)",
+    )
+
+
+def _beams(args) -> dict | None:
+    """--barrier-beams, by simplified_barrier's names."""
+    grid = args.barrier_beams
+    return dict(zip(("n_width", "n_main", "n_bumper"), grid)) if grid else None
 
 
 def _slip(text: str) -> float | str:
@@ -267,6 +283,7 @@ def _study(args) -> int:
         mesh_size=args.mesh_size,
         barrier_size=args.barrier_size,
         barrier_options=_honeycomb(args),
+        beams=_beams(args),
         usncap_end=args.usncap_end / 1000.0,
         odb_end=args.odb_end / 1000.0,
         interface_x=args.interface_x,

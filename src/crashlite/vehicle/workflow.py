@@ -195,6 +195,7 @@ def paper_study(
     mesh_size: float = 38.0,
     barrier_size: float = 50.0,
     barrier_options: dict | None = None,
+    beams: dict | None = None,
     usncap_end: float = 0.08,
     odb_end: float = 0.1,
     interface_x: float = -600.0,
@@ -211,7 +212,8 @@ def paper_study(
     1. full runs: US NCAP (56 km/h, rigid wall) and Euro NCAP ODB (64 km/h,
        40 %) against the detailed barrier (honeycomb solids of
        ``barrier_size`` mm; ``barrier_options``: the rest of
-       ``detailed_barrier``'s, e.g. finer rows and columns);
+       ``detailed_barrier``'s, e.g. finer rows and columns; ``beams``:
+       ``simplified_barrier``'s options, e.g. its grid);
     2. one reduction at ``interface_x`` from both runs (``shares``:
        "combined", the mean of the load cases' shares, or one load case's
        name), its deviation from each load case's own shares reported;
@@ -273,6 +275,7 @@ def paper_study(
             end_time=odb_end,
             element_size=barrier_size,
             honeycomb=barrier_options,
+            beams=beams,
         )
 
     decks = {"usncap full": usncap_deck(car, out / "usncap_full.k", end_time=usncap_end)}
@@ -376,6 +379,7 @@ def paper_study(
         "front": front,
         "barrier_element_size": barrier_size,
         "barrier_options": dict(barrier_options or {}),
+        "simplified_barrier_options": dict(beams or {}),
         "interface_x": v.interface_x,
         "shares": s["shares_used"],
         "time": times,

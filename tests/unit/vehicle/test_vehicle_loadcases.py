@@ -115,6 +115,12 @@ def test_cli_generic_and_load_cases(tmp_path, capsys):
     assert read_deck(tmp_path / "us.k").find("CONTROL_TERMINATION")[0]["endtim"] == pytest.approx(0.08)
     assert main(["vehicle", "loadcase", "odb", str(car), "-o", str(tmp_path / "odb.k"), "--barrier", "simplified"]) == 0
     assert (tmp_path / "odb_barrier.k").exists()
+    # --barrier-beams: the simplified barrier's grid, 20 across × (12 main-block rows, 6 of them the bumper's)
+    odb = ["vehicle", "loadcase", "odb", str(car), "--barrier", "simplified"]
+    assert main([*odb, "-o", str(tmp_path / "grid.k"), "--barrier-beams", "20", "12", "6"]) == 0
+    paper, grid = (read_deck(tmp_path / f"{n}_barrier.k") for n in ("odb", "grid"))
+    assert (len(paper.discretes), len(grid.discretes)) == (36 * 20 + 36 * 10, 20 * 12 + 20 * 6)
+    assert grid.mass_properties().mass == pytest.approx(paper.mass_properties().mass, rel=1e-9)
 
 
 def test_cli_detailed_barrier_options(tmp_path):
