@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from crashlite.barrier.detailed import SLIP_WORDS
+from crashlite.barrier.simplified import GRID
 from crashlite.solver import run
 from crashlite.solver.loop import RunError
 from crashlite.solver.results import Results
@@ -91,7 +92,7 @@ def main() -> None:
     ap.add_argument("--reference", type=Path, nargs="*", default=[], help="saved detailed runs to compare against")
     args = ap.parse_args()
     sizes = sorted(args.sizes, reverse=True)
-    beams = dict(zip(("n_width", "n_main", "n_bumper"), args.beams)) if args.beams else None
+    beams = dict(zip(GRID, args.beams)) if args.beams else None
     v = generic_vehicle(args.mesh_size, front=args.front)
     boxes = [v.part_ids[f"crash box {s}"] for s in ("left", "right")]
     honeycomb = {
@@ -124,7 +125,7 @@ def main() -> None:
                 Path(tmp) / f"{kind}_{size:g}.k",
                 barrier=kind,
                 end_time=args.end_ms / 1e3,
-                element_size=size or 20.0,
+                element_size=size,
                 honeycomb=honeycomb,
                 beams=beams,
             )

@@ -252,8 +252,9 @@ def _honeycomb_arguments(p) -> None:
 
 def _beams(args) -> dict | None:
     """--barrier-beams, by simplified_barrier's names."""
-    grid = args.barrier_beams
-    return dict(zip(("n_width", "n_main", "n_bumper"), grid)) if grid else None
+    from .barrier.simplified import GRID
+
+    return dict(zip(GRID, args.barrier_beams)) if args.barrier_beams else None
 
 
 def _slip(text: str) -> float | str:

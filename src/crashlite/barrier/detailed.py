@@ -22,7 +22,7 @@ import numpy as np
 
 from ..units import SYSTEMS, UnitSystem
 from .columns import Column, split_columns
-from .simplified import Placement, SimplifiedBarrier, _Deck, shear_link_springs
+from .simplified import UNPRINTED, Placement, SimplifiedBarrier, _Deck, shear_link_springs
 from .spec import COMPACTED_MODULUS, Block, ODBSpec, per_block
 
 COLUMNS = "columns"  # shear_slip: split columns joined by links torn at one cell
@@ -106,7 +106,7 @@ def _column_links(dk, split, blocks, slip, strength, modulus, lateral, d, eid, u
         dk.kw("PART", [f"{title} {b.name} across the cells"], [pid, pid, pid])
         dk.kw("SECTION_DISCRETE", [pid, 0])
         dk.kw("MAT_SPRING_ELASTIC", [pid, lateral * b.crush_modulus * F / L**2])
-        rows += [(next(eid), pid, n1, n2, vid[k], a / h * L, 1) for n1, n2, h, a in links for k in ("y", "z")]
+        rows += [(next(eid), pid, n1, n2, vid[k], a / h * L, UNPRINTED) for n1, n2, h, a in links for k in ("y", "z")]
     dk.kw("ELEMENT_DISCRETE", *rows)
 
 

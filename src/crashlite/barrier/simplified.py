@@ -25,6 +25,9 @@ import numpy as np
 from ..units import SYSTEMS, UnitSystem
 from .spec import COMPACTED_MODULUS, Block, ODBSpec, per_block
 
+GRID = ("n_width", "n_main", "n_bumper")  # simplified_barrier's grid: nodes across, main-block rows, bumper rows
+UNPRINTED = 1  # *ELEMENT_DISCRETE PF: left out of DEFORC (a barrier's thousands of links)
+
 
 @dataclass(frozen=True)
 class Placement:
@@ -207,7 +210,7 @@ def shear_link_springs(
                 dk.kw("MAT_SPRING_INELASTIC", [pid, pid, g / h * F / L**3, -sign])
                 dk.kw("DEFINE_CURVE", [pid], *pts)
         for pid in parts[key]:
-            rows.append((next(eid), pid, n1, n2, vid, area * L**2, 1))  # PF 1: not in DEFORC
+            rows.append((next(eid), pid, n1, n2, vid, area * L**2, UNPRINTED))
     return rows
 
 
