@@ -8,7 +8,8 @@ beside the imprint does (dragged along by its transverse shear until the
 cell walls tear) depends on the element size. Per barrier it prints the
 energy the barrier has taken at 20 ms, 40 ms and the end, the car's
 internal energy and its crash boxes', the hourglass share (end and
-largest, ``verify.hourglass``), cycles and time loop; then each figure
+largest, ``verify.hourglass``), the barrier's solids deleted by the end
+(-1: a saved run that did not record it), cycles and time loop; then each figure
 against the finest detailed size's, and the ISO/TS 18571 rating of the
 barrier's energy history against it. Usage::
 
@@ -58,6 +59,8 @@ def _figures(r, barrier_parts: np.ndarray, boxes: list[int]) -> dict:
         "car KE end kJ": float(r.kinetic[-1] / 1e6),
         "HG end %": hg.get("end_percent", np.nan),
         "HG max %": hg.get("max_percent", np.nan),
+        # the barrier's solids deleted by the end (a torn MAT_026 element is deleted, and its crush with it)
+        "deleted": int(r.part_deleted[-1, bar].sum()) if r.recorded("part_deleted") else -1,
         "cycles": int(r.cycles),
         "loop s": float(r.loop_time),
     }

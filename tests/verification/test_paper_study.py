@@ -105,7 +105,8 @@ def test_summary_and_page_give_each_runs_hourglass_share(study):
         assert hg["end_percent"] == pytest.approx(100.0 * r.hourglass[-1] / r.internal[-1], rel=1e-9), name
         assert hg["max_percent"] >= hg["end_percent"] - 1e-9
         assert hg["part"]["hourglass"] == pytest.approx(r.part_hourglass[-1].max(), rel=1e-9)
+        assert s["runs"][name]["deleted_elements"] == r.part_deleted[-1].sum(), name
     page = (study.out / "index.html").read_text()
-    assert "Hourglass energy" in page
+    assert "Hourglass energy" in page and "elements deleted" in page
     detailed = s["runs"]["odb full car, detailed barrier"]["hourglass_percent"]
     assert f"{detailed['end_percent']:.1f} %" in page

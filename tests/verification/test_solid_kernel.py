@@ -697,3 +697,5 @@ def test_erode_deletes_at_dtmin_times_the_runs_first_step(tmp_path):
     rising = np.flatnonzero(np.diff(r.internal) > 1e-9 * r.internal.max())
     t_gone = r.time[rising[-1] + 1]
     assert 0.75e-3 < t_gone < 0.87e-3
+    gone = r.part_deleted.sum(axis=1)  # the deleted solids, state by state: the cube, when its energy stops
+    assert gone[-1] == 1 and r.time[np.argmax(gone > 0)] == pytest.approx(t_gone, abs=2e-5)

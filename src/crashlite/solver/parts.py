@@ -56,6 +56,18 @@ class PartAccount:
     def hourglass(self) -> np.ndarray:
         return part_energy(self.groups, self.part_ids, "hourglass")
 
+    def deleted(self) -> np.ndarray:
+        """(n_parts,) how many of each part's shells and solids are deleted
+        (eroded, failed or collapsed): what a torn or crushed-flat part no
+        longer carries."""
+        out = np.zeros(len(self.part_ids), np.int64)
+        for g in self.groups:
+            alive = getattr(getattr(g, "st", None), "alive", None)
+            if alive is not None and alive.min() != 1:
+                gone = np.searchsorted(self.part_ids, np.asarray(g.pid)[alive != 1])
+                out += np.bincount(gone, minlength=len(out))
+        return out
+
     def kinetic(self, mass: np.ndarray, v: np.ndarray) -> np.ndarray:
         out = self.weights @ (0.5 * mass * np.einsum("ij,ij->i", v, v))
         for k, b in zip(self.body_part, self.bodies):

@@ -52,6 +52,8 @@ class Results:
         0, 3
     )  # (n_states, n_parts, 3) CoG velocity of each part (momentum / mass) [length/time]
     part_hourglass: np.ndarray = _empty(0)  # (n_states, n_parts) hourglass energy per part [energy]
+    # (n_states, n_parts) int64 shells and solids of each part deleted so far (eroded, failed, collapsed)
+    part_deleted: np.ndarray = field(default_factory=lambda: np.zeros((0, 0), np.int64))
     section_moment: np.ndarray = _empty(0, 3)  # (n_states, n_sections, 3) moment through each section [force*length]
     node_acceleration: np.ndarray = _empty(0, 3)  # (n_states, n_hist, 3) of the history nodes [length/time^2]
     node_coordinates: np.ndarray = _empty(

@@ -121,6 +121,11 @@ def test_a_strip_pulled_apart_balances_its_energy(tmp_path):
     (g,) = [g for g in s.groups if isinstance(g, ShellGroup)]
     res = integrate(s, 0.005)
     assert g.eroded >= 1  # parted
+    gone = res.part_deleted[:, 0]  # the part's deleted shells, state by state
+    assert gone[0] == 0 and gone[-1] == g.eroded and np.all(np.diff(gone) >= 0)
+    from crashlite.solver.results import Results
+
+    assert np.array_equal(Results.load(res.save(tmp_path / "out")).part_deleted, res.part_deleted)
     ie, ke, hg, w = res.internal, res.kinetic, res.hourglass, res.external
     assert np.abs(ie + ke + hg - w).max() < 0.01 * w.max()
     assert ie[-1] > 0.9 * w[-1]  # the work went into the material (and stays there once it parted)

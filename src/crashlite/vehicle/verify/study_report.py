@@ -34,12 +34,14 @@ HOURGLASS_LIMIT = 10.0  # percent of the internal energy
 
 def hourglass_rows(runs: dict) -> list[list[str]]:
     """One row per run: hourglass share at the end and at its largest, with
-    the part holding most (its own share), over the limit marked."""
+    the part holding most (its own share), over the limit marked; and the
+    elements the run deleted."""
     rows = []
     for name, r in runs.items():
         hg = r.get("hourglass_percent") or {}
+        gone = str(r["deleted_elements"]) if "deleted_elements" in r else "–"
         if not hg:
-            rows.append([name, "–", "–", "", ""])
+            rows.append([name, "–", "–", "", "", gone])
             continue
         over = " (over)" if (hg.get("max_percent") or 0.0) > HOURGLASS_LIMIT else ""
         part = hg.get("part") or {}
@@ -50,6 +52,7 @@ def hourglass_rows(runs: dict) -> list[list[str]]:
                 _pct(hg.get("max_percent")) + over,
                 num(1e3 * hg["max_time"], 3),
                 f"{part['id']} ({_pct(part.get('percent_of_its_internal'))})" if part else "",
+                gone,
             ]
         )
     return rows
@@ -80,8 +83,12 @@ def study_page(summary: dict, links: dict) -> str:
         image(time_plot(summary["runs"]), "time loop of every run"),
         "<h2>Hourglass energy</h2>",
         f"<p>Hourglass energy as a share of the internal energy (the usual limit {HOURGLASS_LIMIT:g} %), at the "
-        "end and at its largest once the internal energy has reached a tenth of its own largest.</p>",
-        table(["run", "at the end", "largest", "at [ms]", "part with most"], hourglass_rows(summary["runs"])),
+        "end and at its largest once the internal energy has reached a tenth of its own largest; and the shells and "
+        "solids each run deleted (eroded, failed or collapsed): a torn honeycomb element takes its crush with it.</p>",
+        table(
+            ["run", "at the end", "largest", "at [ms]", "part with most", "elements deleted"],
+            hourglass_rows(summary["runs"]),
+        ),
     ]
     rows = []
     for case, f in summary["verification"].items():
