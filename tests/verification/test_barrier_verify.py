@@ -72,4 +72,6 @@ def test_simplified_matches_detailed_at_both_overlaps(tmp_path):
         assert abs(c["energy_ratio"] - 1.0) < 0.01, c
         if c["barrier"] == "simplified":
             assert c["beams"] == 1080
+            assert c["deleted_elements"] == 0  # its cladding has no failure strain, its beams never go
     assert (out / "index.html").is_file() and (out / "characterisation" / "curves.json").is_file()
+    assert "elements deleted by the end" in (out / "index.html").read_text()

@@ -37,6 +37,7 @@ class Case:
     absorbed: float = 0.0  # energy in the barrier at the end [mJ]
     lost: float = 0.0  # impactor kinetic energy lost [mJ]
     hourglass: dict = field(default_factory=dict)  # hourglass share of the internal energy (verify.hourglass)
+    deleted: int = 0  # the barrier's shells and solids deleted by the end (a torn element takes its crush)
 
     @property
     def name(self) -> str:
@@ -57,6 +58,7 @@ class Case:
             "peak_force_kN_cfc60": float(_cfc(self.time, self.force).max() / 1e3),
             "max_travel_mm": float(self.travel.max()),
             "hourglass_percent": self.hourglass,
+            "deleted_elements": self.deleted,
         }
 
 
@@ -116,6 +118,7 @@ def _run(case: Case, impactor: Impactor, progress: bool, save: bool = True) -> N
     case.absorbed = float(r.internal[-1] + (r.hourglass[-1] if r.recorded("hourglass") else 0.0))
     case.energy_ratio = float(r.energy_ratio[-1])
     case.hourglass = results_share(r)
+    case.deleted = int(r.part_deleted[-1].sum()) if r.recorded("part_deleted") else 0
 
 
 def solid_force(spec: ODBSpec, overlap: float = 1.0) -> float:

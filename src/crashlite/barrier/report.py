@@ -89,12 +89,13 @@ def write_index(out: Path, summary: dict, cases: dict) -> Path:
         ("energy_ratio", "energy ratio at end"),
         ("barrier_energy_kJ", "barrier energy [kJ]"),
         ("peak_force_kN_cfc60", "peak force CFC 60 [kN]"),
+        ("deleted_elements", "elements deleted by the end"),
     ]
     cs = summary["cases"]
     body.append(
         table(
             ["", *[f"{c['barrier']} {num(c['overlap_percent'])} %" for c in cs]],
-            [[label, *[num(c[k]) for c in cs]] for k, label in keys]
+            [[label, *[num(c.get(k)) for c in cs]] for k, label in keys]
             + [
                 [
                     "hourglass / internal energy at end [%]",
