@@ -55,6 +55,16 @@ def _added_mass(res, model) -> str:
     return f"; mass scaling (DT2MS) added {total:.4g}{share} ({parts})"
 
 
+def _deleted(res) -> str:
+    """'; N elements deleted (part P: n, ...)' for the summary, or '': a
+    deleted element carries nothing more (LS-DYNA reports its eroded ones)."""
+    if not res.recorded("part_deleted") or not res.part_deleted[-1].any():
+        return ""
+    last = res.part_deleted[-1]
+    worst = sorted(((int(n), int(p)) for p, n in zip(res.part_ids, last) if n), reverse=True)[:5]
+    return f"; {int(last.sum())} elements deleted (" + ", ".join(f"part {p}: {n}" for n, p in worst) + ")"
+
+
 def _run_external(args) -> int:
     """``crashlite run DECK --solver lsdyna|openradioss``: the deck unchanged
     in that solver, in the output folder; its results read back."""
@@ -121,7 +131,7 @@ def _run(args) -> int:
     print(
         f"{head}{res.cycles} cycles, dt {res.dt:.4g}, end time {res.time[-1]:.6g}, "
         f"energy ratio {ratio.min():.4f}..{ratio.max():.4f}, {res.wall_time:.2f} s wall"
-        f"{_added_mass(res, model)}; results{' so far' if stopped else ''} in {args.output}/results.npz"
+        f"{_added_mass(res, model)}{_deleted(res)}; results{' so far' if stopped else ''} in {args.output}/results.npz"
     )
     return INTERRUPTED if stopped.startswith("interrupted") else 0
 

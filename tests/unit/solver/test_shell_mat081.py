@@ -89,13 +89,9 @@ def test_numint_failed_points_delete_the_shell(tmp_path, elform):
     assert gone_all == max(failed_at) and np.all(ep_all >= EPPFR)
 
 
-def test_a_strip_pulled_apart_balances_its_energy(tmp_path):
-    """A 4 x 1 strip (4 mm x 1 mm x 1 mm) held at x = 0 and pulled at 2 m/s
-    at x = 4 until a shell ruptures and the strip parts: kinetic + internal
-    + hourglass energy equals the work of the prescribed motion within 1 %
-    at every output, and the work stays internal energy once it parted (the
-    elastic energy of the stress the damage removed is dissipated, not
-    given back)."""
+def _strip(tmp_path):
+    """A 4 x 1 strip of MAT_081 shells (4 mm x 1 mm x 1 mm) held at x = 0
+    and pulled at 2 m/s at x = 4 until a shell ruptures: the deck's path."""
     nx = 4
     nodes = [(i + 1, float(x), float(y)) for i, (y, x) in enumerate((y, x) for y in (0.0, 1.0) for x in range(nx + 1))]
     elems = [f"{i + 1},1,{i + 1},{i + 2},{i + nx + 3},{i + nx + 2}" for i in range(nx)]
@@ -117,7 +113,17 @@ def test_a_strip_pulled_apart_balances_its_energy(tmp_path):
         + "*DEFINE_CURVE\n9\n0.0,0.0\n0.02,2.0\n1.0,2.0\n"
         + "*CONTROL_TERMINATION\n0.5\n*END\n"
     )
-    s = setup.build(read_deck(p))
+    return p
+
+
+def test_a_strip_pulled_apart_balances_its_energy(tmp_path):
+    """The strip pulled until a shell ruptures and it parts: kinetic +
+    internal + hourglass energy equals the work of the prescribed motion
+    within 1 % at every output, and the work stays internal energy once it
+    parted (the elastic energy of the stress the damage removed is
+    dissipated, not given back). The deleted shells are counted state by
+    state."""
+    s = setup.build(read_deck(_strip(tmp_path)))
     (g,) = [g for g in s.groups if isinstance(g, ShellGroup)]
     res = integrate(s, 0.005)
     assert g.eroded >= 1  # parted
@@ -129,3 +135,14 @@ def test_a_strip_pulled_apart_balances_its_energy(tmp_path):
     ie, ke, hg, w = res.internal, res.kinetic, res.hourglass, res.external
     assert np.abs(ie + ke + hg - w).max() < 0.01 * w.max()
     assert ie[-1] > 0.9 * w[-1]  # the work went into the material (and stays there once it parted)
+
+
+def test_the_run_summary_names_the_deleted_elements(tmp_path, capsys):
+    """`crashlite run` ends with how many elements the run deleted, by
+    part, as the strip that parts loses its ruptured shells."""
+    from crashlite.cli import main
+    from crashlite.solver.results import Results
+
+    assert main(["run", str(_strip(tmp_path)), "-o", str(tmp_path / "cli"), "--quiet"]) == 0
+    n = int(Results.load(tmp_path / "cli").part_deleted[-1, 0])
+    assert n >= 1 and f"; {n} elements deleted (part 1: {n})" in capsys.readouterr().out
