@@ -9,7 +9,7 @@ cell walls tear) depends on the element size. Per barrier it prints the
 energy the barrier has taken at 20 ms, 40 ms and the end, the car's
 internal energy and its crash boxes', the hourglass share (end and
 largest, ``verify.hourglass``), the barrier's solids deleted by the end
-(-1: a saved run that did not record it), cycles and time loop; then each figure
+(0 for a saved run that did not count them), cycles and time loop; then each figure
 against the finest detailed size's, and the ISO/TS 18571 rating of the
 barrier's energy history against it. Usage::
 
@@ -60,7 +60,7 @@ def _figures(r, barrier_parts: np.ndarray, boxes: list[int]) -> dict:
         "HG end %": hg.get("end_percent", np.nan),
         "HG max %": hg.get("max_percent", np.nan),
         # the barrier's solids deleted by the end (a torn MAT_026 element is deleted, and its crush with it)
-        "deleted": int(r.part_deleted[-1, bar].sum()) if r.recorded("part_deleted") else -1,
+        "deleted": r.deleted(barrier_parts),
         "cycles": int(r.cycles),
         "loop s": float(r.loop_time),
     }

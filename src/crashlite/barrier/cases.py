@@ -118,7 +118,7 @@ def _run(case: Case, impactor: Impactor, progress: bool, save: bool = True) -> N
     case.absorbed = float(r.internal[-1] + (r.hourglass[-1] if r.recorded("hourglass") else 0.0))
     case.energy_ratio = float(r.energy_ratio[-1])
     case.hourglass = results_share(r)
-    case.deleted = int(r.part_deleted[-1].sum()) if r.recorded("part_deleted") else 0
+    case.deleted = r.deleted()
 
 
 def solid_force(spec: ODBSpec, overlap: float = 1.0) -> float:

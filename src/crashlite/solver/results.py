@@ -103,6 +103,14 @@ class Results:
         a = getattr(self, name)
         return a.ndim >= 1 and a.shape[0] == len(self.time) and a.size > 0
 
+    def deleted(self, parts: np.ndarray | None = None) -> int:
+        """Shells and solids deleted by the end (of the parts ``parts``
+        when given): 0 when the run did not count them."""
+        if not self.recorded("part_deleted"):
+            return 0
+        last = self.part_deleted[-1]
+        return int(last.sum() if parts is None else last[np.isin(self.part_ids, parts)].sum())
+
     def _or_zero(self, name: str) -> np.ndarray:
         return getattr(self, name) if self.recorded(name) else np.zeros(len(self.time))
 

@@ -262,7 +262,7 @@ def paper_study(
             "elements": int(sum((r.info.get("elements") or {}).values())),
             "hourglass": results_share(r),
             # shells and solids deleted by the end (a torn honeycomb element is deleted, its crush with it)
-            "deleted": int(r.part_deleted[-1].sum()) if r.recorded("part_deleted") else 0,
+            "deleted": r.deleted(),
         }
         hg = runs[name]["hourglass"]
         share = f", hourglass {hg['end_percent']:.1f} % of the internal energy" if hg.get("end_percent") else ""

@@ -129,6 +129,7 @@ def test_a_strip_pulled_apart_balances_its_energy(tmp_path):
     assert g.eroded >= 1  # parted
     gone = res.part_deleted[:, 0]  # the part's deleted shells, state by state
     assert gone[0] == 0 and gone[-1] == g.eroded and np.all(np.diff(gone) >= 0)
+    assert res.deleted() == res.deleted([1]) == g.eroded and res.deleted([2]) == 0
     from crashlite.solver.results import Results
 
     assert np.array_equal(Results.load(res.save(tmp_path / "out")).part_deleted, res.part_deleted)
