@@ -58,11 +58,11 @@ def _added_mass(res, model) -> str:
 def _deleted(res) -> str:
     """'; N elements deleted (part P: n, ...)' for the summary, or '': a
     deleted element carries nothing more (LS-DYNA reports its eroded ones)."""
-    if not res.recorded("part_deleted") or not res.part_deleted[-1].any():
+    total = res.deleted()
+    if not total:
         return ""
-    last = res.part_deleted[-1]
-    worst = sorted(((int(n), int(p)) for p, n in zip(res.part_ids, last) if n), reverse=True)[:5]
-    return f"; {int(last.sum())} elements deleted (" + ", ".join(f"part {p}: {n}" for n, p in worst) + ")"
+    worst = sorted(((int(n), int(p)) for p, n in zip(res.part_ids, res.part_deleted[-1]) if n), reverse=True)[:5]
+    return f"; {total} elements deleted (" + ", ".join(f"part {p}: {n}" for n, p in worst) + ")"
 
 
 def _run_external(args) -> int:

@@ -39,7 +39,7 @@ def hourglass_rows(runs: dict) -> list[list[str]]:
     rows = []
     for name, r in runs.items():
         hg = r.get("hourglass_percent") or {}
-        gone = str(r["deleted_elements"]) if "deleted_elements" in r else "–"
+        gone = num(r.get("deleted_elements"))
         if not hg:
             rows.append([name, "–", "–", "", "", gone])
             continue
