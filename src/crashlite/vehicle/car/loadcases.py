@@ -216,13 +216,14 @@ def usncap_deck(
     return out
 
 
-def _rig_wall(v: VehicleInfo, pl, nodes: int):
+def _rig_wall(v: VehicleInfo, pl, nodes: int, rwid: int, heading: str):
     """The test rig's rigid block behind the barrier (R94 Annex 9: the
     barrier is fixed to the face of a block of at least 70 t): a finite
     planar wall over the main block's back face, facing the vehicle, for
-    the vehicle's nodes. Without it a rail that has crushed the honeycomb
-    under it runs on through the barrier's back plane, which nothing holds
-    (the barrier's back nodes are held, not its area)."""
+    ``nodes`` (a node set). Without it a rail that has crushed the
+    honeycomb under it runs on through the barrier's back plane, which
+    nothing holds (the barrier's back nodes are held, not its area), and
+    so does honeycomb whose elements behind it were deleted."""
     from ...barrier.spec import ODBSpec
 
     spec, u = ODBSpec(), v.units
@@ -232,8 +233,8 @@ def _rig_wall(v: VehicleInfo, pl, nodes: int):
     # edge l up (+z), m = n x l across (+y) for the normal -x: the rectangle covers the block's face
     return record(
         "RIGIDWALL_PLANAR_FINITE_ID",
-        rwid=v.id_offset + 1,
-        heading="ODB test rig: rigid block",
+        rwid=rwid,
+        heading=heading,
         nsid=nodes,
         xt=xb,
         yt=y0,
@@ -317,7 +318,10 @@ def odb_deck(
             soft=1,
         ),
     )  # soft constraint: the barrier's faces are far softer than steel
-    recs.insert(4, _rig_wall(v, pl, nodes))
+    recs.insert(4, _rig_wall(v, pl, nodes, v.id_offset + 1, "ODB test rig: rigid block"))
+    # the barrier's own nodes too: honeycomb torn free of the deleted block behind it is stopped by the
+    # block and crushed against it, as in the test, instead of passing through the rig
+    recs.insert(5, _rig_wall(v, pl, b.set_ids["front"], v.id_offset + 3, "ODB test rig: rigid block (barrier)"))
     title = f"Euro NCAP ODB {overlap * 100:g} % {side} {speed_kmh:g} km/h ({barrier} barrier)"
     text = _deck(title, [_include_name(car, out), bpath.name], recs)
     out.write_text(text)
