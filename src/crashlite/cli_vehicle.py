@@ -236,8 +236,8 @@ def _honeycomb_arguments(p) -> None:
         type=_slip,
         default=None,
         help="slip at which the detailed honeycomb's cell walls tear [mm], or 'cell': each block's own cell "
-        "(19.14 and 6.4 mm), or 'columns': columns on nodes of their own joined by links torn at one cell, no "
-        "element deleted (default: its shear failure strain)",
+        "(19.14 and 6.4 mm), or 'columns': columns on nodes of their own joined by links torn at one cell, an "
+        "element torn at a cell's slip across a cell (default: its shear failure strain)",
     )
     p.add_argument(
         "--barrier-beams",

@@ -26,6 +26,9 @@ from .simplified import UNPRINTED, Placement, SimplifiedBarrier, _Deck, shear_li
 from .spec import COMPACTED_MODULUS, Block, ODBSpec, per_block
 
 COLUMNS = "columns"  # shear_slip: split columns joined by links torn at one cell
+# a split column's element tears at a cell's slip across one cell (engineering shear 1): the slip of a cut is the
+# links' between columns, and a crush that differs across an element is not a tear (each cell crushes on its own)
+CELL_TEAR_STRAIN = 1.0
 SLIP_WORDS = ("cell", COLUMNS)  # the tear slips given by a word rather than in mm
 
 
@@ -144,9 +147,12 @@ def detailed_barrier(
     joined by links along the depth at ``shear_strength`` torn at one
     cell, weak and elastic across (``columns.py``): a tear between
     columns keeps both columns' crush, which LS-DYNA's deletion of a
-    failed MAT_026 element takes away; an element still tears (and is
-    deleted) where the load's edge cuts through it, at one cell of slip
-    across it. Not with ``cladding``.
+    failed MAT_026 element takes away; an element itself tears (and is
+    deleted) at a cell's slip across one cell (SSEF = CELL_TEAR_STRAIN,
+    1): a crush that differs across an element is spread over its cells
+    and tears none (at a cell's slip over the element, a car deleted the
+    bumper block in its overlap within 4 ms and the main block under its
+    beam; docs/validation.md). Not with ``cladding``.
     Beside a car's imprint
     the honeycomb is dragged along until its walls tear: with a strain
     fixed per element, over a band an element wide as far as 1.5
@@ -308,9 +314,9 @@ def detailed_barrier(
             lateral,
             shear_modulus,
             shear_strength,
-            # split: the walls between columns are the links; an element still tears where the load cuts
-            # through it (with weak shear inside, the columns tilt: a full face carried 126 instead of 230 kN)
-            slip[b.name] / across if slip[b.name] > 0.0 else shear_failure,
+            # split: the walls between columns are the links; an element still tears where it is sheared by a
+            # cell across a cell (with weak shear inside, the columns tilt: a full face carried 126 instead of 230 kN)
+            CELL_TEAR_STRAIN if split else slip[b.name] / across if slip[b.name] > 0.0 else shear_failure,
         )
     if split:
         _column_links(dk, split, blocks, slip, shear_strength, shear_modulus, lateral, d, eid, u, o, title)
