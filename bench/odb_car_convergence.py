@@ -89,6 +89,12 @@ def main() -> None:
         "--width-size", type=float, default=None, help="element size across the width [mm] (default: the size)"
     )
     ap.add_argument(
+        "--shear-strength",
+        type=float,
+        default=None,
+        help="the honeycomb's transverse shear strength × its plateau (default: the detailed barrier's, 0.5)",
+    )
+    ap.add_argument(
         "--beams", type=int, nargs=3, default=None, metavar=("WIDTH", "MAIN", "BUMPER"), help="simplified barrier grid"
     )
     ap.add_argument("--save", type=Path, default=None, help="keep each run's results in DIR/<run>")
@@ -109,6 +115,8 @@ def main() -> None:
         honeycomb["height_size"] = args.height_size
     if args.width_size:
         honeycomb["width_size"] = args.width_size
+    if args.shear_strength is not None:
+        honeycomb["shear_strength"] = args.shear_strength
     rows, hist = {}, {}
     with tempfile.TemporaryDirectory() as tmp:
         car = v.write(Path(tmp) / "car.k")

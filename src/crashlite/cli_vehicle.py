@@ -240,6 +240,14 @@ def _honeycomb_arguments(p) -> None:
         "element torn at a cell's slip across a cell (default: its shear failure strain)",
     )
     p.add_argument(
+        "--barrier-shear-strength",
+        type=float,
+        default=None,
+        help="the detailed honeycomb's transverse shear strength (its cell walls') × its crush plateau (default: "
+        "detailed_barrier's, 0.5; aluminium honeycomb's plate-shear strengths are 1.4 (L) and 0.8 (W) × its crush "
+        "strength)",
+    )
+    p.add_argument(
         "--barrier-beams",
         type=int,
         nargs=3,
@@ -272,7 +280,13 @@ def _slip(text: str) -> float | str:
 def _honeycomb(args) -> dict:
     """The options given, by detailed_barrier's names: the rest keep its defaults."""
     face = args.barrier_face_size
-    given = {"elform": args.barrier_elform, "shear_slip": args.barrier_slip, "height_size": face, "width_size": face}
+    given = {
+        "elform": args.barrier_elform,
+        "shear_slip": args.barrier_slip,
+        "shear_strength": args.barrier_shear_strength,
+        "height_size": face,
+        "width_size": face,
+    }
     return {k: v for k, v in given.items() if v is not None}
 
 

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 from crashlite import read_deck
+from crashlite.barrier.spec import ODBSpec
 from crashlite.cli import main
 from crashlite.solver.setup import build
 from crashlite.units import kmh
@@ -130,8 +131,9 @@ def test_cli_generic_and_load_cases(tmp_path, capsys):
 
 def test_cli_detailed_barrier_options(tmp_path):
     """--barrier-face-size refines the detailed honeycomb's rows and columns
-    (depth at --barrier-size), --barrier-elform and --barrier-slip reach its
-    *SECTION_SOLID and SSEF (slip over the element size; 'cell': each
+    (depth at --barrier-size), --barrier-elform, --barrier-slip and
+    --barrier-shear-strength reach its *SECTION_SOLID, SSEF and transverse
+    shear curves (slip over the element size; 'cell': each
     block's own cell, 19.14 and 6.4 mm; 'columns': split columns, links
     torn at the cell, elements at a cell's slip across a cell); a slip
     that is none of these is refused."""
@@ -140,6 +142,7 @@ def test_cli_detailed_barrier_options(tmp_path):
     base = ["vehicle", "loadcase", "odb", str(car), "--barrier", "detailed", "--barrier-size", "100"]
     assert main([*base, "-o", str(tmp_path / "coarse.k")]) == 0
     assert main([*base, "-o", str(tmp_path / "fine.k"), "--barrier-face-size", "50", "--barrier-elform", "2"]) == 0
+    assert main([*base, "-o", str(tmp_path / "strong.k"), "--barrier-shear-strength", "1.4"]) == 0
     assert main([*base, "-o", str(tmp_path / "slip.k"), "--barrier-slip", "90"]) == 0
     coarse, fine, slip = (read_deck(tmp_path / f"{n}_barrier.k") for n in ("coarse", "fine", "slip"))
     (xc, yc, zc), (xf, yf, zf) = ([np.unique(np.round(m.nodes.xyz[:, a], 6)) for a in range(3)] for m in (coarse, fine))
@@ -148,6 +151,12 @@ def test_cli_detailed_barrier_options(tmp_path):
     assert {int(r["elform"]) for r in fine.sections.values()} == {2}
     assert {int(r["elform"]) for r in coarse.sections.values()} == {1}
     assert [float(m["ssef"]) for m in slip.materials.values()] == pytest.approx([0.9, 0.9])
+    # the transverse shears' curves (LCAB, LCCA) hold the given strength × each block's plateau stress
+    strong = read_deck(tmp_path / "strong_barrier.k")
+    honeycombs = [m for m in strong.materials.values() if m.keyword == "MAT_HONEYCOMB"]
+    for m, b in zip(honeycombs, (ODBSpec().main, ODBSpec().bumper), strict=True):
+        for key in ("lcab", "lcca"):
+            assert np.allclose(np.asarray(strong.curves[int(m[key])].rows["o1"], float), 1.4 * b.plateau_stress)
     assert main([*base, "-o", str(tmp_path / "cell.k"), "--barrier-slip", "cell"]) == 0
     cell = read_deck(tmp_path / "cell_barrier.k")
     assert sorted(float(m["ssef"]) for m in cell.materials.values()) == pytest.approx([0.064, 0.1914])
