@@ -95,6 +95,12 @@ def main() -> None:
         help="the honeycomb's transverse shear strength × its plateau (default: the detailed barrier's, 0.5)",
     )
     ap.add_argument(
+        "--lateral",
+        type=float,
+        default=None,
+        help="the honeycomb across its cells × its crush values (default: the detailed barrier's, 0.05)",
+    )
+    ap.add_argument(
         "--beams", type=int, nargs=3, default=None, metavar=("WIDTH", "MAIN", "BUMPER"), help="simplified barrier grid"
     )
     ap.add_argument("--save", type=Path, default=None, help="keep each run's results in DIR/<run>")
@@ -117,6 +123,8 @@ def main() -> None:
         honeycomb["width_size"] = args.width_size
     if args.shear_strength is not None:
         honeycomb["shear_strength"] = args.shear_strength
+    if args.lateral is not None:
+        honeycomb["lateral"] = args.lateral
     rows, hist = {}, {}
     with tempfile.TemporaryDirectory() as tmp:
         car = v.write(Path(tmp) / "car.k")
