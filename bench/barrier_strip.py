@@ -11,7 +11,7 @@ the energy to the end and the ISO/TS 18571 rating of the CFC 60 force
 against the finest detailed face. Usage::
 
     python bench/barrier_strip.py [--faces 50 35 25] [--depth 50] [--slip cell | MM [BUMPER]] [--elform 2]
-        [--end-ms 20] [--shear-strength 0.5]
+        [--end-ms 20] [--shear-strength S]
 """
 
 from __future__ import annotations
@@ -55,7 +55,10 @@ def main() -> None:
     ap.add_argument("--elform", type=int, default=2, help="the honeycomb's *SECTION_SOLID ELFORM")
     ap.add_argument("--end-ms", type=float, default=20.0, help="simulated time [ms]")
     ap.add_argument(
-        "--shear-strength", type=float, default=0.5, help="the honeycomb's transverse shear strength × its plateau"
+        "--shear-strength",
+        type=float,
+        default=None,
+        help="the honeycomb's transverse shear strength × its plateau (default: the detailed barrier's)",
     )
     args = ap.parse_args()
     slip = args.slip[0] if args.slip[0] in SLIP_WORDS else (float(args.slip[0]), float(args.slip[-1]))
@@ -69,7 +72,7 @@ def main() -> None:
                 width_size=face,
                 elform=args.elform,
                 shear_slip=slip,
-                shear_strength=args.shear_strength,
+                **({} if args.shear_strength is None else {"shear_strength": args.shear_strength}),
             )
             t0 = time.perf_counter()
             cases[f"detailed, face {face:g}"] = run_case("detailed", 0.4, Path(tmp) / f"d{face:g}", b, spec, imp, end)

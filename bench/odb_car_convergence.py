@@ -117,14 +117,8 @@ def main() -> None:
         if args.shear_slip[0] in SLIP_WORDS
         else (float(args.shear_slip[0]), float(args.shear_slip[-1])),
     }
-    if args.height_size:
-        honeycomb["height_size"] = args.height_size
-    if args.width_size:
-        honeycomb["width_size"] = args.width_size
-    if args.shear_strength is not None:
-        honeycomb["shear_strength"] = args.shear_strength
-    if args.lateral is not None:
-        honeycomb["lateral"] = args.lateral
+    given = {k: getattr(args, k) for k in ("height_size", "width_size", "shear_strength", "lateral")}
+    honeycomb.update({k: v for k, v in given.items() if v is not None})  # the rest keep detailed_barrier's defaults
     rows, hist = {}, {}
     with tempfile.TemporaryDirectory() as tmp:
         car = v.write(Path(tmp) / "car.k")
