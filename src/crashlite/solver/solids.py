@@ -321,7 +321,13 @@ def _material(model: Model, mat, curves: CurveStore, problems: list):
     row = np.zeros(sm.N_PROPS)
     mc = np.full(sm.N_CURVES, -1, np.int64)
     kw = mat.keyword
-    if kw not in ("MAT_ELASTIC", "MAT_PIECEWISE_LINEAR_PLASTICITY", "MAT_HONEYCOMB", "MAT_CRUSHABLE_FOAM"):
+    if kw not in (
+        "MAT_ELASTIC",
+        "MAT_PIECEWISE_LINEAR_PLASTICITY",
+        "MAT_HONEYCOMB",
+        "MAT_MODIFIED_HONEYCOMB",
+        "MAT_CRUSHABLE_FOAM",
+    ):
         problems.append(
             _problem(mat, None, f"*{kw} is not supported for solids (supported: MAT_001, MAT_024, MAT_026, MAT_063)")
         )
@@ -397,22 +403,20 @@ def _honeycomb(model, mat, curves, row, mc, problems):
     if float(mat.get("aopt", 0.0) or 0.0) not in (0.0, 2.0):
         problems.append(_problem(mat, "aopt", "AOPT 0 (element nodes 1, 2, 4) and 2 (vectors A, D) are supported"))
         ok = False
-    if not _curve_ok(model, mat, "lca", problems):
-        return None
-    lc = {"lca": int(mat["lca"])}
-    for fld, default in (
-        ("lcb", "lca"),
-        ("lcc", "lca"),
-        ("lcs", "lca"),
-        ("lcab", "lcs"),
-        ("lcbc", "lcs"),
-        ("lcca", "lcs"),
-    ):
-        v = int(mat.get(fld, 0) or 0)
-        if v and not _curve_ok(model, mat, fld, problems):
+    modified = mat.keyword == "MAT_MODIFIED_HONEYCOMB"
+    transverse = modified and int(mat.get("lca", 0) or 0) < 0
+    if modified:
+        for fld, what in (("vref", "relative volume"), ("tref", "time step")):
+            if float(mat.get(fld, 0.0) or 0.0) != 0.0:
+                problems.append(
+                    _problem(mat, fld, f"{fld.upper()} (reset to the reference geometry at a {what}) is not supported")
+                )
+                ok = False
+        if float(mat.get("eccu", 0.0) or 0.0) < 0.0:
+            problems.append(_problem(mat, "eccu", "ECCU < 0 (the hydrostatic/shear yield surface) is not supported"))
             ok = False
-        lc[fld] = v or lc[default]
-    if not ok:
+    lc = _honeycomb_curves(model, mat, transverse, problems)
+    if lc is None or not ok:
         return None
     for slot, fld in (
         (sm.C_A, "lca"),
@@ -422,7 +426,9 @@ def _honeycomb(model, mat, curves, row, mc, problems):
         (sm.C_BC, "lcbc"),
         (sm.C_CA, "lcca"),
     ):
-        mc[slot] = curves.get(lc[fld])
+        mc[slot] = curves.get(lc[fld]) if lc[fld] else -1
+    row[sm.P_FORM] = 2.0 if transverse else 1.0
+    row[sm.P_SHDFLG] = float(mat.get("shdflg", 0.0) or 0.0)
     row[sm.P_SIGY], row[sm.P_VF] = float(mat.get("sigy", 0.0) or 0.0), vf
     # BULK = 1: artificial bulk viscosity instead of the material viscosity MU (LS-DYNA sets μ = 0)
     bulk = float(mat.get("bulk", 0.0) or 0.0) != 0.0
@@ -435,6 +441,45 @@ def _honeycomb(model, mat, curves, row, mc, problems):
     # the time step follows the stiffest state (compacted, or a stiffer uncompacted modulus)
     row[sm.P_WAVE] = max(row[sm.P_WAVE], *row[sm.P_EAAU : sm.P_EAAU + 6])
     return sm.HONEYCOMB, row, mc
+
+
+def _honeycomb_curves(model, mat, transverse, problems):
+    """Curve IDs of a honeycomb by field (0: none), or None if one is
+    missing. MAT_026's form: LCB, LCC, LCS default to LCA and LCAB, LCBC,
+    LCCA to LCS. The transversely isotropic form (MAT_126, LCA < 0): |LCA|
+    the yield stress by the angle off the cell axis [degrees], LCB and LCC
+    the strong and weak axes' hardening (both needed), LCAB, LCBC, LCCA
+    the shear damage curves, all three LCS's where only LCS is given, none
+    if neither is."""
+    lca = abs(int(mat.get("lca", 0) or 0))
+    if lca not in model.curves:
+        problems.append(_problem(mat, "lca", f"curve {lca} is not defined (a *DEFINE_CURVE is needed)"))
+        return None
+    lc, ok = {"lca": lca}, True
+    for fld in ("lcb", "lcc", "lcs", "lcab", "lcbc", "lcca"):
+        lc[fld] = int(mat.get(fld, 0) or 0)
+        if lc[fld] and not _curve_ok(model, mat, fld, problems):
+            ok = False
+    if transverse:
+        for fld in ("lcb", "lcc"):
+            if not lc[fld]:
+                problems.append(
+                    _problem(mat, fld, f"{fld.upper()} is needed with LCA < 0 (hardening of the strong and weak axes)")
+                )
+                ok = False
+        if lc["lcs"] and not (lc["lcab"] or lc["lcbc"] or lc["lcca"]):
+            lc["lcab"] = lc["lcbc"] = lc["lcca"] = lc["lcs"]
+        return lc if ok else None
+    for fld, default in (
+        ("lcb", "lca"),
+        ("lcc", "lca"),
+        ("lcs", "lca"),
+        ("lcab", "lcs"),
+        ("lcbc", "lcs"),
+        ("lcca", "lcs"),
+    ):
+        lc[fld] = lc[fld] or lc[default]
+    return lc if ok else None
 
 
 def _bulk_viscosity(model: Model) -> tuple[float, float]:

@@ -85,6 +85,7 @@ ZERO_READS: dict[str, dict] = {
     "MAT_PLASTIC_KINEMATIC": {"fs": 1e20},  # 0: no erosion
     "MAT_PIECEWISE_LINEAR_PLASTICITY": {"fail": 1e21},  # 0: failure not considered
     "MAT_HONEYCOMB": {"mu": 0.05, "macf": 1},
+    "MAT_MODIFIED_HONEYCOMB": {"mu": 0.05, "macf": 1},
     "MAT_CRUSHABLE_FOAM": {"damp": 0.1},
     "MAT_SPRING_INELASTIC": {"ctf": 1.0},  # EQ.0: default is set to 1.0 (compression only)
     "HOURGLASS": {"qm": 0.1, "q1": 1.5, "q2": 0.06},

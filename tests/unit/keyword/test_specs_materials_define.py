@@ -30,6 +30,7 @@ MATS = {
     "MAT_RIGID": ("MAT_020",),
     "MAT_PIECEWISE_LINEAR_PLASTICITY": ("MAT_024",),
     "MAT_HONEYCOMB": ("MAT_026",),
+    "MAT_MODIFIED_HONEYCOMB": ("MAT_126",),
     "MAT_CRUSHABLE_FOAM": ("MAT_063",),
     "MAT_SPRING_ELASTIC": ("MAT_S01",),
     "MAT_DAMPER_VISCOUS": ("MAT_S02",),
@@ -57,6 +58,7 @@ ALL_NAMES = sorted(set(NAMES) | {a for v in EXPECTED.values() for a in v[0]})
 
 # keyword -> value dicts that drive the `when` cards to every branch
 BRANCHES = {
+    "MAT_MODIFIED_HONEYCOMB": [{"aopt": 2.0, "lcsr": 0}, {"aopt": 4.0, "lcsr": -1}],
     "SECTION_SHELL": [
         {"icomp": 0, "nip": 2},
         {"icomp": 1, "nip": 1},
@@ -277,6 +279,27 @@ def test_mat_honeycomb():
     assert _field(c3, "macf").default == 1 and _col(c3, "aopt") == (61, 70)
     assert [c.optional for c in lay.head] == [False, False, False, True, True]
     assert _col(c5, "tsef") == (31, 40)
+
+
+def test_mat_modified_honeycomb():
+    """MAT_126: MAT_026's first four cards, then VREF, TREF, SHDFLG beside
+    TSEF, SSEF; the V card only for AOPT 3 and 4, the six rate curves only
+    for LCSR = -1; LCA may be negative (the transversely isotropic form)."""
+    spec = registered()["MAT_MODIFIED_HONEYCOMB"]
+    lay = spec.layout(frozenset())
+    names = [_names(c) for c in lay.head]
+    assert names[:5] == [
+        "mid ro e pr sigy vf mu bulk",
+        "lca lcb lcc lcs lcab lcbc lcca lcsr",
+        "eaau ebbu eccu gabu gbcu gcau aopt macf",
+        "xp yp zp a1 a2 a3",
+        "d1 d2 d3 tsef ssef vref tref shdflg",
+    ]
+    c1, c2, c3, c4, c5, c6, c7 = lay.head
+    assert _field(c2, "lca").ref is None and _field(c2, "lcb").ref == "curve"
+    assert _col(c5, "shdflg") == (71, 80) and _field(c1, "mu").default == 0.05
+    assert c6.when({"aopt": 3.0}, frozenset()) and not c6.when({"aopt": 2.0}, frozenset())
+    assert c7.when({"lcsr": -1}, frozenset()) and not c7.when({"lcsr": 0}, frozenset())
 
 
 def test_mat_crushable_foam():

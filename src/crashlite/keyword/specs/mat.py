@@ -57,6 +57,32 @@ _mat(
     card("d1:f=0 d2:f=0 d3:f=0 tsef:f=0 ssef:f=0 v1:f=0 v2:f=0 v3:f=0", optional=True),
     doc="Honeycomb: uncoupled uniaxial crush curves until compaction (VF), then elastic.",
 )
+register(
+    Spec(
+        "MAT_MODIFIED_HONEYCOMB",
+        fixed(
+            card("mid:i@mat ro:f e:f pr:f=0 sigy:f vf:f mu:f~0.05 bulk:f=0"),
+            card(
+                "lca:i lcb:i=0@curve lcc:i=0@curve lcs:i=0@curve lcab:i=0@curve lcbc:i=0@curve lcca:i=0@curve lcsr:i=0"
+            ),
+            card("eaau:f ebbu:f=0 eccu:f=0 gabu:f=0 gbcu:f=0 gcau:f=0 aopt:f=0 macf:i~1"),
+            card("xp:f=0 yp:f=0 zp:f=0 a1:f=0 a2:f=0 a3:f=0", optional=True),
+            card("d1:f=0 d2:f=0 d3:f=0 tsef:f=0 ssef:f=0 vref:f=0 tref:f=0 shdflg:f=0", optional=True),
+            Card(card("v1:f=0 v2:f=0 v3:f=0").fields, True, lambda v, o: (v.get("aopt") or 0.0) in (3.0, 4.0)),
+            Card(
+                card("lcsra:i=0 lcsrb:i=0 lcsrc:i=0 lcsrab:i=0 lcsrbc:i=0 lcsrca:i=0").fields,
+                True,
+                lambda v, o: (v.get("lcsr") or 0) == -1,
+            ),
+        ),
+        aliases=("MAT_126",),
+        group="materials",
+        id_field="mid",
+        doc="Honeycomb as MAT_026 (LCA > 0); LCA < 0: yield stress by the angle off the cell axis "
+        "(|LCA|), strong- and weak-axis hardening LCB, LCC vs volumetric strain, shear damage "
+        "factors LCAB, LCBC, LCCA (or LCS) vs shear strain (SHDFLG).",
+    )
+)
 _mat(
     "MAT_CRUSHABLE_FOAM",
     "MAT_063",

@@ -36,6 +36,8 @@ P_BULKQ = 7  # 1: artificial bulk viscosity applies, 0: not (honeycomb with BULK
 P_SIGY, P_HARD, P_FAIL, P_CS_C, P_CS_P = 8, 9, 10, 11, 12
 # MAT_026 (P_SIGY shared)
 P_VF, P_EAAU, P_EBBU, P_ECCU, P_GABU, P_GBCU, P_GCAU, P_TSEF, P_SSEF = 9, 10, 11, 12, 13, 14, 15, 16, 17
+# MAT_126: P_FORM 2 = the transversely isotropic yield surface (LCA < 0), else MAT_026's; its SHDFLG
+P_FORM, P_SHDFLG = 18, 19
 # MAT_063
 P_TSC = 8
 # curve slots: MAT_024 yield curve, or a *DEFINE_TABLE of them by strain rate (x: rates, y: curve slots);
@@ -46,9 +48,10 @@ C_FOAM = 0
 
 # history per element (per point for ELFORM 2). Honeycomb: [0:3] normal strains summed over the steps
 # (TSEF), [3:6] half the total engineering shears (SSEF), [6:15] H = F·A0, the images of the initial
-# material axes (columns, row major), [15:24] A0 itself (set on the first step)
-H_LINES, H_AXES0 = 6, 15
-N_HIST = 24
+# material axes (columns, row major), [15:24] A0 itself (set on the first step); MAT_126's transversely
+# isotropic form: [24:27] the damage of the shear planes ab, bc, ca (never falls)
+H_LINES, H_AXES0, H_DAMAGE = 6, 15, 24
+N_HIST = 27
 N_SCRATCH = 24  # scratch values a material update may use
 
 
@@ -252,6 +255,8 @@ def update_honeycomb(p, mc, cs, ce, cx, cy, s, w, do, wo, hist, axes, relvol):
 
     Returns (wave modulus, failed).
     """
+    if p[P_FORM] == 2.0:
+        return _honeycomb_transverse(p, mc, cs, ce, cx, cy, s, w, do, wo, hist, axes, relvol)
     vf = p[P_VF]
     k, g = p[P_K], p[P_G]
     if relvol <= vf:
@@ -286,6 +291,91 @@ def update_honeycomb(p, mc, cs, ce, cx, cy, s, w, do, wo, hist, axes, relvol):
         hist[3 + i] = 0.5 * gam
         if p[P_SSEF] > 0.0 and abs(gam) > p[P_SSEF]:
             failed = True
+    _to_global(axes, w, wo, s)
+    return wave, failed
+
+
+@njit(cache=True)
+def _honeycomb_transverse(p, mc, cs, ce, cx, cy, s, w, do, wo, hist, axes, relvol):
+    """MAT_126 with LCA < 0: a transversely isotropic honeycomb about the
+    cell axis a. Uncompacted, the trial stress (MAT_026's moduli, c taking
+    b's) is bounded as a whole: each principal stress i, at an angle φ_i
+    off a (cos² φ_i = c_i), yields at σ_i = |LCA|(φ_i) + c_i·LCB(ε_v) +
+    (1 − c_i)·LCC(ε_v); the surface σ_y = Σ σ_i λ_i² / Σ λ_i², and the
+    stress is scaled by min(1, σ_y/|λ|). A crushing cell therefore carries
+    little shear on top of its crush, where MAT_026 bounds each component
+    on its own. Compacted: as MAT_026. Then the shear damage: the curve of
+    each plane (LCAB, LCBC, LCCA) gives the factor left at the half
+    engineering shear of the undeformed cell; the damage never falls, the
+    element is kept. SHDFLG 1: the factor scales the undamaged stress
+    (kept by dividing the stored one back); 0: it scales the stored
+    stress again every step. TSEF, SSEF erode as in MAT_026."""
+    vf = p[P_VF]
+    k, g, e = p[P_K], p[P_G], p[P_E]
+    _to_local(axes, s, 0, w, wo)  # stress in the material axes
+    _to_local(axes, w, do, w, wo + 12)  # strain increment in the material axes
+    if p[P_SHDFLG] == 1.0:
+        for i in range(3):
+            w[wo + 3 + i] /= max(1.0 - hist[H_DAMAGE + i], 1e-20)
+    failed = False
+    for i in range(3):
+        hist[i] += w[wo + 12 + i]
+        if p[P_TSEF] > 0.0 and hist[i] > p[P_TSEF]:
+            failed = True
+    if relvol <= vf:
+        _to_global(axes, w, wo, s)
+        _elastic_trial(s, w, do, k, g)
+        pm, q = _mises(s)
+        if q > p[P_SIGY]:
+            _scale_deviator(s, pm, p[P_SIGY] / q)
+        _to_local(axes, s, 0, w, wo)
+        wave = k + 4.0 * g / 3.0
+    else:
+        beta = min(max((1.0 - relvol) / (1.0 - vf), 0.0), 1.0)
+        ev = 1.0 - relvol
+        ea = p[P_EAAU] + beta * (e - p[P_EAAU])
+        eb = p[P_EBBU] + beta * (e - p[P_EBBU])
+        gab = p[P_GABU] + beta * (g - p[P_GABU])
+        gbc = p[P_GBCU] + beta * (g - p[P_GBCU])
+        w[wo] += ea * w[wo + 12]
+        w[wo + 1] += eb * w[wo + 13]
+        w[wo + 2] += eb * w[wo + 14]
+        w[wo + 3] += 2.0 * gab * w[wo + 15]
+        w[wo + 4] += 2.0 * gbc * w[wo + 16]
+        w[wo + 5] += 2.0 * gab * w[wo + 17]
+        wave = max(max(ea, eb), max(gab, gbc))
+        a, v = wo + 6, wo + 15  # the strain increment is spent: its slots hold the eigenvectors
+        w[a], w[a + 4], w[a + 8] = w[wo], w[wo + 1], w[wo + 2]
+        w[a + 1] = w[a + 3] = w[wo + 3]
+        w[a + 5] = w[a + 7] = w[wo + 4]
+        w[a + 2] = w[a + 6] = w[wo + 5]
+        _jacobi3(w, a, v)
+        strong = max(curve_value(cx, cy, cs[mc[C_B]], ce[mc[C_B]], ev), 0.0)
+        weak = max(curve_value(cx, cy, cs[mc[C_C]], ce[mc[C_C]], ev), 0.0)
+        num = 0.0
+        den = 0.0
+        for i in range(3):
+            lam = w[a + 4 * i]
+            c2 = min(max(w[v + i] * w[v + i], 0.0), 1.0)  # (a · principal direction i)²
+            phi = math.degrees(math.acos(math.sqrt(c2)))
+            y = curve_value(cx, cy, cs[mc[C_A]], ce[mc[C_A]], phi) + c2 * strong + (1.0 - c2) * weak
+            num += max(y, 0.0) * lam * lam
+            den += lam * lam
+        if den > 0.0:
+            f = (num / den) / math.sqrt(den)
+            if f < 1.0:  # every principal stress scaled alike: the tensor is
+                for t in range(6):
+                    w[wo + t] *= f
+    for i in range(3):
+        gam = _shear_of_cell(hist, i, (i + 1) % 3)
+        hist[3 + i] = 0.5 * gam
+        if p[P_SSEF] > 0.0 and abs(gam) > p[P_SSEF]:
+            failed = True
+        c = mc[C_AB + i]
+        if c >= 0:
+            left = min(max(curve_value(cx, cy, cs[c], ce[c], abs(0.5 * gam)), 0.0), 1.0 - hist[H_DAMAGE + i])
+            hist[H_DAMAGE + i] = 1.0 - left
+            w[wo + 3 + i] *= left
     _to_global(axes, w, wo, s)
     return wave, failed
 
