@@ -11,7 +11,7 @@ the energy to the end and the ISO/TS 18571 rating of the CFC 60 force
 against the finest detailed face. Usage::
 
     python bench/barrier_strip.py [--faces 50 35 25] [--depth 50] [--slip cell | MM [BUMPER]] [--elform 2]
-        [--end-ms 20] [--shear-strength S]
+        [--end-ms 20] [--shear-strength S] [--honeycomb classic|transverse]
 """
 
 from __future__ import annotations
@@ -60,6 +60,12 @@ def main() -> None:
         default=None,
         help="the honeycomb's transverse shear strength × its plateau (default: the detailed barrier's)",
     )
+    ap.add_argument(
+        "--honeycomb",
+        choices=("classic", "transverse"),
+        default="classic",
+        help="MAT_026 (classic, torn elements deleted) or MAT_126's transversely isotropic form (kept)",
+    )
     args = ap.parse_args()
     slip = args.slip[0] if args.slip[0] in SLIP_WORDS else (float(args.slip[0]), float(args.slip[-1]))
     spec, imp, end = ODBSpec(), Impactor(height=STRIP), args.end_ms / 1e3
@@ -72,6 +78,7 @@ def main() -> None:
                 width_size=face,
                 elform=args.elform,
                 shear_slip=slip,
+                honeycomb=args.honeycomb,
                 **({} if args.shear_strength is None else {"shear_strength": args.shear_strength}),
             )
             t0 = time.perf_counter()
@@ -79,7 +86,9 @@ def main() -> None:
             print(f"detailed face {face:g} mm: {time.perf_counter() - t0:.0f} s", flush=True)
         cases["simplified"] = run_case("simplified", 0.4, Path(tmp) / "s", simplified_barrier(), spec, imp, end)
     ref = list(cases)[-2] if len(cases) > 1 else None
-    print(f"\nstrip z {STRIP[0]:g}-{STRIP[1]:g} mm, 40 %, 5 t at 64 km/h; detailed ELFORM {args.elform}, tear {slip}")
+    print(
+        f"\nstrip z {STRIP[0]:g}-{STRIP[1]:g} mm, 40 %, 5 t at 64 km/h; detailed ELFORM {args.elform}, tear {slip}, {args.honeycomb}"
+    )
     head = "".join(f"{f'{lo}-{hi} mm':>12s}" for lo, hi in WINDOWS)
     print(f"{'mean force [kN] over travel':28s}{head}{'energy kJ':>12s}{'rating':>10s}{'cycles':>10s}{'loop s':>10s}")
     for name, c in cases.items():

@@ -101,6 +101,12 @@ def main() -> None:
         help="the honeycomb across its cells × its crush values (default: the detailed barrier's, 0.05)",
     )
     ap.add_argument(
+        "--honeycomb",
+        choices=("classic", "transverse"),
+        default=None,
+        help="MAT_026 (classic, torn elements deleted) or MAT_126's transversely isotropic form (kept)",
+    )
+    ap.add_argument(
         "--beams", type=int, nargs=3, default=None, metavar=("WIDTH", "MAIN", "BUMPER"), help="simplified barrier grid"
     )
     ap.add_argument("--save", type=Path, default=None, help="keep each run's results in DIR/<run>")
@@ -117,7 +123,7 @@ def main() -> None:
         if args.shear_slip[0] in SLIP_WORDS
         else (float(args.shear_slip[0]), float(args.shear_slip[-1])),
     }
-    given = {k: getattr(args, k) for k in ("height_size", "width_size", "shear_strength", "lateral")}
+    given = {k: getattr(args, k) for k in ("height_size", "width_size", "shear_strength", "lateral", "honeycomb")}
     honeycomb.update({k: v for k, v in given.items() if v is not None})  # the rest keep detailed_barrier's defaults
     rows, hist = {}, {}
     with tempfile.TemporaryDirectory() as tmp:

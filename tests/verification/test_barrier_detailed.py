@@ -32,17 +32,19 @@ def test_detailed_main_block_crushes_on_its_honeycomb_curve(tmp_path):
     assert r.hourglass.max() < 0.1 * r.internal.max()
 
 
-@pytest.mark.parametrize("slip", [0.0, "columns"])
-def test_whole_detailed_barrier_with_the_bumper_crushes_at_the_full_face_plateau(tmp_path, slip):
+@pytest.mark.parametrize("slip, honeycomb", [(0.0, "classic"), ("columns", "classic"), ("cell", "transverse")])
+def test_whole_detailed_barrier_with_the_bumper_crushes_at_the_full_face_plateau(tmp_path, slip, honeycomb):
     """Bumper bonded ahead of the block, 1000 t wall at 10 m/s (constant
     speed), 60 mm solids: once the wall reaches the block face beside the
     bumper, the force is the main block's plateau over the whole face
     (230 kN within 10 %) until compaction: the transverse shear of the cell
     walls keeps the columns behind the bumper's edge from tilting (with
     weak shear they carried half of it). The same with split columns,
-    whose links carry the walls' shear until a cell of slip."""
+    whose links carry the walls' shear until a cell of slip, and with
+    MAT_126's transversely isotropic honeycomb, whose walls' shear is
+    damaged, not deleted, past a cell's slip."""
     pl = Placement()
-    b = detailed_barrier(placement=pl, element_size=60.0, shear_slip=slip)
+    b = detailed_barrier(placement=pl, element_size=60.0, shear_slip=slip, honeycomb=honeycomb)
     main = write_impactor_case(tmp_path, b, pl, Impactor(mass=1000.0, speed=10000.0), end_time=0.033)
     r = run(main, output_dt=2e-4)
     f = -r.wall_force[:, 0, 0]
@@ -247,3 +249,35 @@ def test_split_columns_crushed_unevenly_keep_their_elements(tmp_path):
     swept = spec.main.area * v * end * 0.575  # the mean share over the height: 0.15 + 0.85 / 2
     assert crush == pytest.approx(spec.main.strength * swept, rel=0.06)
     assert np.all(np.abs(r.energy_ratio - 1.0) < 0.02)
+
+
+def test_transverse_honeycomb_writes_mat126_with_its_angle_hardening_and_damage_curves(tmp_path):
+    """honeycomb="transverse": each block is a MAT_126 with LCA < 0 whose
+    |LCA| holds the plateau along the cells, √2 × the shear strength × the
+    plateau at 45° and the lateral fraction across; LCB the crush curve
+    over its plateau; the damage curve LCS falls from 1 at half the
+    engineering shear of a cell's slip over the element to the residual at
+    half of CELL_TEAR_STRAIN; no SSEF (nothing deleted), SHDFLG 1. A
+    main block alone crushed by a 5 t wall at 5 m/s crushes at its plateau
+    (2 %), energy balanced, nothing deleted."""
+    from crashlite.barrier.detailed import CELL_TEAR_STRAIN, TEAR_RESIDUAL
+
+    spec, pl = ODBSpec(), Placement()
+    b = detailed_barrier(placement=pl, element_size=75.0, bumper=False, honeycomb="transverse", shear_strength=0.5)
+    m = read_deck(b.write(tmp_path / "det.k"))
+    (mat,) = [r for r in m.materials.values() if r.keyword == "MAT_MODIFIED_HONEYCOMB"]
+    assert int(mat["lca"]) < 0 and float(mat["ssef"]) == 0.0 and float(mat["shdflg"]) == 1.0
+    plateau = spec.main.plateau_stress
+    angle = m.curves[-int(mat["lca"])].rows
+    np.testing.assert_allclose(angle["o1"], [plateau, np.sqrt(2.0) * 0.5 * plateau, 0.05 * plateau])
+    np.testing.assert_allclose(angle["a1"], [0.0, 45.0, 90.0])
+    damage = m.curves[int(mat["lcs"])].rows
+    onset = spec.main.cell / 75.0
+    np.testing.assert_allclose(damage["a1"][:3], [0.0, 0.5 * onset, 0.5 * CELL_TEAR_STRAIN])
+    np.testing.assert_allclose(damage["o1"][:3], [1.0, 1.0, TEAR_RESIDUAL])
+    main = write_impactor_case(tmp_path, b, pl, Impactor(mass=5.0, speed=5000.0), end_time=0.02)
+    r = run(main, output_dt=2e-4)
+    f = -r.wall_force[:, 0, 0]
+    assert np.median(f[r.time > 0.002]) == pytest.approx(spec.main.curve.plateau, rel=0.02)
+    assert r.deleted() == 0
+    assert np.all(np.abs(r.energy_ratio - 1.0) < 0.01)

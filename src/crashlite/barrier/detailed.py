@@ -88,6 +88,58 @@ def _honeycomb(
     dk.kw("DEFINE_CURVE", [lct], (0.0, tau * s), (1.0, tau * s))
 
 
+# the transversely isotropic honeycomb (MAT_126, LCA < 0): a wall's shear falls from the slip of one cell over
+# the element to CELL_TEAR_STRAIN, where this fraction of it is left (a zero shear would be a mechanism)
+TEAR_RESIDUAL = 0.05
+
+
+def _transverse_honeycomb(
+    dk: _Deck,
+    mid: int,
+    lcid: int,
+    b: Block,
+    u: UnitSystem,
+    d: int,
+    modulus: float,
+    lateral: float,
+    shear_modulus: float,
+    shear_strength: float,
+    tear: tuple[float, float],
+) -> None:
+    """MAT_126 of a block in its transversely isotropic form (LCA < 0),
+    cell axis a along the depth. The yield by the angle off the cells
+    (curve lcid): the crush plateau along them, √2 × ``shear_strength`` ×
+    the plateau at 45° (so that pure transverse shear yields at
+    ``shear_strength`` × the plateau, as MAT_026's), ``lateral`` × the
+    plateau across; the strong axis hardens by the crush curve over its
+    plateau (lcid + 1), the weak axis not (lcid + 2); the walls' shear
+    (planes ab, ca and bc alike, LCS lcid + 3) falls from the engineering
+    shear tear[0] to TEAR_RESIDUAL at tear[1] and the element is kept
+    (SSEF 0); SHDFLG 1: the damage scales the undamaged stress."""
+    cx, cf = b.curve.points(b.depth)
+    strain, stress = cx / b.depth, cf / b.area
+    e_u = b.crush_modulus
+    vf = 1.0 - b.curve.full
+    s = u.stress
+    weak, g_t = lateral * e_u * s, shear_modulus * e_u * s
+    plateau = b.plateau_stress
+    la, lb, lc, ls = lcid, lcid + 1, lcid + 2, lcid + 3
+    dk.kw(
+        "MAT_MODIFIED_HONEYCOMB",
+        [mid, b.density * u.density, modulus * s, 0.0, 20.0 * stress.max() * s, vf, 0.05, 0.0],
+        [-la, lb, lc, ls, 0, 0, 0, 0],
+        [e_u * s, weak, weak, g_t, weak, g_t, 2.0, 1],
+        [0.0, 0.0, 0.0, float(d), 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+    )
+    across = (0.0, plateau), (45.0, np.sqrt(2.0) * shear_strength * plateau), (90.0, lateral * plateau)
+    dk.kw("DEFINE_CURVE", [la], *[(a, f * s) for a, f in across])
+    dk.kw("DEFINE_CURVE", [lb], *[(float(a), max(float(f) - plateau, 0.0) * s) for a, f in zip(strain, stress)])
+    dk.kw("DEFINE_CURVE", [lc], (0.0, 0.0), (1.0, 0.0))
+    start, end = tear
+    dk.kw("DEFINE_CURVE", [ls], (0.0, 1.0), (0.5 * start, 1.0), (0.5 * end, TEAR_RESIDUAL), (10.0, TEAR_RESIDUAL))
+
+
 def _column_links(dk, split, blocks, slip, strength, modulus, lateral, d, eid, u, o, title) -> None:
     """The links of split columns (``columns.split_columns``): along the
     depth the cell walls' shear, ``strength`` × the plateau stress torn at
@@ -131,6 +183,7 @@ def detailed_barrier(
     elform: int = 1,
     height_size: float | None = None,
     width_size: float | None = None,
+    honeycomb: str = "classic",
 ) -> SimplifiedBarrier:
     """Solid honeycomb barrier (mm–t–s spec, written in ``units``):
     elements of about ``element_size`` mm; ``compacted_modulus`` [MPa] of
@@ -197,7 +250,15 @@ def detailed_barrier(
     beside the car's imprint crush by half its push, an error of the
     element size over the imprint's height (the bumper beam's, 110 mm),
     which a tear that keeps the column's crush does not remove
-    (docs/validation.md)."""
+    (docs/validation.md).
+    ``honeycomb``: "classic" (default) MAT_026, each stress component
+    bounded on its own and a torn element deleted; "transverse" MAT_126's
+    transversely isotropic form (``_transverse_honeycomb``): a crushing
+    cell carries little shear beside its crush, and a wall torn by a slip
+    from one cell over the element (SSEF's ``shear_slip``, else "cell") to
+    a slip of the element's own size (CELL_TEAR_STRAIN) loses its shear
+    but keeps its crush: no element is deleted. Not with ``shear_slip``
+    "columns"."""
     spec = spec or ODBSpec()
     spec.check()
     pl = placement or Placement()
@@ -281,6 +342,10 @@ def detailed_barrier(
         hexes(nid_b, pid["bumper"], bmp.name, s_b, int(kb[0]))
         blocks.append(bmp)
     slip = {b.name: b.cell for b in blocks} if shear_slip in SLIP_WORDS else per_block(shear_slip)
+    if honeycomb not in ("classic", "transverse"):
+        raise ValueError(f"honeycomb={honeycomb!r}: 'classic' (MAT_026) or 'transverse' (MAT_126, LCA < 0)")
+    if honeycomb == "transverse" and shear_slip == COLUMNS:
+        raise ValueError("honeycomb='transverse' tears inside the elements; split columns tear between them")
     if shear_slip in SLIP_WORDS and not all(slip.values()):  # a zero slip would silently mean SSEF
         raise ValueError(f"shear_slip={shear_slip!r} needs each block's cell size, got {slip}")
     split = None
@@ -305,6 +370,22 @@ def detailed_barrier(
             dk.kw("HOURGLASS", [p, 4, 0.1])
         # split: a cut between columns is the links'; the elements keep their shear (with weak shear inside,
         # the columns tilt: a full face carried 126 instead of 230 kN) and tear at a cell across a cell
+        if honeycomb == "transverse":
+            onset = min((slip[b.name] or b.cell) / across, CELL_TEAR_STRAIN)
+            _transverse_honeycomb(
+                dk,
+                p,
+                o + 1 + 4 * k,
+                b,
+                u,
+                d,
+                compacted_modulus,
+                lateral,
+                shear_modulus,
+                shear_strength,
+                (onset, CELL_TEAR_STRAIN),
+            )
+            continue
         ssef = CELL_TEAR_STRAIN if split else slip[b.name] / across if slip[b.name] > 0.0 else shear_failure
         _honeycomb(
             dk,
