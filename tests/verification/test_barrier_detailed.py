@@ -255,12 +255,12 @@ def test_transverse_honeycomb_writes_mat126_with_its_angle_hardening_and_damage_
     """honeycomb="transverse": each block is a MAT_126 with LCA < 0 whose
     |LCA| holds the plateau along the cells, √2 × the shear strength × the
     plateau at 45° and the lateral fraction across; LCB the crush curve
-    over its plateau; the damage curve LCS falls from 1 at half the
-    engineering shear of a cell's slip over the element to the residual at
-    half of CELL_TEAR_STRAIN; no SSEF (nothing deleted), SHDFLG 1. A
+    over its plateau; the damage curve LCS (of half the engineering shear)
+    falls from 1 at half a cell's slip across the element to the residual
+    at a whole cell's; no SSEF (nothing deleted), SHDFLG 1. A
     main block alone crushed by a 5 t wall at 5 m/s crushes at its plateau
     (2 %), energy balanced, nothing deleted."""
-    from crashlite.barrier.detailed import CELL_TEAR_STRAIN, TEAR_RESIDUAL
+    from crashlite.barrier.detailed import TEAR_ONSET, TEAR_RESIDUAL
 
     spec, pl = ODBSpec(), Placement()
     b = detailed_barrier(placement=pl, element_size=75.0, bumper=False, honeycomb="transverse", shear_strength=0.5)
@@ -272,8 +272,8 @@ def test_transverse_honeycomb_writes_mat126_with_its_angle_hardening_and_damage_
     np.testing.assert_allclose(angle["o1"], [plateau, np.sqrt(2.0) * 0.5 * plateau, 0.05 * plateau])
     np.testing.assert_allclose(angle["a1"], [0.0, 45.0, 90.0])
     damage = m.curves[int(mat["lcs"])].rows
-    onset = spec.main.cell / 75.0
-    np.testing.assert_allclose(damage["a1"][:3], [0.0, 0.5 * onset, 0.5 * CELL_TEAR_STRAIN])
+    tear = spec.main.cell / 75.0  # a cell's slip across the element
+    np.testing.assert_allclose(damage["a1"][:3], [0.0, 0.5 * TEAR_ONSET * tear, 0.5 * tear])
     np.testing.assert_allclose(damage["o1"][:3], [1.0, 1.0, TEAR_RESIDUAL])
     main = write_impactor_case(tmp_path, b, pl, Impactor(mass=5.0, speed=5000.0), end_time=0.02)
     r = run(main, output_dt=2e-4)

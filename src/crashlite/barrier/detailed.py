@@ -88,9 +88,9 @@ def _honeycomb(
     dk.kw("DEFINE_CURVE", [lct], (0.0, tau * s), (1.0, tau * s))
 
 
-# the transversely isotropic honeycomb (MAT_126, LCA < 0): a wall's shear falls from the slip of one cell over
-# the element to CELL_TEAR_STRAIN, where this fraction of it is left (a zero shear would be a mechanism)
-TEAR_RESIDUAL = 0.05
+# the transversely isotropic honeycomb (MAT_126, LCA < 0): a wall's shear falls from half a cell's slip across
+# the element to nothing at a whole cell's (the tear), and the element keeps its crush
+TEAR_ONSET, TEAR_RESIDUAL = 0.5, 0.0
 
 
 def _transverse_honeycomb(
@@ -115,7 +115,10 @@ def _transverse_honeycomb(
     plateau (lcid + 1), the weak axis not (lcid + 2); the walls' shear
     (planes ab, ca and bc alike, LCS lcid + 3) falls from the engineering
     shear tear[0] to TEAR_RESIDUAL at tear[1] and the element is kept
-    (SSEF 0); SHDFLG 1: the damage scales the undamaged stress."""
+    (SSEF 0); SHDFLG 1: the damage scales the undamaged stress. Damage
+    counts the element's mean shear, so a crush graded across an element
+    tears it as a cut through it does; a torn element keeps its crush,
+    where MAT_026 deletes it."""
     cx, cf = b.curve.points(b.depth)
     strain, stress = cx / b.depth, cf / b.area
     e_u = b.crush_modulus
@@ -254,11 +257,10 @@ def detailed_barrier(
     ``honeycomb``: "classic" (default) MAT_026, each stress component
     bounded on its own and a torn element deleted; "transverse" MAT_126's
     transversely isotropic form (``_transverse_honeycomb``): a crushing
-    cell carries little shear beside its crush, and a wall torn by a slip
-    from one cell over the element (SSEF's ``shear_slip``, else "cell") to
-    a slip of the element's own size (CELL_TEAR_STRAIN) loses its shear
-    but keeps its crush: no element is deleted. Not with ``shear_slip``
-    "columns"."""
+    cell carries little shear beside its crush, and its walls' shear falls
+    from half to all of a cell's slip across the element (the block's
+    cell, or ``shear_slip`` in mm), after which the element keeps its
+    crush: no element is deleted. Not with ``shear_slip`` "columns"."""
     spec = spec or ODBSpec()
     spec.check()
     pl = placement or Placement()
@@ -371,7 +373,7 @@ def detailed_barrier(
         # split: a cut between columns is the links'; the elements keep their shear (with weak shear inside,
         # the columns tilt: a full face carried 126 instead of 230 kN) and tear at a cell across a cell
         if honeycomb == "transverse":
-            onset = min((slip[b.name] or b.cell) / across, CELL_TEAR_STRAIN)
+            tear = (slip[b.name] or b.cell) / across  # a cell's slip across the element
             _transverse_honeycomb(
                 dk,
                 p,
@@ -383,7 +385,7 @@ def detailed_barrier(
                 lateral,
                 shear_modulus,
                 shear_strength,
-                (onset, CELL_TEAR_STRAIN),
+                (TEAR_ONSET * tear, tear),
             )
             continue
         ssef = CELL_TEAR_STRAIN if split else slip[b.name] / across if slip[b.name] > 0.0 else shear_failure
