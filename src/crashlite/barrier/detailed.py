@@ -58,82 +58,65 @@ def _honeycomb(
     shear_modulus: float,
     shear_strength: float,
     shear_failure: float,
+    tear: tuple[float, float] | None = None,
 ) -> None:
-    """MAT_026 of a block, crush along the depth (axis a; b, c across): the
-    uniaxial curve is the block's force–crush per face area; the cells'
-    walls make the transverse shears ab and ca stiff and strong
-    (``shear_modulus`` × the crush modulus, ``shear_strength`` × the
-    plateau stress), while across the cells (normal b and c, shear bc) the
-    honeycomb is weak (``lateral`` × the crush values). Curve ids lcid,
-    lcid + 1 (weak), lcid + 2 (transverse shear)."""
-    cx, cf = b.curve.points(b.depth)
-    strain, stress = cx / b.depth, cf / b.area
-    e_u = b.crush_modulus
-    vf = 1.0 - b.curve.full
-    s = u.stress
-    lcw, lct = lcid + 1, lcid + 2
-    weak, g_t = lateral * e_u * s, shear_modulus * e_u * s
-    dk.kw(
-        "MAT_HONEYCOMB",
-        [mid, b.density * u.density, modulus * s, 0.0, 20.0 * stress.max() * s, vf, 0.05, 0.0],
-        [lcid, lcw, lcw, lcw, lct, lcw, lct, 0],
-        [e_u * s, weak, weak, g_t, weak, g_t, 2.0, 1],
-        [0.0, 0.0, 0.0, float(d), 0.0, 0.0],
-        [0.0, 1.0, 0.0, 0.0, shear_failure, 0.0, 0.0, 0.0],
-    )
-    dk.kw("DEFINE_CURVE", [lcid], *[(float(a), float(f) * s) for a, f in zip(strain, stress)])
-    low = lateral * stress[1:].min()
-    dk.kw("DEFINE_CURVE", [lcw], (0.0, low * s), (1.0, low * s))
-    tau = shear_strength * b.plateau_stress
-    dk.kw("DEFINE_CURVE", [lct], (0.0, tau * s), (1.0, tau * s))
+    """The honeycomb of a block, crush along the depth (axis a; b, c
+    across), curve ids from lcid on; the walls make the transverse shears
+    ab and ca stiff (``shear_modulus`` × the crush modulus), while across
+    the cells (normal b and c, shear bc) it is weak (``lateral`` × the
+    crush values).
 
+    ``tear`` None: MAT_026, the uniaxial curve the block's force–crush per
+    face area, the transverse shears strong (``shear_strength`` × the
+    plateau), failing at ``shear_failure`` (SSEF; lcid + 1 weak, lcid + 2
+    transverse shear).
 
-# the transversely isotropic honeycomb (MAT_126, LCA < 0): a wall's shear falls from half a cell's slip across
-# the element to nothing at a whole cell's (the tear), and the element keeps its crush
-TEAR_ONSET, TEAR_RESIDUAL = 0.5, 0.0
-
-
-def _transverse_honeycomb(
-    dk: _Deck,
-    mid: int,
-    lcid: int,
-    b: Block,
-    u: UnitSystem,
-    d: int,
-    modulus: float,
-    lateral: float,
-    shear_modulus: float,
-    shear_strength: float,
-    tear: tuple[float, float],
-) -> None:
-    """MAT_126 of a block in its transversely isotropic form (LCA < 0),
-    cell axis a along the depth. The yield by the angle off the cells
-    (curve lcid): the crush plateau along them, √2 × ``shear_strength`` ×
-    the plateau at 45° (so that pure transverse shear yields at
-    ``shear_strength`` × the plateau, as MAT_026's), ``lateral`` × the
-    plateau across; the strong axis hardens by the crush curve over its
-    plateau (lcid + 1), the weak axis not (lcid + 2); the walls' shear
-    (planes ab, ca and bc alike, LCS lcid + 3) falls from the engineering
-    shear tear[0] to TEAR_RESIDUAL at tear[1] and the element is kept
-    (SSEF 0); SHDFLG 1: the damage scales the undamaged stress. Damage
-    counts the element's mean shear, so a crush graded across an element
-    tears it as a cut through it does; a torn element keeps its crush,
-    where MAT_026 deletes it."""
+    ``tear`` (start, end): MAT_126 in its transversely isotropic form (LCA
+    < 0). The yield by the angle off the cells (lcid): the crush plateau
+    along them, √2 × ``shear_strength`` × the plateau at 45° (so that pure
+    transverse shear yields at ``shear_strength`` × the plateau, as
+    MAT_026's), ``lateral`` × the plateau across; the strong axis hardens
+    by the crush curve over its plateau (lcid + 1), the weak axis not
+    (lcid + 2); the walls' shear (LCS lcid + 3, all planes) falls from the
+    engineering shear ``start`` to TEAR_RESIDUAL at ``end`` and the element
+    is kept (SSEF 0); SHDFLG 1: the damage scales the undamaged stress.
+    Damage counts the element's mean shear, so a crush graded across an
+    element tears it as a cut through it does; a torn element keeps its
+    crush, where MAT_026 deletes it."""
     cx, cf = b.curve.points(b.depth)
     strain, stress = cx / b.depth, cf / b.area
     e_u = b.crush_modulus
     vf = 1.0 - b.curve.full
     s = u.stress
     weak, g_t = lateral * e_u * s, shear_modulus * e_u * s
+    first = [mid, b.density * u.density, modulus * s, 0.0, 20.0 * stress.max() * s, vf, 0.05, 0.0]
+    moduli = [e_u * s, weak, weak, g_t, weak, g_t, 2.0, 1]
+    axis_a = [0.0, 0.0, 0.0, float(d), 0.0, 0.0]
+    if tear is None:
+        lcw, lct = lcid + 1, lcid + 2
+        dk.kw(
+            "MAT_HONEYCOMB",
+            first,
+            [lcid, lcw, lcw, lcw, lct, lcw, lct, 0],
+            moduli,
+            axis_a,
+            [0.0, 1.0, 0.0, 0.0, shear_failure, 0.0, 0.0, 0.0],
+        )
+        dk.kw("DEFINE_CURVE", [lcid], *[(float(a), float(f) * s) for a, f in zip(strain, stress)])
+        low = lateral * stress[1:].min()
+        dk.kw("DEFINE_CURVE", [lcw], (0.0, low * s), (1.0, low * s))
+        tau = shear_strength * b.plateau_stress
+        dk.kw("DEFINE_CURVE", [lct], (0.0, tau * s), (1.0, tau * s))
+        return
     plateau = b.plateau_stress
     la, lb, lc, ls = lcid, lcid + 1, lcid + 2, lcid + 3
     dk.kw(
         "MAT_MODIFIED_HONEYCOMB",
-        [mid, b.density * u.density, modulus * s, 0.0, 20.0 * stress.max() * s, vf, 0.05, 0.0],
+        first,
         [-la, lb, lc, ls, 0, 0, 0, 0],
-        [e_u * s, weak, weak, g_t, weak, g_t, 2.0, 1],
-        [0.0, 0.0, 0.0, float(d), 0.0, 0.0],
-        [0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+        moduli,
+        axis_a,
+        [0.0, 1.0, 0.0, 0.0] + [0.0] * 3 + [1.0],
     )
     across = (0.0, plateau), (45.0, np.sqrt(2.0) * shear_strength * plateau), (90.0, lateral * plateau)
     dk.kw("DEFINE_CURVE", [la], *[(a, f * s) for a, f in across])
@@ -141,6 +124,11 @@ def _transverse_honeycomb(
     dk.kw("DEFINE_CURVE", [lc], (0.0, 0.0), (1.0, 0.0))
     start, end = tear
     dk.kw("DEFINE_CURVE", [ls], (0.0, 1.0), (0.5 * start, 1.0), (0.5 * end, TEAR_RESIDUAL), (10.0, TEAR_RESIDUAL))
+
+
+# the transversely isotropic honeycomb (MAT_126, LCA < 0): a wall's shear falls from half a cell's slip across
+# the element to nothing at a whole cell's (the tear), and the element keeps its crush
+TEAR_ONSET, TEAR_RESIDUAL = 0.5, 0.0
 
 
 def _column_links(dk, split, blocks, slip, strength, modulus, lateral, d, eid, u, o, title) -> None:
@@ -372,27 +360,14 @@ def detailed_barrier(
             dk.kw("HOURGLASS", [p, 4, 0.1])
         # split: a cut between columns is the links'; the elements keep their shear (with weak shear inside,
         # the columns tilt: a full face carried 126 instead of 230 kN) and tear at a cell across a cell
-        if honeycomb == "transverse":
-            tear = (slip[b.name] or b.cell) / across  # a cell's slip across the element
-            _transverse_honeycomb(
-                dk,
-                p,
-                o + 1 + 4 * k,
-                b,
-                u,
-                d,
-                compacted_modulus,
-                lateral,
-                shear_modulus,
-                shear_strength,
-                (TEAR_ONSET * tear, tear),
-            )
-            continue
+        # split: a cut between columns is the links'; the elements keep their shear (with weak shear inside,
+        # the columns tilt: a full face carried 126 instead of 230 kN) and tear at a cell across a cell
         ssef = CELL_TEAR_STRAIN if split else slip[b.name] / across if slip[b.name] > 0.0 else shear_failure
+        cell_slip = (slip[b.name] or b.cell) / across  # the transverse form's tear: a cell's slip across the element
         _honeycomb(
             dk,
             p,
-            o + 1 + 3 * k,
+            o + 1 + (4 if honeycomb == "transverse" else 3) * k,  # each block's curves
             b,
             u,
             d,
@@ -401,6 +376,7 @@ def detailed_barrier(
             shear_modulus,
             shear_strength,
             ssef,
+            (TEAR_ONSET * cell_slip, cell_slip) if honeycomb == "transverse" else None,
         )
     if split:
         _column_links(dk, split, blocks, slip, shear_strength, shear_modulus, lateral, d, eid, u, o, title)
