@@ -63,10 +63,12 @@ def main() -> None:
     ap.add_argument(
         "--honeycomb",
         choices=("classic", "transverse"),
-        default="classic",
-        help="MAT_026 (classic, torn elements deleted) or MAT_126's transversely isotropic form (kept)",
+        default=None,
+        help="MAT_026 (classic, torn elements deleted) or MAT_126's transversely isotropic form (kept); "
+        "default: the detailed barrier's",
     )
     args = ap.parse_args()
+    given = {"shear_strength": args.shear_strength, "honeycomb": args.honeycomb}  # the rest: the generator's
     slip = args.slip[0] if args.slip[0] in SLIP_WORDS else (float(args.slip[0]), float(args.slip[-1]))
     spec, imp, end = ODBSpec(), Impactor(height=STRIP), args.end_ms / 1e3
     cases = {}
@@ -78,8 +80,7 @@ def main() -> None:
                 width_size=face,
                 elform=args.elform,
                 shear_slip=slip,
-                honeycomb=args.honeycomb,
-                **({} if args.shear_strength is None else {"shear_strength": args.shear_strength}),
+                **{k: v for k, v in given.items() if v is not None},
             )
             t0 = time.perf_counter()
             cases[f"detailed, face {face:g}"] = run_case("detailed", 0.4, Path(tmp) / f"d{face:g}", b, spec, imp, end)

@@ -15,7 +15,7 @@ barrier's energy history against it. Usage::
 
     python bench/odb_car_convergence.py [--sizes 100 75 50] [--mesh-size 60] [--end-ms 80] [--front generic]
         [--elform 1] [--shear-failure 1.5] [--shear-slip 0 [BUMPER] | cell | columns] [--height-size MM] [--width-size MM]
-        [--beams 36 20 10] [--save DIR] [--reference DIR ...]
+        [--honeycomb classic|transverse] [--beams 36 20 10] [--save DIR] [--reference DIR ...]
 
 ``--save DIR`` keeps each run's results (``Results.save``) in DIR/<run>;
 ``--reference DIR`` adds such a saved detailed run (of the same car) as a
@@ -104,7 +104,8 @@ def main() -> None:
         "--honeycomb",
         choices=("classic", "transverse"),
         default=None,
-        help="MAT_026 (classic, torn elements deleted) or MAT_126's transversely isotropic form (kept)",
+        help="MAT_026 (classic, torn elements deleted) or MAT_126's transversely isotropic form (kept); "
+        "default: the detailed barrier's",
     )
     ap.add_argument(
         "--beams", type=int, nargs=3, default=None, metavar=("WIDTH", "MAIN", "BUMPER"), help="simplified barrier grid"
