@@ -88,7 +88,7 @@ def main() -> None:
         cases["simplified"] = run_case("simplified", 0.4, Path(tmp) / "s", simplified_barrier(), spec, imp, end)
     ref = list(cases)[-2] if len(cases) > 1 else None
     print(
-        f"\nstrip z {STRIP[0]:g}-{STRIP[1]:g} mm, 40 %, 5 t at 64 km/h; detailed ELFORM {args.elform}, tear {slip}, {args.honeycomb}"
+        f"\nstrip z {STRIP[0]:g}-{STRIP[1]:g} mm, 40 %, 5 t at 64 km/h; detailed ELFORM {args.elform}, tear {slip}, {args.honeycomb or 'default'} honeycomb"
     )
     head = "".join(f"{f'{lo}-{hi} mm':>12s}" for lo, hi in WINDOWS)
     print(f"{'mean force [kN] over travel':28s}{head}{'energy kJ':>12s}{'rating':>10s}{'cycles':>10s}{'loop s':>10s}")
