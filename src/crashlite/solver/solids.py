@@ -329,7 +329,9 @@ def _material(model: Model, mat, curves: CurveStore, problems: list):
         "MAT_CRUSHABLE_FOAM",
     ):
         problems.append(
-            _problem(mat, None, f"*{kw} is not supported for solids (supported: MAT_001, MAT_024, MAT_026, MAT_063, MAT_126)")
+            _problem(
+                mat, None, f"*{kw} is not supported for solids (supported: MAT_001, MAT_024, MAT_026, MAT_063, MAT_126)"
+            )
         )
         return None
     if not _elastic_constants(mat, row, problems):
