@@ -11,7 +11,7 @@ the energy to the end and the ISO/TS 18571 rating of the CFC 60 force
 against the finest detailed face. Usage::
 
     python bench/barrier_strip.py [--faces 50 35 25] [--depth 50] [--slip cell | MM [BUMPER]] [--elform 2]
-        [--end-ms 20] [--shear-strength S] [--honeycomb classic|transverse]
+        [--end-ms 20] [--shear-strength S] [--lateral L] [--honeycomb classic|transverse]
 """
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
+from _honeycomb_options import add_honeycomb_options, given
 from crashlite.barrier import ODBSpec, simplified_barrier
 from crashlite.barrier.cases import rate_pair, run_case
 from crashlite.barrier.detailed import SLIP_WORDS, detailed_barrier
@@ -54,21 +55,8 @@ def main() -> None:
     )
     ap.add_argument("--elform", type=int, default=2, help="the honeycomb's *SECTION_SOLID ELFORM")
     ap.add_argument("--end-ms", type=float, default=20.0, help="simulated time [ms]")
-    ap.add_argument(
-        "--shear-strength",
-        type=float,
-        default=None,
-        help="the honeycomb's transverse shear strength × its plateau (default: the detailed barrier's)",
-    )
-    ap.add_argument(
-        "--honeycomb",
-        choices=("classic", "transverse"),
-        default=None,
-        help="MAT_026 (classic, torn elements deleted) or MAT_126's transversely isotropic form (kept); "
-        "default: the detailed barrier's",
-    )
+    add_honeycomb_options(ap)
     args = ap.parse_args()
-    given = {"shear_strength": args.shear_strength, "honeycomb": args.honeycomb}  # the rest: the generator's
     slip = args.slip[0] if args.slip[0] in SLIP_WORDS else (float(args.slip[0]), float(args.slip[-1]))
     spec, imp, end = ODBSpec(), Impactor(height=STRIP), args.end_ms / 1e3
     cases = {}
@@ -80,7 +68,7 @@ def main() -> None:
                 width_size=face,
                 elform=args.elform,
                 shear_slip=slip,
-                **{k: v for k, v in given.items() if v is not None},
+                **given(args),
             )
             t0 = time.perf_counter()
             cases[f"detailed, face {face:g}"] = run_case("detailed", 0.4, Path(tmp) / f"d{face:g}", b, spec, imp, end)

@@ -32,6 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
+from _honeycomb_options import NAMES, add_honeycomb_options, given
 from crashlite.barrier.detailed import SLIP_WORDS
 from crashlite.barrier.simplified import GRID
 from crashlite.solver import run
@@ -88,25 +89,7 @@ def main() -> None:
     ap.add_argument(
         "--width-size", type=float, default=None, help="element size across the width [mm] (default: the size)"
     )
-    ap.add_argument(
-        "--shear-strength",
-        type=float,
-        default=None,
-        help="the honeycomb's transverse shear strength × its plateau (default: the detailed barrier's, 0.5)",
-    )
-    ap.add_argument(
-        "--lateral",
-        type=float,
-        default=None,
-        help="the honeycomb across its cells × its crush values (default: the detailed barrier's, 0.05)",
-    )
-    ap.add_argument(
-        "--honeycomb",
-        choices=("classic", "transverse"),
-        default=None,
-        help="MAT_026 (classic, torn elements deleted) or MAT_126's transversely isotropic form (kept); "
-        "default: the detailed barrier's",
-    )
+    add_honeycomb_options(ap)
     ap.add_argument(
         "--beams", type=int, nargs=3, default=None, metavar=("WIDTH", "MAIN", "BUMPER"), help="simplified barrier grid"
     )
@@ -124,8 +107,7 @@ def main() -> None:
         if args.shear_slip[0] in SLIP_WORDS
         else (float(args.shear_slip[0]), float(args.shear_slip[-1])),
     }
-    given = {k: getattr(args, k) for k in ("height_size", "width_size", "shear_strength", "lateral", "honeycomb")}
-    honeycomb.update({k: v for k, v in given.items() if v is not None})  # the rest keep detailed_barrier's defaults
+    honeycomb.update(given(args, ("height_size", "width_size") + NAMES))  # the rest keep detailed_barrier's defaults
     rows, hist = {}, {}
     with tempfile.TemporaryDirectory() as tmp:
         car = v.write(Path(tmp) / "car.k")

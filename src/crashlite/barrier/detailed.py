@@ -30,6 +30,9 @@ COLUMNS = "columns"  # shear_slip: split columns joined by links torn at one cel
 # links' between columns, and a crush that differs across an element is not a tear (each cell crushes on its own)
 CELL_TEAR_STRAIN = 1.0
 SLIP_WORDS = ("cell", COLUMNS)  # the tear slips given by a word rather than in mm
+# the transversely isotropic honeycomb (MAT_126, LCA < 0): a wall's shear falls from half a cell's slip across
+# the element to nothing at a whole cell's (the tear), and the element keeps its crush
+TEAR_ONSET, TEAR_RESIDUAL = 0.5, 0.0
 
 
 def _segments(bounds: list[float], size: float) -> np.ndarray:
@@ -124,11 +127,6 @@ def _honeycomb(
     dk.kw("DEFINE_CURVE", [lc], (0.0, 0.0), (1.0, 0.0))
     start, end = tear
     dk.kw("DEFINE_CURVE", [ls], (0.0, 1.0), (0.5 * start, 1.0), (0.5 * end, TEAR_RESIDUAL), (10.0, TEAR_RESIDUAL))
-
-
-# the transversely isotropic honeycomb (MAT_126, LCA < 0): a wall's shear falls from half a cell's slip across
-# the element to nothing at a whole cell's (the tear), and the element keeps its crush
-TEAR_ONSET, TEAR_RESIDUAL = 0.5, 0.0
 
 
 def _column_links(dk, split, blocks, slip, strength, modulus, lateral, d, eid, u, o, title) -> None:
